@@ -1,0 +1,86 @@
+/*
+ * Scaling and overflow: s_P is a convex combination of its children, so
+ * scaling coefficients stay within the sample range; details are differences
+ * of scaling values, at most twice the range. The update sum is formed in 64
+ * bits (|d| < 2^26, L_m < 2^16).
+ */
+#include "bw_biohaar.h"
+
+#include "bw_fixed.h"
+#include "bw_geodesic.h"
+
+static inline int32_t update_term(const uint16_t *w, int32_t d1, int32_t d2, int32_t d3)
+{
+    int64_t acc = (int64_t)w[0] * d1 + (int64_t)w[1] * d2 + (int64_t)w[2] * d3;
+    return (int32_t)(uint32_t)(uint64_t)bw_asr64(acc + 32768, 16);
+}
+
+void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
+{
+    for (unsigned j = level; j-- > 0;) {
+        size_t h = (size_t)1 << (2u * (level - j - 1u)); /* child stride, leaves */
+        uint32_t per_base = 1u << (2u * j);
+        for (uint32_t p = 0; p < 4u * per_base; p++) {
+            const uint16_t *w = bw_geo_weights(j, p & (per_base - 1u));
+            int32_t *c0 = x + (size_t)p * 4u * h * vlen;
+            int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
+            for (size_t e = 0; e < vlen; e++) {
+                int32_t d1 = bw_wsub(c1[e], c0[e]);
+                int32_t d2 = bw_wsub(c2[e], c0[e]);
+                int32_t d3 = bw_wsub(c3[e], c0[e]);
+                c0[e] = bw_wadd(c0[e], update_term(w, d1, d2, d3));
+                c1[e] = d1;
+                c2[e] = d2;
+                c3[e] = d3;
+            }
+        }
+    }
+}
+
+void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen)
+{
+    for (unsigned j = 0; j < level; j++) {
+        size_t h = (size_t)1 << (2u * (level - j - 1u));
+        uint32_t per_base = 1u << (2u * j);
+        for (uint32_t p = 0; p < 4u * per_base; p++) {
+            const uint16_t *w = bw_geo_weights(j, p & (per_base - 1u));
+            int32_t *c0 = x + (size_t)p * 4u * h * vlen;
+            int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
+            for (size_t e = 0; e < vlen; e++) {
+                int32_t s0 = bw_wsub(c0[e], update_term(w, c1[e], c2[e], c3[e]));
+                c0[e] = s0;
+                c1[e] = bw_wadd(c1[e], s0);
+                c2[e] = bw_wadd(c2[e], s0);
+                c3[e] = bw_wadd(c3[e], s0);
+            }
+        }
+    }
+}
+
+int bw_biohaar_coef_level(uint32_t idx)
+{
+    if (idx < 4u)
+        return -1;
+    int j = 0;
+    while (idx >= (1u << (2u * (unsigned)(j + 2))))
+        j++;
+    return j;
+}
+
+uint32_t bw_biohaar_pos(uint32_t idx, unsigned level)
+{
+    if (idx < 4u)
+        return idx << (2u * level);
+    unsigned j = (unsigned)bw_biohaar_coef_level(idx);
+    uint32_t r = idx - (1u << (2u * (j + 1u)));
+    uint32_t p = r / 3u, m = r % 3u + 1u;
+    return (4u * p + m) << (2u * (level - j - 1u));
+}
+
+uint32_t bw_biohaar_inv_gain_q16(unsigned level, int coef_level)
+{
+    if (coef_level < 0)
+        return 65536u >> level;
+    /* 1 / (sqrt(3/4) * 2^(level - j - 1)) */
+    return 75674u >> (level - (unsigned)coef_level - 1u);
+}

@@ -1,0 +1,39 @@
+/*
+ * Integer Bio-Haar lifting on the geodesic hemisphere, on vectors.
+ *
+ * Triangle t of the finest level holds the vector x[t*V .. t*V+V). For every
+ * parent P (children c0..c3, c0 the centre child, weights L_m = a_m / a_P):
+ *     d_m = x_m - x_0                          m = 1..3
+ *     s_P = x_0 + round(sum_m L_m d_m)         (= sum_i L_i x_i, area average)
+ * computed in place: s_P is stored where c0's value was and d_m where c_m's
+ * was, so after all levels the scaling coefficient of base b sits at leaf
+ * position b*4^L and details in the positions of the non-centre children.
+ * bw_biohaar_pos() maps a coarse-to-fine (Mallat) coefficient index to that
+ * position; coding walks the coefficients in Mallat order.
+ */
+#ifndef BW_BIOHAAR_H
+#define BW_BIOHAAR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen);
+void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
+
+/* Mallat index -> in-place leaf position. Mallat order: the 4 base scaling
+ * coefficients, then the 12 details of level 0's parents, then the 48 of
+ * level 1, ...: detail (parent P at level j, child m) has index
+ * 4^(j+1) + 3P + (m-1). */
+uint32_t bw_biohaar_pos(uint32_t idx, unsigned level);
+
+/* Level of the parent of a Mallat coefficient (-1 for a base scaling
+ * coefficient). */
+int bw_biohaar_coef_level(uint32_t idx);
+
+/* 1/sqrt(synthesis gain) as Q16 of a coefficient of the given parent level
+ * (-1 = scaling) in a transform of depth `level`: scaling coefficients spread
+ * over 4^level leaves with gain 1, a detail of a parent at level j over
+ * 4^(level-j-1) leaves of each child with energy about 3/4 of that. */
+uint32_t bw_biohaar_inv_gain_q16(unsigned level, int coef_level);
+
+#endif

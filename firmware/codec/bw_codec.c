@@ -1,0 +1,843 @@
+/*
+ * brdfwave codec: transforms, quantisation, strip coding and the payload.
+ *
+ * Encoding is one pass over a caller work array:
+ *   load     samples / prequant -> work           (MAX_ERROR: prequant = 2E+1)
+ *   forward  spectral lifting on every spectrum, then Bio-Haar on the
+ *            outgoing hemisphere, then (full BRDF) on the incoming one
+ *   quantise per-space thresholds: incoming blocks, then outgoing vectors
+ *            dropped by normalised norm, then a dead-zone quantiser per
+ *            element, with a step per subband scaled to equal sample-domain
+ *            error
+ *   code     the coefficients in coarse-to-fine order as strips of 32:
+ *            a presence flag, the 32-bit valid index, the valid values
+ * The byte-budget mode repeats the pass while it searches the step.
+ * See docs/FORMAT.md for the payload.
+ */
+#include "bw_codec.h"
+
+#include <string.h>
+
+#include "bw_biohaar.h"
+#include "bw_crc32.h"
+#include "bw_fixed.h"
+#include "bw_rc.h"
+#include "bw_spectral.h"
+
+#define BW_VERSION 1u
+#define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
+#define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
+#define STEP_T_MAX (24u * STEP_FRAC)
+#define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
+
+static const uint8_t magic[4] = {'B', 'W', 'A', 'V'};
+
+/* ---- little-endian fields ----------------------------------------------- */
+
+static void put_u32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+static uint32_t get_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* ---- sizes and dims ------------------------------------------------------ */
+
+size_t bw_payload_bound(size_t n) { return BW_PAYLOAD_BOUND(n); }
+size_t bw_work_bound(size_t n, size_t bands) { return BW_WORK_BOUND(n, bands); }
+
+static uint32_t tri_count(unsigned level) { return 4u << (2u * level); }
+
+size_t bw_dims_samples(const bw_dims_t *d) { return (size_t)d->n_in * d->n_out * d->bands; }
+
+bw_status_t bw_dims_check(const bw_dims_t *d)
+{
+    if (!d || d->bands < 1u || d->bands > BW_MAX_BANDS || d->n_in < 1u || d->n_in > BW_MAX_N_IN)
+        return BW_ERR_SHAPE;
+    switch (d->shape) {
+    case BW_SHAPE_SPECTRA:
+        if (d->n_out != 1u || d->level_out != 0u || d->level_in != 0u)
+            return BW_ERR_SHAPE;
+        break;
+    case BW_SHAPE_REFLECTANCE:
+    case BW_SHAPE_BRDF_ISO:
+        if (d->level_out > BW_MAX_LEVEL || d->n_out != tri_count(d->level_out) || d->level_in != 0u)
+            return BW_ERR_SHAPE;
+        if (d->shape == BW_SHAPE_REFLECTANCE && d->n_in != 1u)
+            return BW_ERR_SHAPE;
+        break;
+    case BW_SHAPE_BRDF_FULL:
+        if (d->level_out > BW_MAX_LEVEL || d->level_in > BW_MAX_LEVEL ||
+            d->n_out != tri_count(d->level_out) || d->n_in != tri_count(d->level_in))
+            return BW_ERR_SHAPE;
+        break;
+    default:
+        return BW_ERR_SHAPE;
+    }
+    /* n_in * n_out * bands <= BW_MAX_SAMPLES without overflow */
+    uint64_t n = (uint64_t)d->n_in * d->n_out * d->bands;
+    return n <= BW_MAX_SAMPLES ? BW_OK : BW_ERR_SHAPE;
+}
+
+bw_status_t bw_dims_make(bw_dims_t *d, bw_shape_t shape, unsigned level_out, unsigned level_in,
+                         uint32_t n_in, uint32_t bands)
+{
+    if (!d)
+        return BW_ERR_ARG;
+    memset(d, 0, sizeof *d);
+    d->shape = (uint8_t)shape;
+    d->bands = bands;
+    switch (shape) {
+    case BW_SHAPE_SPECTRA:
+        d->n_in = n_in;
+        d->n_out = 1u;
+        break;
+    case BW_SHAPE_REFLECTANCE:
+    case BW_SHAPE_BRDF_ISO:
+        if (level_out > BW_MAX_LEVEL)
+            return BW_ERR_SHAPE;
+        d->level_out = (uint8_t)level_out;
+        d->n_in = shape == BW_SHAPE_REFLECTANCE ? 1u : n_in;
+        d->n_out = tri_count(level_out);
+        break;
+    case BW_SHAPE_BRDF_FULL:
+        if (level_out > BW_MAX_LEVEL || level_in > BW_MAX_LEVEL)
+            return BW_ERR_SHAPE;
+        d->level_out = (uint8_t)level_out;
+        d->level_in = (uint8_t)level_in;
+        d->n_in = tri_count(level_in);
+        d->n_out = tri_count(level_out);
+        break;
+    default:
+        return BW_ERR_SHAPE;
+    }
+    return bw_dims_check(d);
+}
+
+/* ---- the transform plan -------------------------------------------------- */
+
+typedef struct {
+    bw_dims_t dims;
+    size_t n;
+    unsigned basis;
+    unsigned spec_levels;
+    uint32_t prequant;
+    uint32_t step_q8;
+    uint32_t vec_thresh_q8;
+    int32_t *spec_cls;  /* [bands] context class of each spectral coefficient */
+    int32_t *spec_gain; /* [bands] its inverse gain, Q16                      */
+    int32_t *tmp;       /* [bands] lifting scratch                           */
+} plan_t;
+
+static bool has_out(const bw_dims_t *d) { return d->shape != BW_SHAPE_SPECTRA; }
+static bool has_in(const bw_dims_t *d) { return d->shape == BW_SHAPE_BRDF_FULL; }
+
+static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t *work)
+{
+    pl->dims = *dims;
+    pl->n = bw_dims_samples(dims);
+    pl->basis = basis;
+    pl->spec_levels = bw_spec_levels(dims->bands);
+    pl->spec_cls = work + pl->n;
+    pl->spec_gain = pl->spec_cls + dims->bands;
+    /* the lifting scratch shares the class table's room: it is only used
+     * while transforming, the tables only while (de)quantising and coding */
+    pl->tmp = pl->spec_cls;
+    pl->prequant = 1u;
+    pl->step_q8 = STEP_ONE_Q8;
+    pl->vec_thresh_q8 = VEC_THRESH_Q8;
+}
+
+static void plan_tables(plan_t *pl)
+{
+    uint32_t b = pl->dims.bands;
+    for (uint32_t k = 0; k < b; k++) {
+        unsigned sb = bw_spec_subband(b, pl->spec_levels, k);
+        /* 0 finest details, 1 next, 2 coarser details, 3 approximation */
+        pl->spec_cls[k] = sb == 0u ? 3 : (int32_t)(sb >= 3u ? 2u : sb - 1u);
+        pl->spec_gain[k] = (int32_t)bw_spec_inv_gain_q16(pl->basis, pl->spec_levels, sb);
+    }
+}
+
+/* Coarse-to-fine direction index -> in-place position, and its classes. */
+static uint32_t in_pos(const plan_t *pl, uint32_t i)
+{
+    return has_in(&pl->dims) ? bw_biohaar_pos(i, pl->dims.level_in) : i;
+}
+static uint32_t out_pos(const plan_t *pl, uint32_t o)
+{
+    return has_out(&pl->dims) ? bw_biohaar_pos(o, pl->dims.level_out) : 0u;
+}
+static unsigned dir_cls(const plan_t *pl, uint32_t o)
+{
+    if (!has_out(&pl->dims))
+        return 2u;
+    int j = bw_biohaar_coef_level(o), fine = (int)pl->dims.level_out - 1;
+    return j == fine ? 0u : (j == fine - 1 ? 1u : 2u);
+}
+static uint32_t in_gain(const plan_t *pl, uint32_t i)
+{
+    return has_in(&pl->dims) ? bw_biohaar_inv_gain_q16(pl->dims.level_in, bw_biohaar_coef_level(i))
+                             : 65536u;
+}
+static uint32_t out_gain(const plan_t *pl, uint32_t o)
+{
+    return has_out(&pl->dims)
+               ? bw_biohaar_inv_gain_q16(pl->dims.level_out, bw_biohaar_coef_level(o))
+               : 65536u;
+}
+
+static void transform_fwd(const plan_t *pl, int32_t *x)
+{
+    const bw_dims_t *d = &pl->dims;
+    size_t vectors = (size_t)d->n_in * d->n_out;
+    if (pl->spec_levels)
+        for (size_t v = 0; v < vectors; v++)
+            bw_spec_fwd(x + v * d->bands, d->bands, pl->basis, pl->spec_levels, pl->tmp);
+    if (has_out(d))
+        for (uint32_t i = 0; i < d->n_in; i++)
+            bw_biohaar_fwd(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
+    if (has_in(d))
+        bw_biohaar_fwd(x, d->level_in, (size_t)d->n_out * d->bands);
+}
+
+static void transform_inv(const plan_t *pl, int32_t *x)
+{
+    const bw_dims_t *d = &pl->dims;
+    size_t vectors = (size_t)d->n_in * d->n_out;
+    if (has_in(d))
+        bw_biohaar_inv(x, d->level_in, (size_t)d->n_out * d->bands);
+    if (has_out(d))
+        for (uint32_t i = 0; i < d->n_in; i++)
+            bw_biohaar_inv(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
+    if (pl->spec_levels)
+        for (size_t v = 0; v < vectors; v++)
+            bw_spec_inv(x + v * d->bands, d->bands, pl->basis, pl->spec_levels, pl->tmp);
+}
+
+/* ---- quantisation -------------------------------------------------------- */
+
+/* Step of one element, Q24.8, from the base step and the inverse gains of
+ * its three spaces (each Q16). */
+static uint64_t elem_step(uint32_t step_q8, uint32_t g_in, uint32_t g_out, uint32_t g_spec)
+{
+    uint64_t s = ((uint64_t)step_q8 * g_in) >> 16;
+    s = (s * g_out) >> 16;
+    s = (s * g_spec) >> 16;
+    return s;
+}
+
+/* Normalised energy of a vector: sum of (c / step)^2 in Q16, saturating. */
+static uint64_t vec_energy(const plan_t *pl, const int32_t *x, uint32_t gio)
+{
+    uint64_t e = 0;
+    for (uint32_t k = 0; k < pl->dims.bands; k++) {
+        uint64_t st = elem_step(pl->step_q8, gio, 65536u, (uint32_t)pl->spec_gain[k]);
+        if (st == 0)
+            st = 1;
+        uint64_t r = ((uint64_t)bw_abs32(x[k]) << 8) / st;
+        if (r > (1u << 24))
+            r = 1u << 24;
+        e += r * r;
+        if (e > ((uint64_t)1 << 62))
+            return (uint64_t)1 << 62;
+    }
+    return e;
+}
+
+static inline int32_t quant(int32_t c, uint64_t st)
+{
+    if (st <= STEP_ONE_Q8)
+        return c;
+    uint32_t q = (uint32_t)(((uint64_t)bw_abs32(c) << 8) / st);
+    return c < 0 ? -(int32_t)q : (int32_t)q;
+}
+
+/* Reconstruction at 3/8 of the interval: the centroid of a Laplacian-like
+ * band is below the midpoint. */
+static inline int32_t dequant(int32_t q, uint64_t st)
+{
+    if (st <= STEP_ONE_Q8 || q == 0)
+        return q;
+    uint64_t m = (((uint64_t)bw_abs32(q) * 8u + 3u) * st) >> 11;
+    if (m > INT32_MAX)
+        m = INT32_MAX;
+    return q < 0 ? -(int32_t)m : (int32_t)m;
+}
+
+static void quantise(const plan_t *pl, int32_t *x, bool forward)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
+    for (uint32_t i = 0; i < d->n_in; i++) {
+        uint32_t gi = in_gain(pl, i);
+        int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
+        if (forward && has_in(d)) {
+            /* incoming space: drop a whole [outgoing][band] block */
+            uint64_t e = 0;
+            for (uint32_t o = 0; o < d->n_out && e < thr; o++)
+                e += vec_energy(pl, blk + (size_t)out_pos(pl, o) * b,
+                                (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16));
+            if (e < thr) {
+                memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
+                continue;
+            }
+        }
+        for (uint32_t o = 0; o < d->n_out; o++) {
+            uint32_t gio = (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16);
+            int32_t *v = blk + (size_t)out_pos(pl, o) * b;
+            if (forward && b > 1u && vec_energy(pl, v, gio) < thr) {
+                /* outgoing space: drop the spectral vector */
+                memset(v, 0, (size_t)b * sizeof *v);
+                continue;
+            }
+            for (uint32_t k = 0; k < b; k++) {
+                uint64_t st = elem_step(pl->step_q8, gio, 65536u, (uint32_t)pl->spec_gain[k]);
+                v[k] = forward ? quant(v[k], st) : dequant(v[k], st);
+            }
+        }
+    }
+}
+
+/* ---- strip coding -------------------------------------------------------- */
+
+#define NCLS 12u
+#define NB_CTX 8u
+
+typedef struct {
+    bw_prob_t present[NCLS][2];
+    bw_prob_t valid[NCLS][2][2];
+    bw_prob_t mag[NCLS][NB_CTX][32];
+    bw_prob_t mant[NCLS][32];
+} models_t;
+
+static void models_init(models_t *m)
+{
+    bw_prob_t *p = (bw_prob_t *)m;
+    for (size_t i = 0; i < sizeof *m / sizeof *p; i++)
+        p[i] = BW_PROB_INIT;
+}
+
+/* Walks the coefficients in coding order: incoming (coarse to fine), then
+ * outgoing (coarse to fine), then spectral (Mallat order as stored). */
+typedef struct {
+    const plan_t *pl;
+    uint32_t i, o, k;
+    int32_t *vec;
+    unsigned cls_dir;
+} iter_t;
+
+static void iter_vec(iter_t *it, int32_t *x)
+{
+    const plan_t *pl = it->pl;
+    size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + out_pos(pl, it->o);
+    it->vec = x + pos * pl->dims.bands;
+    it->cls_dir = dir_cls(pl, it->o);
+}
+
+static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
+{
+    it->pl = pl;
+    it->i = it->o = it->k = 0;
+    iter_vec(it, x);
+}
+
+static inline int32_t *iter_next(iter_t *it, int32_t *x, unsigned *cls)
+{
+    int32_t *p = it->vec + it->k;
+    *cls = (unsigned)it->pl->spec_cls[it->k] * 3u + it->cls_dir;
+    if (++it->k == it->pl->dims.bands) {
+        it->k = 0;
+        if (++it->o == it->pl->dims.n_out) {
+            it->o = 0;
+            it->i++;
+        }
+        if (it->i < it->pl->dims.n_in)
+            iter_vec(it, x);
+    }
+    return p;
+}
+
+static inline unsigned nb_ctx(unsigned left, unsigned above)
+{
+    unsigned c = (left + above + 1u) >> 1;
+    return c < NB_CTX ? c : NB_CTX - 1u;
+}
+
+static void code_body(const plan_t *pl, int32_t *x, bw_rc_enc_t *rc, models_t *m)
+{
+    iter_t it;
+    iter_init(&it, pl, x);
+    uint8_t e_above[BW_STRIP] = {0};
+    uint32_t prev_mask = 0;
+    unsigned e_left = 0;
+    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
+        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+        int32_t v[BW_STRIP];
+        unsigned cls[BW_STRIP];
+        cls[0] = 0;
+        uint32_t mask = 0;
+        for (unsigned b = 0; b < cnt; b++) {
+            v[b] = *iter_next(&it, x, &cls[b]);
+            if (v[b])
+                mask |= 1u << b;
+        }
+        bw_rc_enc_bit(rc, &m->present[cls[0]][prev_mask != 0], mask != 0);
+        if (!mask) {
+            prev_mask = 0;
+            memset(e_above, 0, sizeof e_above);
+            e_left = 0;
+            continue;
+        }
+        unsigned prev_bit = 0;
+        for (unsigned b = 0; b < cnt; b++) {
+            unsigned bit = (mask >> b) & 1u;
+            bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][(prev_mask >> b) & 1u], bit);
+            prev_bit = bit;
+        }
+        for (unsigned b = 0; b < cnt; b++) {
+            if (!((mask >> b) & 1u)) {
+                e_above[b] = 0;
+                e_left = 0;
+                continue;
+            }
+            uint32_t a = bw_abs32(v[b]);
+            unsigned e = bw_bitlen(a); /* 1..32 */
+            bw_prob_t *tree = m->mag[cls[b]][nb_ctx(e_left, e_above[b])];
+            unsigned node = 1, sym = e - 1u;
+            for (int s = 4; s >= 0; s--) {
+                unsigned bit = (sym >> s) & 1u;
+                bw_rc_enc_bit(rc, &tree[node], bit);
+                node = node * 2u + bit;
+            }
+            if (e >= 2u) {
+                bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
+                if (e >= 3u)
+                    bw_rc_enc_direct(rc, a, e - 2u);
+            }
+            bw_rc_enc_direct(rc, v[b] < 0, 1);
+            e_above[b] = (uint8_t)e;
+            e_left = e;
+        }
+        prev_mask = mask;
+    }
+}
+
+static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, models_t *m)
+{
+    iter_t it;
+    iter_init(&it, pl, x);
+    uint8_t e_above[BW_STRIP] = {0};
+    uint32_t prev_mask = 0;
+    unsigned e_left = 0;
+    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
+        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+        int32_t *dst[BW_STRIP];
+        unsigned cls[BW_STRIP];
+        cls[0] = 0;
+        for (unsigned b = 0; b < cnt; b++)
+            dst[b] = iter_next(&it, x, &cls[b]);
+        if (!bw_rc_dec_bit(rc, &m->present[cls[0]][prev_mask != 0])) {
+            for (unsigned b = 0; b < cnt; b++)
+                *dst[b] = 0;
+            prev_mask = 0;
+            memset(e_above, 0, sizeof e_above);
+            e_left = 0;
+            continue;
+        }
+        uint32_t mask = 0;
+        unsigned prev_bit = 0;
+        for (unsigned b = 0; b < cnt; b++) {
+            unsigned bit = bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][(prev_mask >> b) & 1u]);
+            mask |= (uint32_t)bit << b;
+            prev_bit = bit;
+        }
+        if (!mask)
+            return BW_ERR_CORRUPT; /* a present strip holds at least one value */
+        for (unsigned b = 0; b < cnt; b++) {
+            if (!((mask >> b) & 1u)) {
+                *dst[b] = 0;
+                e_above[b] = 0;
+                e_left = 0;
+                continue;
+            }
+            bw_prob_t *tree = m->mag[cls[b]][nb_ctx(e_left, e_above[b])];
+            unsigned node = 1;
+            for (int s = 0; s < 5; s++)
+                node = node * 2u + bw_rc_dec_bit(rc, &tree[node]);
+            unsigned e = node - 32u + 1u;
+            if (e > 31u)
+                return BW_ERR_CORRUPT;
+            uint32_t a = 1u;
+            if (e >= 2u) {
+                a = (a << 1) | bw_rc_dec_bit(rc, &m->mant[cls[b]][e]);
+                if (e >= 3u)
+                    a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
+            }
+            *dst[b] = bw_rc_dec_direct(rc, 1) ? -(int32_t)a : (int32_t)a;
+            e_above[b] = (uint8_t)e;
+            e_left = e;
+        }
+        prev_mask = mask;
+        if (rc->overrun)
+            return BW_ERR_CORRUPT;
+    }
+    return rc->overrun ? BW_ERR_CORRUPT : BW_OK;
+}
+
+/* ---- header -------------------------------------------------------------- */
+
+static void header_write(uint8_t *h, const plan_t *pl, const bw_params_t *pa, uint32_t mode,
+                         uint32_t body_len)
+{
+    memset(h, 0, BW_HEADER_SIZE);
+    memcpy(h, magic, 4);
+    h[4] = BW_VERSION;
+    h[5] = pl->dims.shape;
+    h[6] = pl->dims.level_out;
+    h[7] = pl->dims.level_in;
+    put_u32(h + 8, pl->dims.n_in);
+    put_u32(h + 12, pl->dims.bands);
+    h[16] = (uint8_t)pl->basis;
+    h[17] = (uint8_t)pl->spec_levels;
+    h[18] = (uint8_t)mode;
+    h[19] = 0; /* flags */
+    put_u32(h + 20, pl->prequant);
+    put_u32(h + 24, pl->step_q8);
+    put_u32(h + 28, mode == BW_MODE_MAX_ERROR ? pa->max_error : 0u);
+    put_u32(h + 32, pa->scale_bits);
+    put_u32(h + 36, pa->offset_bits);
+    put_u32(h + 40, body_len);
+    put_u32(h + 44, 0); /* reserved */
+}
+
+bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
+{
+    if (!p || !h)
+        return BW_ERR_ARG;
+    memset(h, 0, sizeof *h);
+    if (len < 4u)
+        return BW_ERR_TRUNCATED;
+    if (memcmp(p, magic, 4) != 0)
+        return BW_ERR_MAGIC;
+    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    h->version = p[4];
+    if (h->version != BW_VERSION)
+        return BW_ERR_VERSION;
+    h->body_len = get_u32(p + 40);
+    if (h->body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    h->payload_len = BW_HEADER_SIZE + h->body_len + BW_TRAILER_SIZE;
+    if (h->payload_len != len)
+        return BW_ERR_TRAILING;
+    h->crc = get_u32(p + BW_HEADER_SIZE + h->body_len);
+    if (bw_crc32(p, BW_HEADER_SIZE + h->body_len) != h->crc)
+        return BW_ERR_CRC;
+    bw_status_t st = bw_header_parse_fields(p, h);
+    return st;
+}
+
+bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
+{
+    bw_dims_t *d = &h->dims;
+    d->shape = p[5];
+    d->level_out = p[6];
+    d->level_in = p[7];
+    d->n_in = get_u32(p + 8);
+    d->bands = get_u32(p + 12);
+    d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
+               : d->level_out <= BW_MAX_LEVEL ? tri_count(d->level_out)
+                                              : 0u;
+    h->basis = p[16];
+    h->spectral_levels = p[17];
+    h->mode = p[18];
+    h->flags = p[19];
+    h->prequant = get_u32(p + 20);
+    h->step_q8 = get_u32(p + 24);
+    h->max_error = get_u32(p + 28);
+    h->scale_bits = get_u32(p + 32);
+    h->offset_bits = get_u32(p + 36);
+    h->body_len = get_u32(p + 40);
+    if (bw_dims_check(d) != BW_OK)
+        return BW_ERR_HEADER;
+    if (h->basis >= BW_BASIS_COUNT || h->spectral_levels != bw_spec_levels(d->bands) ||
+        h->mode > BW_MODE_STEP || h->flags != 0u)
+        return BW_ERR_HEADER;
+    if (h->prequant < 1u || h->prequant > 2u * (uint32_t)BW_SAMPLE_MAX + 1u ||
+        h->step_q8 < STEP_ONE_Q8)
+        return BW_ERR_HEADER;
+    if (h->mode == BW_MODE_MAX_ERROR ? h->prequant != 2u * h->max_error + 1u
+                                     : (h->max_error != 0u || h->prequant != 1u))
+        return BW_ERR_HEADER;
+    if (get_u32(p + 44) != 0u)
+        return BW_ERR_HEADER;
+    return BW_OK;
+}
+
+/* ---- encoder ------------------------------------------------------------- */
+
+/* floor((x + E) / (2E + 1)): the nearest multiple of 2E+1, error <= E */
+static int32_t prequantise(int32_t x, uint32_t q)
+{
+    if (q == 1u)
+        return x;
+    int64_t e = (int64_t)(q - 1u) / 2, v = (int64_t)x + e;
+    int64_t r = v >= 0 ? v / (int64_t)q : -((-v + (int64_t)q - 1) / (int64_t)q);
+    return (int32_t)r;
+}
+
+/* One encode at fixed plan: load, transform, quantise, code. out may be NULL
+ * (count only). */
+static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
+                               const int32_t *samples, int32_t *work, uint8_t *out,
+                               size_t cap, size_t *len)
+{
+    for (size_t i = 0; i < pl->n; i++)
+        work[i] = prequantise(samples[i], pl->prequant);
+    transform_fwd(pl, work);
+    plan_tables(pl);
+    if (pl->step_q8 > STEP_ONE_Q8)
+        quantise(pl, work, true);
+
+    models_t m;
+    models_init(&m);
+    bw_rc_enc_t rc;
+    bool counting = out == NULL;
+    size_t body_cap = 0;
+    if (!counting) {
+        if (cap < BW_HEADER_SIZE + BW_TRAILER_SIZE)
+            return BW_ERR_OUTPUT_FULL;
+        body_cap = cap - BW_HEADER_SIZE - BW_TRAILER_SIZE;
+    }
+    bw_rc_enc_init(&rc, counting ? NULL : out + BW_HEADER_SIZE, body_cap);
+    code_body(pl, work, &rc, &m);
+    size_t body = bw_rc_enc_finish(&rc);
+    *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+    if (counting)
+        return BW_OK;
+    if (rc.overflow || body > UINT32_MAX)
+        return BW_ERR_OUTPUT_FULL;
+    header_write(out, pl, pa, mode, (uint32_t)body);
+    put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
+    return BW_OK;
+}
+
+static uint32_t step_of(unsigned t)
+{
+    /* 256 * 2^(t / 32), t = 0..768 */
+    static const uint16_t frac_q15[STEP_FRAC] = {
+        32768, 33486, 34219, 34968, 35734, 36516, 37316, 38133, 38968, 39821, 40693,
+        41584, 42495, 43425, 44376, 45348, 46341, 47356, 48393, 49452, 50535, 51642,
+        52773, 53928, 55109, 56316, 57549, 58809, 60097, 61413, 62757, 64132,
+    };
+    uint64_t s = ((uint64_t)STEP_ONE_Q8 << (t / STEP_FRAC)) * frac_q15[t % STEP_FRAC] >> 15;
+    return s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
+}
+
+static bw_status_t verify_payload(const plan_t *pl, const bw_params_t *pa, uint32_t mode,
+                                  const int32_t *samples, const uint8_t *out, size_t len,
+                                  int32_t *verify, uint64_t *sse)
+{
+    size_t wb = bw_work_bound(pl->n, pl->dims.bands);
+    bw_status_t st = bw_decode(out, len, verify, wb, verify, wb, NULL);
+    if (st != BW_OK)
+        return BW_ERR_VERIFY;
+    uint64_t acc = 0;
+    for (size_t i = 0; i < pl->n; i++) {
+        int64_t diff = (int64_t)verify[i] - samples[i];
+        uint64_t ad = (uint64_t)(diff < 0 ? -diff : diff);
+        if (mode == BW_MODE_LOSSLESS && ad != 0)
+            return BW_ERR_VERIFY;
+        if (mode == BW_MODE_MAX_ERROR && ad > pa->max_error)
+            return BW_ERR_VERIFY;
+        acc += ad * ad;
+    }
+    if (sse)
+        *sse = acc;
+    return BW_OK;
+}
+
+/* Encodes with one basis; for BYTES searches the step. */
+static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                                int32_t *work, uint8_t *out, size_t cap, size_t *len)
+{
+    size_t sz;
+    bw_status_t st;
+    if (pa->mode != BW_MODE_BYTES)
+        return encode_pass(pl, pa, pa->mode, samples, work, out, cap, len);
+
+    size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
+    /* the exact coding first: if it fits, nothing is lost */
+    pl->step_q8 = STEP_ONE_Q8;
+    st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+    if (st != BW_OK)
+        return st;
+    if (sz > budget) {
+        unsigned lo = 0, hi = STEP_T_MAX;
+        pl->step_q8 = step_of(hi);
+        st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+        if (st != BW_OK)
+            return st;
+        if (sz > budget)
+            return BW_ERR_BUDGET;
+        while (hi - lo > 1u) {
+            unsigned mid = (lo + hi) / 2u;
+            pl->step_q8 = step_of(mid);
+            st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+            if (st != BW_OK)
+                return st;
+            if (sz <= budget)
+                hi = mid;
+            else
+                lo = mid;
+        }
+        pl->step_q8 = step_of(hi);
+    }
+    return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
+}
+
+bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_t *samples,
+                      int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
+                      size_t *out_len)
+{
+    if (!dims || !pa || !samples || !work || !out || !out_len)
+        return BW_ERR_ARG;
+    *out_len = 0;
+    bw_status_t st = bw_dims_check(dims);
+    if (st != BW_OK)
+        return st;
+    if (pa->mode > BW_MODE_STEP || (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO))
+        return BW_ERR_ARG;
+    if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
+        return BW_ERR_ARG;
+    if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
+        return BW_ERR_ARG;
+    size_t n = bw_dims_samples(dims);
+    for (size_t i = 0; i < n; i++)
+        if (samples[i] > BW_SAMPLE_MAX || samples[i] < -BW_SAMPLE_MAX)
+            return BW_ERR_RANGE;
+
+    plan_t pl;
+    unsigned first = pa->basis, last = pa->basis;
+    if (pa->basis == BW_BASIS_AUTO) {
+        first = 0;
+        last = BW_BASIS_COUNT - 1u;
+    }
+    if (bw_spec_levels(dims->bands) == 0u)
+        last = first; /* no spectral transform: every basis codes alike */
+    unsigned best = first;
+    if (first != last) {
+        /* keep the smallest payload, or for BYTES the smallest error (the
+         * smallest step when there is no room to decode) */
+        uint64_t best_score = UINT64_MAX;
+        for (unsigned b = first; b <= last; b++) {
+            size_t sz;
+            plan_init(&pl, dims, b, work);
+            if (pa->mode == BW_MODE_MAX_ERROR)
+                pl.prequant = 2u * pa->max_error + 1u;
+            if (pa->mode == BW_MODE_STEP)
+                pl.step_q8 = pa->step_q8;
+            st = encode_basis(&pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
+                              out_cap, &sz);
+            if (st != BW_OK)
+                return st;
+            uint64_t score = sz;
+            if (pa->mode == BW_MODE_BYTES) {
+                score = pl.step_q8;
+                if (verify && verify_payload(&pl, pa, BW_MODE_BYTES, samples, out, sz, verify,
+                                             &score) != BW_OK)
+                    return BW_ERR_VERIFY;
+            }
+            if (score < best_score) {
+                best_score = score;
+                best = b;
+            }
+        }
+    }
+    plan_init(&pl, dims, best, work);
+    if (pa->mode == BW_MODE_MAX_ERROR)
+        pl.prequant = 2u * pa->max_error + 1u;
+    if (pa->mode == BW_MODE_STEP)
+        pl.step_q8 = pa->step_q8;
+    if (pa->vec_thresh_q8)
+        pl.vec_thresh_q8 = pa->vec_thresh_q8;
+    st = encode_basis(&pl, pa, samples, work, out, out_cap, out_len);
+    if (st != BW_OK)
+        return st;
+    if (verify)
+        return verify_payload(&pl, pa, pa->mode, samples, out, *out_len, verify, NULL);
+    return BW_OK;
+}
+
+/* ---- decoder ------------------------------------------------------------- */
+
+static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_t *samples,
+                                  size_t samples_cap, int32_t *work, size_t work_cap)
+{
+    const bw_dims_t *d = &h->dims;
+    size_t n = bw_dims_samples(d);
+    if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
+        return BW_ERR_WORK;
+    plan_t pl;
+    plan_init(&pl, d, h->basis, work);
+    pl.prequant = h->prequant;
+    pl.step_q8 = h->step_q8;
+    plan_tables(&pl);
+
+    models_t m;
+    models_init(&m);
+    bw_rc_dec_t rc;
+    bw_rc_dec_init(&rc, p + BW_HEADER_SIZE, h->body_len);
+    bw_status_t st = decode_body(&pl, work, &rc, &m);
+    if (st != BW_OK)
+        return st;
+    if (pl.step_q8 > STEP_ONE_Q8)
+        quantise(&pl, work, false);
+    transform_inv(&pl, work);
+    for (size_t i = 0; i < n; i++) {
+        int64_t v = (int64_t)work[i] * pl.prequant;
+        samples[i] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
+    }
+    return BW_OK;
+}
+
+bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
+                      int32_t *work, size_t work_cap, bw_header_t *hdr_out)
+{
+    bw_header_t h;
+    if (!payload || !samples || !work)
+        return BW_ERR_ARG;
+    bw_status_t st = bw_header_read(payload, len, &h);
+    if (hdr_out)
+        *hdr_out = h;
+    if (st != BW_OK)
+        return st;
+    return decode_checked(payload, &h, samples, samples_cap, work, work_cap);
+}
+
+bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *samples,
+                                size_t samples_cap, int32_t *work, size_t work_cap)
+{
+    bw_header_t h;
+    if (!payload || !samples || !work)
+        return BW_ERR_ARG;
+    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    if (memcmp(payload, magic, 4) != 0)
+        return BW_ERR_MAGIC;
+    memset(&h, 0, sizeof h);
+    bw_status_t st = bw_header_parse_fields(payload, &h);
+    if (st != BW_OK)
+        return st;
+    if (h.body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    return decode_checked(payload, &h, samples, samples_cap, work, work_cap);
+}

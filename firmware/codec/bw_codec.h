@@ -1,0 +1,176 @@
+/*
+ * brdfwave codec core: public interface.
+ *
+ * Freestanding C11. The core uses only <stdint.h>, <stddef.h>, <stdbool.h> and
+ * <string.h>; it never allocates. Every buffer belongs to the caller and has a
+ * compile-time worst-case size given by a BW_..._BOUND() macro (and a function
+ * of the same name for run-time use).
+ *
+ * Data model
+ * ----------
+ * A measurement is an array of integer samples laid out row-major as
+ * [incoming][outgoing][band]:
+ *
+ *   shape            n_in                 n_out          transforms
+ *   SPECTRA          number of spectra    1              spectral
+ *   REFLECTANCE      1                    4*4^level_out  Bio-Haar(out), spectral
+ *   BRDF_ISO         any N (incoming)     4*4^level_out  Bio-Haar(out), spectral
+ *   BRDF_FULL        4*4^level_in         4*4^level_out  Bio-Haar(in), Bio-Haar(out),
+ *                                                        spectral
+ *
+ * Directions are in the codec's geodesic triangle order (bw_geodesic.h).
+ * Monochromatic data is bands = 1 (the spectral transform is then the
+ * identity).
+ */
+#ifndef BW_CODEC_H
+#define BW_CODEC_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- limits ------------------------------------------------------------ */
+
+#define BW_MAX_LEVEL 6u            /* geodesic levels 0..6: 4..16384 triangles */
+#define BW_MAX_BANDS 65535u        /* bands per spectrum (u16 in the header)    */
+#define BW_MAX_SAMPLES (1u << 28)  /* n_in * n_out * bands                      */
+#define BW_MAX_N_IN (1u << 24)
+/* Samples are signed integers with |x| <= BW_SAMPLE_MAX; transform
+ * coefficients then stay well inside int32 (see bw_transform.c). */
+#define BW_SAMPLE_MAX ((1 << 24) - 1)
+#define BW_STRIP 32u               /* elements per strip (paper: B_s = 32)      */
+
+/* ---- shapes, bases, modes --------------------------------------------- */
+
+typedef enum {
+    BW_SHAPE_SPECTRA = 0,
+    BW_SHAPE_REFLECTANCE = 1,
+    BW_SHAPE_BRDF_ISO = 2,
+    BW_SHAPE_BRDF_FULL = 3
+} bw_shape_t;
+
+typedef enum {
+    BW_BASIS_HAAR = 0, /* S-transform                         */
+    BW_BASIS_53 = 1,   /* LeGall 5/3, reversible               */
+    BW_BASIS_97 = 2,   /* integer-lifted CDF 9/7               */
+    BW_BASIS_COUNT = 3,
+    BW_BASIS_AUTO = 255 /* encoder option: try all, keep the smallest payload */
+} bw_basis_t;
+
+typedef enum {
+    BW_MODE_LOSSLESS = 0,  /* integer samples decode bit-exactly              */
+    BW_MODE_MAX_ERROR = 1, /* every sample within max_error of the input      */
+    BW_MODE_BYTES = 2,     /* payload <= byte_budget, best quality that fits  */
+    BW_MODE_STEP = 3       /* fixed quantiser step (used by BYTES's search)   */
+} bw_mode_t;
+
+typedef struct {
+    uint8_t shape;     /* bw_shape_t                                  */
+    uint8_t level_out; /* outgoing geodesic level (0..6), 0 for SPECTRA */
+    uint8_t level_in;  /* incoming level, BRDF_FULL only               */
+    uint32_t n_in;     /* see table above                              */
+    uint32_t n_out;
+    uint32_t bands;
+} bw_dims_t;
+
+typedef struct {
+    uint8_t mode;          /* bw_mode_t                                     */
+    uint8_t basis;         /* bw_basis_t, or BW_BASIS_AUTO                  */
+    uint32_t max_error;    /* MAX_ERROR: bound in sample units              */
+    uint32_t byte_budget;  /* BYTES: upper bound on the payload size        */
+    uint32_t step_q8;      /* STEP: quantiser step, Q24.8                   */
+    uint32_t vec_thresh_q8; /* vector threshold in steps, Q8 (0: default 1.0) */
+    /* Opaque to the core: copied into the header for the host's benefit
+     * (IEEE-754 binary32 bit patterns of the sample scale and offset, so that
+     * float value = offset + scale * integer sample). */
+    uint32_t scale_bits;
+    uint32_t offset_bits;
+} bw_params_t;
+
+/* ---- sizes -------------------------------------------------------------- */
+
+#define BW_HEADER_SIZE 48u
+#define BW_TRAILER_SIZE 4u /* CRC-32 */
+
+/* Worst case payload size for n samples. The entropy coder spends at most
+ * 9 bytes per sample (see bw_coder.c, "bounded length"), plus the strip
+ * presence flags, the coder flush and the header and trailer. */
+#define BW_PAYLOAD_BOUND(n) \
+    ((size_t)BW_HEADER_SIZE + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
+
+/* Work area for the encoder and decoder, in int32 elements: the coefficient
+ * array plus one spectral line of scratch. */
+#define BW_WORK_BOUND(n, bands) ((size_t)(n) + 2u * (size_t)(bands) + 16u)
+
+size_t bw_payload_bound(size_t n);
+size_t bw_work_bound(size_t n, size_t bands);
+
+/* ---- dims helpers ------------------------------------------------------- */
+
+/* Fills dims for a shape; returns BW_OK or an error if the combination is
+ * out of range. n_in is used for SPECTRA and BRDF_ISO only. */
+bw_status_t bw_dims_make(bw_dims_t *dims, bw_shape_t shape, unsigned level_out, unsigned level_in,
+                         uint32_t n_in, uint32_t bands);
+bw_status_t bw_dims_check(const bw_dims_t *dims);
+size_t bw_dims_samples(const bw_dims_t *dims);
+
+/* ---- encoder ------------------------------------------------------------ */
+
+/*
+ * Encodes samples[n] (n = bw_dims_samples(dims)) into out[out_cap].
+ * work must hold bw_work_bound(n, bands) int32 elements; samples are not
+ * modified. verify (may be NULL) is a second work area of the same size: when
+ * given, the encoder decodes its own payload and checks the mode's guarantee
+ * (bit-exact, or every sample within max_error) before returning.
+ * On success *out_len is the payload size.
+ */
+bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *params, const int32_t *samples,
+                      int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
+                      size_t *out_len);
+
+/* ---- decoder ------------------------------------------------------------ */
+
+typedef struct {
+    uint8_t version;
+    bw_dims_t dims;
+    uint8_t basis;
+    uint8_t spectral_levels;
+    uint8_t mode;
+    uint8_t flags;
+    uint32_t prequant;   /* samples were divided by this before coding (>= 1) */
+    uint32_t step_q8;    /* quantiser step of the coefficients, Q24.8          */
+    uint32_t max_error;  /* the bound the encoder guaranteed (MAX_ERROR), else 0 */
+    uint32_t scale_bits;
+    uint32_t offset_bits;
+    uint32_t payload_len; /* total bytes, header to CRC inclusive */
+    uint32_t body_len;
+    uint32_t crc;
+} bw_header_t;
+
+/* Parses and validates the header and the CRC of payload[len]. */
+bw_status_t bw_header_read(const uint8_t *payload, size_t len, bw_header_t *hdr);
+
+/* Validates the header fields alone (no length or CRC check). */
+bw_status_t bw_header_parse_fields(const uint8_t *payload, bw_header_t *hdr);
+
+/* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.
+ * samples may be the same array as work. */
+bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
+                      int32_t *work, size_t work_cap, bw_header_t *hdr_out);
+
+/* As bw_decode, but without the length and CRC checks: for tests that feed the
+ * body parser corrupted data which a CRC would otherwise catch. */
+bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *samples,
+                                size_t samples_cap, int32_t *work, size_t work_cap);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BW_CODEC_H */

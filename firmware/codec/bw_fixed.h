@@ -1,0 +1,49 @@
+/*
+ * Integer helpers shared by the transforms and the coder.
+ *
+ * Lifting arithmetic is done modulo 2^32 (through uint32_t). Every lifting
+ * step adds to one sample a function of the others, so the inverse subtracts
+ * the very same value and the transform stays exactly reversible even if an
+ * intermediate wraps; valid input never wraps (see BW_SAMPLE_MAX), and a
+ * corrupted payload decodes to garbage instead of undefined behaviour.
+ */
+#ifndef BW_FIXED_H
+#define BW_FIXED_H
+
+#include <stdint.h>
+
+/* q16_t: signed Q15.16, used for lifting constants. */
+typedef int32_t q16_t;
+
+static inline int32_t bw_wadd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (uint32_t)b); }
+static inline int32_t bw_wsub(int32_t a, int32_t b) { return (int32_t)((uint32_t)a - (uint32_t)b); }
+
+/* Arithmetic shift right with flooring, defined for negative values. */
+static inline int64_t bw_asr64(int64_t v, unsigned s)
+{
+    return v >= 0 ? (int64_t)((uint64_t)v >> s) : -(int64_t)(((uint64_t)(-(v + 1)) >> s) + 1u);
+}
+static inline int32_t bw_asr32(int32_t v, unsigned s) { return (int32_t)bw_asr64(v, s); }
+
+/* round(c * v / 2^16) for a Q16 constant: floor(c*v + 1/2), the rounding the
+ * inverse repeats. The result is truncated to 32 bits (see above). */
+static inline int32_t bw_mul_q16_round(q16_t c, int64_t v)
+{
+    return (int32_t)(uint32_t)(uint64_t)bw_asr64(c * v + 32768, 16);
+}
+
+/* Number of significant bits of v (0 for 0). */
+static inline unsigned bw_bitlen(uint32_t v)
+{
+#if defined(__GNUC__)
+    return v ? 32u - (unsigned)__builtin_clz(v) : 0u;
+#else
+    unsigned n = 0;
+    while (v) { n++; v >>= 1; }
+    return n;
+#endif
+}
+
+static inline uint32_t bw_abs32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
+
+#endif

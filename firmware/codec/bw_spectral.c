@@ -1,0 +1,206 @@
+/*
+ * Integer spectral lifting: S-transform (Haar), LeGall 5/3 and CDF 9/7.
+ *
+ * Scaling and overflow: samples are |x| <= 2^24. Haar and 5/3 details grow by
+ * at most 1 bit a level, approximations stay within the input range; the
+ * unnormalised 9/7 grows by at most 3 bits a level in the detail band
+ * (1 + 2|alpha| < 4.2) and stays within a factor 1.2 in the approximation.
+ * All lifting sums are formed in 64 bits; the stored coefficients wrap
+ * modulo 2^32 only for inputs beyond the documented range, which keeps the
+ * transform reversible (bw_fixed.h).
+ *
+ *   basis  predict (d += ...)               update (s += ...)
+ *   Haar   -s[k]                             floor(d[k] / 2)
+ *   5/3    -floor((s[k] + s[k+1]) / 2)       floor((d[k-1] + d[k] + 2) / 4)
+ *   9/7    round(A (s[k] + s[k+1]))          round(B (d[k-1] + d[k]))
+ *          round(C (s[k] + s[k+1]))          round(D (d[k-1] + d[k]))
+ * with A..D the CDF 9/7 lifting constants in Q16; the final scaling by K is
+ * left out (it is not reversible on integers) and accounted for in the
+ * quantiser's gain table instead.
+ */
+#include "bw_spectral.h"
+
+#include <string.h>
+
+#include "bw_codec.h"
+#include "bw_fixed.h"
+
+#define Q16_A (-103949) /* -1.586134342 */
+#define Q16_B (-3472)   /* -0.052980118 */
+#define Q16_C (57862)   /*  0.882911075 */
+#define Q16_D (29066)   /*  0.443506852 */
+
+unsigned bw_spec_levels(uint32_t bands)
+{
+    unsigned levels = 0;
+    while (bands > 4u && levels < BW_SPEC_MAX_LEVELS) {
+        bands = (bands + 1u) / 2u;
+        levels++;
+    }
+    return levels;
+}
+
+uint32_t bw_spec_approx_len(uint32_t n, unsigned levels)
+{
+    while (levels--)
+        n = (n + 1u) / 2u;
+    return n;
+}
+
+unsigned bw_spec_subband(uint32_t n, unsigned levels, uint32_t k)
+{
+    /* len[l] = approximation length after l levels; band l occupies
+     * [len[l], len[l-1]). */
+    uint32_t len = n;
+    for (unsigned l = 1; l <= levels; l++) {
+        uint32_t next = (len + 1u) / 2u;
+        if (k >= next)
+            return l;
+        len = next;
+    }
+    return 0;
+}
+
+/* Clamped neighbour: whole-sample symmetric extension of a subband. */
+static inline int64_t nb(const int32_t *v, uint32_t len, int64_t i)
+{
+    if (i < 0)
+        i = 0;
+    if (i >= (int64_t)len)
+        i = (int64_t)len - 1;
+    return v[i];
+}
+
+static void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t ns, q16_t c, int sign)
+{
+    for (uint32_t k = 0; k < nd; k++) {
+        int32_t t = bw_mul_q16_round(c, nb(s, ns, k) + nb(s, ns, (int64_t)k + 1));
+        d[k] = sign > 0 ? bw_wadd(d[k], t) : bw_wsub(d[k], t);
+    }
+}
+
+static void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd, q16_t c, int sign)
+{
+    for (uint32_t k = 0; k < ns; k++) {
+        int32_t t = bw_mul_q16_round(c, nb(d, nd, (int64_t)k - 1) + nb(d, nd, k));
+        s[k] = sign > 0 ? bw_wadd(s[k], t) : bw_wsub(s[k], t);
+    }
+}
+
+/* The reversible lifting steps of one level on s[ns], d[nd]. */
+static void lift_fwd(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned basis)
+{
+    switch (basis) {
+    case BW_BASIS_HAAR:
+        for (uint32_t k = 0; k < nd; k++) {
+            d[k] = bw_wsub(d[k], s[k]);
+            s[k] = bw_wadd(s[k], bw_asr32(d[k], 1));
+        }
+        break;
+    case BW_BASIS_53:
+        for (uint32_t k = 0; k < nd; k++)
+            d[k] = bw_wsub(d[k], (int32_t)bw_asr64(nb(s, ns, k) + nb(s, ns, (int64_t)k + 1), 1));
+        for (uint32_t k = 0; k < ns; k++)
+            s[k] = bw_wadd(s[k], (int32_t)bw_asr64(nb(d, nd, (int64_t)k - 1) + nb(d, nd, k) + 2, 2));
+        break;
+    default: /* BW_BASIS_97 */
+        predict(d, nd, s, ns, Q16_A, +1);
+        update(s, ns, d, nd, Q16_B, +1);
+        predict(d, nd, s, ns, Q16_C, +1);
+        update(s, ns, d, nd, Q16_D, +1);
+        break;
+    }
+}
+
+static void lift_inv(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned basis)
+{
+    switch (basis) {
+    case BW_BASIS_HAAR:
+        for (uint32_t k = 0; k < nd; k++) {
+            s[k] = bw_wsub(s[k], bw_asr32(d[k], 1));
+            d[k] = bw_wadd(d[k], s[k]);
+        }
+        break;
+    case BW_BASIS_53:
+        for (uint32_t k = 0; k < ns; k++)
+            s[k] = bw_wsub(s[k], (int32_t)bw_asr64(nb(d, nd, (int64_t)k - 1) + nb(d, nd, k) + 2, 2));
+        for (uint32_t k = 0; k < nd; k++)
+            d[k] = bw_wadd(d[k], (int32_t)bw_asr64(nb(s, ns, k) + nb(s, ns, (int64_t)k + 1), 1));
+        break;
+    default:
+        update(s, ns, d, nd, Q16_D, -1);
+        predict(d, nd, s, ns, Q16_C, -1);
+        update(s, ns, d, nd, Q16_B, -1);
+        predict(d, nd, s, ns, Q16_A, -1);
+        break;
+    }
+}
+
+void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
+{
+    if (n < 2u)
+        return;
+    uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
+    for (uint32_t k = 0; k < ns; k++)
+        tmp[k] = x[2u * k];
+    for (uint32_t k = 0; k < nd; k++)
+        tmp[ns + k] = x[2u * k + 1u];
+    lift_fwd(tmp, ns, tmp + ns, nd, basis);
+    memcpy(x, tmp, (size_t)n * sizeof *x);
+}
+
+void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
+{
+    if (n < 2u)
+        return;
+    uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
+    lift_inv(x, ns, x + ns, nd, basis);
+    for (uint32_t k = 0; k < ns; k++)
+        tmp[2u * k] = x[k];
+    for (uint32_t k = 0; k < nd; k++)
+        tmp[2u * k + 1u] = x[ns + k];
+    memcpy(x, tmp, (size_t)n * sizeof *x);
+}
+
+void bw_spec_fwd(int32_t *x, uint32_t n, unsigned basis, unsigned levels, int32_t *tmp)
+{
+    for (unsigned l = 0; l < levels && n >= 2u; l++) {
+        bw_spec_fwd1(x, n, basis, tmp);
+        n = (n + 1u) / 2u;
+    }
+}
+
+void bw_spec_inv(int32_t *x, uint32_t n, unsigned basis, unsigned levels, int32_t *tmp)
+{
+    uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
+    if (levels > BW_SPEC_MAX_LEVELS)
+        levels = BW_SPEC_MAX_LEVELS;
+    len[0] = n;
+    for (unsigned l = 1; l <= levels; l++)
+        len[l] = (len[l - 1] + 1u) / 2u;
+    for (unsigned l = levels; l-- > 0;)
+        bw_spec_inv1(x, len[l], basis, tmp);
+}
+
+/* 65536 / sqrt(energy of the synthesis function) of each band of the
+ * unnormalised liftings above, measured on long signals: detail bands by
+ * level (1 = finest), approximation by depth. */
+static const uint32_t inv_gain_det[BW_BASIS_COUNT][BW_SPEC_MAX_LEVELS] = {
+    {92682, 65536, 46341, 32768, 23170, 16384, 11585, 8192, 5793, 4096, 2896, 2048},
+    {77302, 68256, 52040, 37569, 26707, 18910, 13376, 9459, 6689, 4730, 3345, 2365},
+    {73862, 66637, 55910, 47825, 41395, 35961, 31271, 27199, 23659, 20580, 17900, 15570},
+};
+static const uint32_t inv_gain_app[BW_BASIS_COUNT][BW_SPEC_MAX_LEVELS + 1] = {
+    {65536, 46341, 32768, 23170, 16384, 11585, 8192, 5793, 4096, 2896, 2048, 1448, 1024},
+    {65536, 53510, 39520, 28268, 20047, 14185, 10032, 7094, 5017, 3547, 2508, 1774, 1254},
+    {65536, 57500, 48847, 42054, 36471, 31700, 27569, 23980, 20859, 18144, 15783, 13730, 11940},
+};
+
+uint32_t bw_spec_inv_gain_q16(unsigned basis, unsigned levels, unsigned subband)
+{
+    if (basis >= BW_BASIS_COUNT || levels > BW_SPEC_MAX_LEVELS || subband > levels)
+        return 65536u;
+    if (subband == 0)
+        return inv_gain_app[basis][levels];
+    return inv_gain_det[basis][subband - 1u];
+}

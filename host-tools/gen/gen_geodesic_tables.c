@@ -1,0 +1,131 @@
+/*
+ * Prints firmware/codec/bw_geodesic_tables.c: the Bio-Haar weight table
+ * bw_geo_weight_q16 for base triangle 0's subtree (see bw_geodesic.h).
+ *
+ *   cc -std=c11 -O2 -I host-tools/src -o /tmp/gen_geodesic_tables \
+ *      host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c -lm
+ *   /tmp/gen_geodesic_tables > firmware/codec/bw_geodesic_tables.c
+ *
+ * The weights are checked rather than assert()ed so that the checks survive
+ * -DNDEBUG; any failure exits non-zero without printing a table.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "geodesic.h"
+
+#define TABLE_LEVELS 6u   /* parents at levels 0..5, as BW_GEO_TABLE_LEVELS */
+#define TABLE_PARENTS 1365u /* (4^6 - 1) / 3, as BW_GEO_PARENTS */
+#define PER_LINE 4u
+
+/* Exact .5 ties would make the rounded value depend on the last bit of the
+ * solid angles; refuse anything closer than this to a tie. */
+#define TIE_MARGIN 1e-6
+
+static uint16_t table[TABLE_PARENTS][3];
+
+static double tri_area(const bwh_tri_t *t)
+{
+    return bwh_solid_angle(t->v[0], t->v[1], t->v[2]);
+}
+
+static int build(void)
+{
+    bwh_tri_t *par = malloc(bwh_grid_count(TABLE_LEVELS - 1) * sizeof *par);
+    bwh_tri_t *kid = malloc(bwh_grid_count(TABLE_LEVELS) * sizeof *kid);
+    int rc = 0;
+    if (par == NULL || kid == NULL) {
+        fprintf(stderr, "gen_geodesic_tables: out of memory\n");
+        rc = -1;
+        goto out;
+    }
+    for (unsigned j = 0; j < TABLE_LEVELS && rc == 0; j++) {
+        if (bwh_grid_triangles(j, par) != 0 || bwh_grid_triangles(j + 1, kid) != 0) {
+            fprintf(stderr, "gen_geodesic_tables: grid level %u failed\n", j);
+            rc = -1;
+            break;
+        }
+        uint32_t first = ((1u << (2u * j)) - 1u) / 3u;
+        uint32_t n = 1u << (2u * j); /* parents in base 0 at level j */
+        for (uint32_t p = 0; p < n; p++) {
+            double ap = tri_area(&par[p]);
+            uint32_t sum = 0, l[3];
+            for (unsigned m = 1; m <= 3; m++) {
+                double x = 65536.0 * tri_area(&kid[4 * p + m]) / ap;
+                double f = x - floor(x);
+                if (fabs(f - 0.5) < TIE_MARGIN) {
+                    fprintf(stderr,
+                            "gen_geodesic_tables: level %u parent %u child %u: "
+                            "%.12f is too close to a rounding tie\n",
+                            j, (unsigned)p, m, x);
+                    rc = -1;
+                }
+                l[m - 1] = (uint32_t)floor(x + 0.5);
+                sum += l[m - 1];
+            }
+            /* The centre child is the largest, so L0 must be positive and
+             * exceed every corner weight. */
+            if (sum >= 65536u || 65536u - sum <= l[0] || 65536u - sum <= l[1] ||
+                65536u - sum <= l[2]) {
+                fprintf(stderr,
+                        "gen_geodesic_tables: level %u parent %u: L0 = 65536 - %u "
+                        "is not the largest weight (%u %u %u)\n",
+                        j, (unsigned)p, (unsigned)sum, (unsigned)l[0], (unsigned)l[1],
+                        (unsigned)l[2]);
+                rc = -1;
+            }
+            for (unsigned m = 0; m < 3; m++)
+                table[first + p][m] = (uint16_t)l[m];
+        }
+    }
+out:
+    free(par);
+    free(kid);
+    return rc;
+}
+
+static void emit(void)
+{
+    printf("/*\n"
+           " * GENERATED FILE - DO NOT EDIT.\n"
+           " * Written by host-tools/gen/gen_geodesic_tables.c. To regenerate, from the\n"
+           " * repository root:\n"
+           " *   cc -std=c11 -O2 -I host-tools/src -o /tmp/gen_geodesic_tables \\\n"
+           " *      host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c -lm\n"
+           " *   /tmp/gen_geodesic_tables > firmware/codec/bw_geodesic_tables.c\n"
+           " *\n"
+           " * Bio-Haar weights {L1, L2, L3} in Q16 for base triangle 0's subtree,\n"
+           " * L_m = round(65536 * a_m / a_parent) with a the spherical solid angles;\n"
+           " * L0 = 65536 - (L1 + L2 + L3) is the largest.\n"
+           " */\n"
+           "#include \"bw_geodesic.h\"\n"
+           "\n"
+           "const uint16_t bw_geo_weight_q16[BW_GEO_PARENTS][3] = {\n");
+    for (unsigned j = 0; j < TABLE_LEVELS; j++) {
+        uint32_t first = ((1u << (2u * j)) - 1u) / 3u;
+        uint32_t n = 1u << (2u * j);
+        printf("    /* level %u: entries %u..%u */\n", j, (unsigned)first,
+               (unsigned)(first + n - 1));
+        for (uint32_t p = 0; p < n; p++) {
+            const uint16_t *w = table[first + p];
+            int last = (p + 1 == n) || ((p + 1) % PER_LINE == 0);
+            printf("%s{%5u,%5u,%5u},%s", (p % PER_LINE == 0) ? "    " : "",
+                   (unsigned)w[0], (unsigned)w[1], (unsigned)w[2], last ? "\n" : " ");
+        }
+    }
+    printf("};\n");
+}
+
+int main(void)
+{
+    if (build() != 0)
+        return 1;
+    emit();
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "gen_geodesic_tables: write error\n");
+        return 1;
+    }
+    return 0;
+}

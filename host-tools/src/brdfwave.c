@@ -1,0 +1,43 @@
+/* brdfwave: the command line. */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+static const struct {
+    const char *name;
+    int (*run)(int, char **);
+    const char *what;
+} commands[] = {
+    {"encode", bw_cmd_encode, "compress a measurement into a payload"},
+    {"decode", bw_cmd_decode, "decode a payload to raw samples"},
+    {"info", bw_cmd_info, "print a payload's header"},
+    {"compare", bw_cmd_compare, "error metrics between two raw sample files"},
+    {"grid", bw_cmd_grid, "print the geodesic triangle grid as CSV"},
+    {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
+};
+
+static void usage(FILE *f)
+{
+    fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n\ncommands:\n", f);
+    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+        fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].what);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "brdfwave: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

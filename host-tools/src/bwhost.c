@@ -1,0 +1,476 @@
+#define _POSIX_C_SOURCE 200809L
+#include "bwhost.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static _Thread_local char last_error[512];
+
+const char *bwh_last_error(void) { return last_error; }
+
+static int fail(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(last_error, sizeof last_error, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+int bwh_read_file(const char *path, uint8_t **buf, size_t *len)
+{
+    *buf = NULL;
+    *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fail("%s: %s", path, strerror(errno));
+    size_t cap = 1 << 16, n = 0;
+    uint8_t *b = malloc(cap);
+    if (!b) {
+        fclose(f);
+        return fail("%s: out of memory", path);
+    }
+    for (;;) {
+        if (n == cap) {
+            uint8_t *nb = cap > SIZE_MAX / 2 ? NULL : realloc(b, cap * 2);
+            if (!nb) {
+                free(b);
+                fclose(f);
+                return fail("%s: out of memory", path);
+            }
+            b = nb;
+            cap *= 2;
+        }
+        size_t r = fread(b + n, 1, cap - n, f);
+        n += r;
+        if (r == 0)
+            break;
+    }
+    int err = ferror(f);
+    fclose(f);
+    if (err) {
+        free(b);
+        return fail("%s: read error", path);
+    }
+    *buf = b;
+    *len = n;
+    return 0;
+}
+
+int bwh_write_file(const char *path, const void *buf, size_t len)
+{
+    /* write beside the target and rename, so a failure leaves no half file */
+    size_t pl = strlen(path);
+    char *tmp = malloc(pl + 16);
+    if (!tmp)
+        return fail("%s: out of memory", path);
+    snprintf(tmp, pl + 16, "%s.tmp%ld", path, (long)(len % 100000));
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        fail("%s: %s", path, strerror(errno));
+        free(tmp);
+        return -1;
+    }
+    int ok = fwrite(buf, 1, len, f) == len;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0) {
+        fail("%s: write failed: %s", path, strerror(errno));
+        remove(tmp);
+        free(tmp);
+        return -1;
+    }
+    free(tmp);
+    return 0;
+}
+
+/* ---- .sed ------------------------------------------------------------- */
+
+/* Parses a non-negative or negative decimal with at most 5 fraction digits
+ * into units of 10^-5, exactly. */
+static int parse_fixed5(const char *s, const char **end, int32_t *out)
+{
+    while (*s == ' ' || *s == '\t')
+        s++;
+    int neg = 0;
+    if (*s == '-' || *s == '+')
+        neg = *s++ == '-';
+    if (!isdigit((unsigned char)*s) && *s != '.')
+        return -1;
+    int64_t v = 0;
+    int digits = 0;
+    while (isdigit((unsigned char)*s)) {
+        v = v * 10 + (*s++ - '0');
+        if (v > 100000000)
+            return -1;
+        digits++;
+    }
+    int frac = 0;
+    if (*s == '.') {
+        s++;
+        while (isdigit((unsigned char)*s)) {
+            if (frac == 5)
+                return -1; /* more precision than the format carries */
+            v = v * 10 + (*s++ - '0');
+            frac++;
+            digits++;
+        }
+    }
+    if (!digits)
+        return -1;
+    while (frac++ < 5)
+        v *= 10;
+    if (*s && !isspace((unsigned char)*s))
+        return -1;
+    *end = s;
+    *out = (int32_t)(neg ? -v : v);
+    return 0;
+}
+
+int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **wavelengths)
+{
+    *values = NULL;
+    if (wavelengths)
+        *wavelengths = NULL;
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return fail("%s: %s", path, strerror(errno));
+    char line[4096];
+    long channels = -1;
+    int in_data = 0, header_seen = 0;
+    uint32_t n = 0;
+    int32_t *v = NULL;
+    double *wl = NULL;
+    int lineno = 0;
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        if (!in_data) {
+            if (!strncmp(line, "Channels:", 9))
+                channels = strtol(line + 9, NULL, 10);
+            if (!strncmp(line, "Data:", 5)) {
+                if (channels < 1 || channels > (long)BW_MAX_BANDS) {
+                    fclose(f);
+                    return fail("%s: missing or invalid 'Channels:' header", path);
+                }
+                v = calloc((size_t)channels, sizeof *v);
+                wl = calloc((size_t)channels, sizeof *wl);
+                if (!v || !wl) {
+                    free(v);
+                    free(wl);
+                    fclose(f);
+                    return fail("%s: out of memory", path);
+                }
+                in_data = 1;
+            }
+            continue;
+        }
+        if (!header_seen) { /* column titles */
+            header_seen = 1;
+            continue;
+        }
+        const char *s = line;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (*s == '\n' || *s == '\r' || *s == 0)
+            continue;
+        if (n >= (uint32_t)channels) {
+            free(v);
+            free(wl);
+            fclose(f);
+            return fail("%s:%d: more data rows than 'Channels: %ld'", path, lineno, channels);
+        }
+        /* Wvl, Rad.(Ref.), Rad.(Target), -log Reflect., Reflect. */
+        char *e;
+        double cols[4];
+        for (int c = 0; c < 4; c++) {
+            errno = 0;
+            cols[c] = strtod(s, &e);
+            if (e == s || errno || !isfinite(cols[c])) {
+                free(v);
+                free(wl);
+                fclose(f);
+                return fail("%s:%d: expected 5 numeric columns", path, lineno);
+            }
+            s = e;
+        }
+        const char *end;
+        if (parse_fixed5(s, &end, &v[n]) != 0) {
+            free(v);
+            free(wl);
+            fclose(f);
+            return fail("%s:%d: bad reflectance value", path, lineno);
+        }
+        wl[n] = cols[0];
+        n++;
+    }
+    fclose(f);
+    if (!in_data || n != (uint32_t)channels) {
+        free(v);
+        free(wl);
+        return fail("%s: %s (%u of %ld rows)", path, in_data ? "truncated data" : "no 'Data:' section",
+                    n, channels);
+    }
+    *values = v;
+    *bands = n;
+    if (wavelengths)
+        *wavelengths = wl;
+    else
+        free(wl);
+    return 0;
+}
+
+/* ---- float mapping ------------------------------------------------------ */
+
+float bwh_bits_to_float(uint32_t bits)
+{
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+uint32_t bwh_float_to_bits(float f)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+static int status_fail(int st)
+{
+    return fail("%s", bw_strerror(st));
+}
+
+int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                   float scale, float offset, uint8_t **out, size_t *out_len)
+{
+    *out = NULL;
+    *out_len = 0;
+    int st = bw_dims_check(dims);
+    if (st != BW_OK)
+        return status_fail(st);
+    size_t n = bw_dims_samples(dims);
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = (uint8_t)o->mode;
+    p.basis = (uint8_t)o->basis;
+    p.scale_bits = bwh_float_to_bits(scale);
+    p.offset_bits = bwh_float_to_bits(offset);
+    if (o->mode == BW_MODE_MAX_ERROR) {
+        if (!(o->max_error >= 1.0) || o->max_error > BW_SAMPLE_MAX)
+            return fail("max error must be at least 1 sample unit (and below %d)", BW_SAMPLE_MAX);
+        p.max_error = (uint32_t)floor(o->max_error);
+    }
+    if (o->mode == BW_MODE_BYTES) {
+        if (o->byte_budget > UINT32_MAX)
+            p.byte_budget = UINT32_MAX;
+        else
+            p.byte_budget = (uint32_t)o->byte_budget;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (x[i] > BW_SAMPLE_MAX || x[i] < -BW_SAMPLE_MAX)
+            return fail("sample %zu = %d is outside the codec's range +-%d", i, x[i], BW_SAMPLE_MAX);
+    size_t wb = bw_work_bound(n, dims->bands), cap = bw_payload_bound(n);
+    int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
+    uint8_t *buf = malloc(cap);
+    if (!work || !ver || !buf) {
+        free(work);
+        free(ver);
+        free(buf);
+        return fail("out of memory");
+    }
+    size_t len = 0;
+    st = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
+    free(work);
+    free(ver);
+    if (st != BW_OK) {
+        free(buf);
+        if (st == BW_ERR_BUDGET)
+            return fail("byte budget %zu is too small for this measurement", o->byte_budget);
+        return status_fail(st);
+    }
+    *out = buf;
+    *out_len = len;
+    return 0;
+}
+
+int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
+                   size_t *out_len)
+{
+    *out = NULL;
+    *out_len = 0;
+    int st = bw_dims_check(dims);
+    if (st != BW_OK)
+        return status_fail(st);
+    size_t n = bw_dims_samples(dims);
+    double maxabs = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(x[i]))
+            return fail("sample %zu is %s", i, isnan(x[i]) ? "NaN" : "infinite");
+        double a = fabs((double)x[i]);
+        if (a > maxabs)
+            maxabs = a;
+    }
+    double scale = o->scale;
+    bwh_encode_opts_t io = *o;
+    if (!(scale > 0)) {
+        switch (o->mode) {
+        case BW_MODE_LOSSLESS:
+            scale = 1.0;
+            break;
+        case BW_MODE_MAX_ERROR:
+            if (!(o->max_error > 0))
+                return fail("max error must be positive");
+            scale = o->max_error / 3.5;
+            break;
+        default:
+            scale = maxabs > 0 ? maxabs / 1048576.0 : 1.0;
+            break;
+        }
+    }
+    /* the header carries the scale as float32: use exactly that value */
+    float scale_f = (float)scale;
+    if (!(scale_f > 0) || !isfinite(scale_f))
+        return fail("scale %g is not representable", scale);
+    scale = scale_f;
+    if (maxabs / scale > BW_SAMPLE_MAX)
+        return fail("the data range (max |x| = %g) needs a coarser step than %g: %s", maxabs, scale,
+                    o->mode == BW_MODE_MAX_ERROR ? "raise --max-error" : "give a larger --scale");
+    if (o->mode == BW_MODE_MAX_ERROR) {
+        io.max_error = floor((o->max_error - 0.5 * scale) / scale);
+        if (io.max_error < 1)
+            return fail("max error %g is below the step %g", o->max_error, scale);
+    }
+    int32_t *q = malloc(n * sizeof *q);
+    if (!q)
+        return fail("out of memory");
+    for (size_t i = 0; i < n; i++) {
+        double v = (double)x[i] / scale;
+        double r = nearbyint(v);
+        if (o->mode == BW_MODE_LOSSLESS && r != v) {
+            free(q);
+            return fail("lossless needs values that are whole multiples of the scale %g "
+                        "(sample %zu = %.9g); use --max-error, --bytes or --scale",
+                        scale, i, (double)x[i]);
+        }
+        q[i] = (int32_t)r;
+    }
+    int rc = bwh_encode_i32(dims, q, &io, scale_f, 0.0f, out, out_len);
+    free(q);
+    if (rc != 0)
+        return rc;
+    if (o->mode == BW_MODE_LOSSLESS || o->mode == BW_MODE_MAX_ERROR) {
+        /* check the guarantee where the user sees it: in float32 */
+        bw_header_t h;
+        int32_t *s = NULL;
+        float *v = NULL;
+        if (bwh_decode(*out, *out_len, &h, &s, &v) != 0) {
+            free(*out);
+            *out = NULL;
+            return -1;
+        }
+        double bound = o->mode == BW_MODE_LOSSLESS ? 0.0 : o->max_error;
+        for (size_t i = 0; i < n; i++) {
+            if (fabs((double)v[i] - (double)x[i]) > bound) {
+                free(s);
+                free(v);
+                free(*out);
+                *out = NULL;
+                return fail("error bound not met at sample %zu after float conversion "
+                            "(|%.9g - %.9g| > %g): the values are too large for this bound",
+                            i, (double)v[i], (double)x[i], bound);
+            }
+        }
+        free(s);
+        free(v);
+    }
+    return 0;
+}
+
+int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values)
+{
+    *samples = NULL;
+    if (values)
+        *values = NULL;
+    int st = bw_header_read(p, len, h);
+    if (st != BW_OK)
+        return status_fail(st);
+    size_t n = bw_dims_samples(&h->dims);
+    size_t wb = bw_work_bound(n, h->dims.bands);
+    int32_t *w = malloc(wb * sizeof *w);
+    if (!w)
+        return fail("out of memory");
+    st = bw_decode(p, len, w, wb, w, wb, h);
+    if (st != BW_OK) {
+        free(w);
+        return status_fail(st);
+    }
+    if (values) {
+        float *v = malloc((n ? n : 1) * sizeof *v);
+        if (!v) {
+            free(w);
+            return fail("out of memory");
+        }
+        double scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
+        if (!isfinite(scale) || !isfinite(off)) {
+            free(v);
+            free(w);
+            return fail("payload header has a non-finite scale or offset");
+        }
+        for (size_t i = 0; i < n; i++)
+            v[i] = (float)(off + scale * (double)w[i]);
+        *values = v;
+    }
+    *samples = w;
+    return 0;
+}
+
+/* ---- metrics ------------------------------------------------------------ */
+
+void bwh_metrics(const float *ref, const float *test, size_t n, bwh_metrics_t *m)
+{
+    memset(m, 0, sizeof *m);
+    m->n = n;
+    double l1 = 0, l2 = 0, se = 0, peak = 0;
+    size_t nz = 0;
+    for (size_t i = 0; i < n; i++) {
+        double f = ref[i], g = test[i], d = g - f;
+        se += d * d;
+        if (fabs(d) > m->max_abs)
+            m->max_abs = fabs(d);
+        if (fabs(f) > peak)
+            peak = fabs(f);
+        if (f == 0) {
+            m->zero_ref++;
+            continue;
+        }
+        l1 += fabs(d) / fabs(f);
+        l2 += (d * d) / (f * f);
+        nz++;
+    }
+    m->rel_l1 = nz ? 100.0 * l1 / (double)nz : 0;
+    m->rel_l2 = nz ? 100.0 * sqrt(l2 / (double)nz) : 0;
+    m->rmse = n ? sqrt(se / (double)n) : 0;
+    m->psnr = m->rmse > 0 && peak > 0 ? 20.0 * log10(peak / m->rmse) : INFINITY;
+}
+
+const char *bwh_shape_name(unsigned s)
+{
+    static const char *names[] = {"spectra", "reflectance", "brdf-iso", "brdf-full"};
+    return s < 4 ? names[s] : "?";
+}
+
+const char *bwh_basis_name(unsigned b)
+{
+    static const char *names[] = {"haar", "53", "97"};
+    return b < 3 ? names[b] : "?";
+}
+
+const char *bwh_mode_name(unsigned m)
+{
+    static const char *names[] = {"lossless", "max-error", "bytes", "step"};
+    return m < 4 ? names[m] : "?";
+}

@@ -1,0 +1,86 @@
+/*
+ * libbrdfwave: the host side of the codec.
+ *
+ * The codec core (firmware/codec) works on integer samples. This layer maps
+ * float measurements to integers and back (value = offset + scale * sample,
+ * both recorded in the payload header), reads the input formats, and
+ * computes the error metrics the tools report.
+ */
+#ifndef BWHOST_H
+#define BWHOST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_codec.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Error text of the last failing bwh_* call (thread-local). */
+const char *bwh_last_error(void);
+
+/* Whole-file I/O. bwh_read_file allocates *buf (free() it). */
+int bwh_read_file(const char *path, uint8_t **buf, size_t *len);
+int bwh_write_file(const char *path, const void *buf, size_t len);
+
+/* Spectral Evolution .sed: reflectance column, parsed exactly as decimal
+ * text into integers of 10^-5 (the files print 5 decimals). *values is
+ * allocated; *bands receives the channel count; wavelengths (optional,
+ * allocated) in nm. */
+int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **wavelengths);
+#define BWH_SED_SCALE 1e-5
+
+typedef enum { BWH_FMT_F32 = 0, BWH_FMT_U16 = 1, BWH_FMT_I32 = 2 } bwh_format_t;
+
+typedef struct {
+    bw_mode_t mode;     /* LOSSLESS, MAX_ERROR or BYTES */
+    double max_error;   /* MAX_ERROR, in value units */
+    size_t byte_budget; /* BYTES */
+    unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
+    double scale;       /* > 0: force the integer step of float input */
+} bwh_encode_opts_t;
+
+/* Encodes float samples (NaN/Inf rejected). *out is allocated. The mapping
+ * to integers is chosen from the mode:
+ *   LOSSLESS   every value must be an integer multiple of `scale` (default 1)
+ *   MAX_ERROR  scale = E / 3.5: integer bound 3 plus half a step of rounding
+ *   BYTES      scale = max|x| / 2^20, fine enough to vanish under the budget
+ * and the result is checked in float against the input. */
+int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
+                   size_t *out_len);
+
+/* Encodes integer samples with scale 1 (or the given scale/offset bits). */
+int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                   float scale, float offset, uint8_t **out, size_t *out_len);
+
+/* Decodes a payload. *samples (allocated) receives the integer samples and
+ * *values (allocated, may be NULL) the float values. */
+int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values);
+
+/* Float value of a header's scale / offset fields. */
+float bwh_bits_to_float(uint32_t bits);
+uint32_t bwh_float_to_bits(float f);
+
+typedef struct {
+    size_t n;
+    size_t zero_ref;  /* samples whose reference is 0 (left out of rel. L1/L2) */
+    double rel_l1;    /* percent, paper eq. 7 */
+    double rel_l2;    /* percent, paper eq. 8 */
+    double rmse;
+    double max_abs;
+    double psnr;      /* dB, peak = max |reference| */
+} bwh_metrics_t;
+
+void bwh_metrics(const float *ref, const float *test, size_t n, bwh_metrics_t *m);
+
+const char *bwh_shape_name(unsigned shape);
+const char *bwh_basis_name(unsigned basis);
+const char *bwh_mode_name(unsigned mode);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

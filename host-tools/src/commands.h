@@ -1,0 +1,13 @@
+/* brdfwave host tool: subcommand entry points. Each takes the subcommand's
+ * own argv (argv[0] is the subcommand name) and returns the exit status. */
+#ifndef BW_COMMANDS_H
+#define BW_COMMANDS_H
+
+int bw_cmd_encode(int argc, char **argv);
+int bw_cmd_decode(int argc, char **argv);
+int bw_cmd_info(int argc, char **argv);
+int bw_cmd_compare(int argc, char **argv);
+int bw_cmd_grid(int argc, char **argv);
+int bw_cmd_synth(int argc, char **argv);
+
+#endif

@@ -1,0 +1,55 @@
+/*
+ * Geodesic hemisphere grid in double precision (host side).
+ *
+ * Same numbering as firmware/codec/bw_geodesic.h: four base triangles of the
+ * upper octahedron, child 0 the centre child, quadtree index so that every
+ * subtree is a contiguous range, direction = normalize(a + b + c).
+ */
+#ifndef BWH_GEODESIC_H
+#define BWH_GEODESIC_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define BWH_GRID_MAX_LEVEL 6u
+
+/* Vertices (a, b, c) as unit vectors, counter-clockwise seen from outside. */
+typedef struct {
+    double v[3][3];
+} bwh_tri_t;
+
+/* 4 * 4^level triangles, or 0 if level > BWH_GRID_MAX_LEVEL. */
+size_t bwh_grid_count(unsigned level);
+
+/* Fills out[0 .. bwh_grid_count(level)-1] in index order. 0, or -1 on a bad
+ * level or NULL out. */
+int bwh_grid_triangles(unsigned level, bwh_tri_t *out);
+
+/* Child m (0..3) of t, per the numbering convention. */
+void bwh_tri_child(const bwh_tri_t *t, unsigned m, bwh_tri_t *child);
+
+/* normalize(a + b + c). */
+void bwh_tri_centre(const bwh_tri_t *t, double out[3]);
+
+/* Solid angle of the spherical triangle with unit vertices a, b, c
+ * (Van Oosterom-Strackee). */
+double bwh_solid_angle(const double a[3], const double b[3], const double c[3]);
+
+/* Centre and solid angle of every triangle in index order; solid_angle may
+ * be NULL. 0, or -1 on a bad level or NULL xyz. */
+int bwh_grid_centres(unsigned level, double (*xyz)[3], double *solid_angle);
+
+/* Index at `level` of the triangle containing the unit direction dir
+ * (z >= 0); -1 if z < 0, dir is not finite, or the level is bad. Points on a
+ * shared edge go to a fixed side: bases by half-open quadrants of (x, y),
+ * children to the centre child. */
+long bwh_grid_locate(unsigned level, const double dir[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,26 @@
+# Linux host: the codec core, libbrdfwave and the brdfwave CLI.
+CC ?= cc
+OPT ?= -O2 -g
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ihost-tools/src $(EXTRA_CFLAGS)
+LDLIBS := -lm
+
+HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c
+CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
+           host-tools/src/cmd_synth.c
+HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
+CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
+
+LIB := $(BUILD)/libbrdfwave.a
+BW_CLI := $(BUILD)/brdfwave
+
+all: $(LIB) $(BW_CLI)
+
+$(LIB): $(CORE_OBJ) $(HOST_OBJ)
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+$(BW_CLI): $(CLI_OBJ) $(LIB)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(LIB) $(LDLIBS) -o $@
+
+include mk/tests.mk
+-include mk/bench.mk

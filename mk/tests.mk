@@ -1,0 +1,21 @@
+# Tests (host). `make check` runs them all and ends with one summary line.
+TEST_CFLAGS := $(CFLAGS) -Itests/unit
+TEST_LIBS := -lcmocka -lm
+
+UNIT_TESTS := $(patsubst tests/unit/%.c,%,$(wildcard tests/unit/test_*.c))
+UNIT_BIN := $(addprefix $(BUILD)/tests/,$(UNIT_TESTS))
+
+# tests that need host-tools sources besides the library
+$(BUILD)/tests/%: tests/unit/%.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  TEST-CC $@")
+	$(Q)$(CC) $(TEST_CFLAGS) $< $(LIB) $(TEST_LIBS) -o $@
+
+tests: $(UNIT_BIN)
+
+deps:
+	$(Q)tests/deps.sh
+
+check: deps
+	$(Q)$(MAKE) --no-print-directory all tests
+	$(Q)tests/run.sh
