@@ -37,7 +37,6 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
         if (!strcmp(argv[1], commands[i].name))
             return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "brdfwave: unknown command '%s'\n", argv[1]);
-    usage(stderr);
+    fprintf(stderr, "brdfwave: unknown command '%s' (see 'brdfwave --help')\n", argv[1]);
     return 2;
 }

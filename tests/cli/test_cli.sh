@@ -1,0 +1,178 @@
+#!/usr/bin/env bash
+# The brdfwave command line as a user meets it: round trips, guarantees,
+# and one clear line plus a non-zero exit for every kind of bad input.
+set -u
+cd "$(dirname "$0")/../.."
+BW=${BW:-build/host/brdfwave}
+PY=/usr/bin/python3
+DATA=tests/data/field_psr3500
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# expect_ok NAME CMD...: exit 0
+expect_ok() {
+    local name=$1
+    shift
+    if "$@" >"$T/out" 2>"$T/err"; then ok; else bad "$name (exit $?): $(head -3 "$T/err")"; fi
+}
+
+# expect_error NAME CMD...: non-zero exit, exactly one line on stderr, no crash
+expect_error() {
+    local name=$1 rc
+    shift
+    "$@" >"$T/out" 2>"$T/err"
+    rc=$?
+    if [ "$rc" = 0 ]; then bad "$name: exit 0 on bad input"; return; fi
+    if [ "$rc" -ge 128 ]; then bad "$name: killed by signal $((rc - 128))"; return; fi
+    local lines
+    lines=$(wc -l <"$T/err")
+    if [ "$lines" != 1 ]; then bad "$name: $lines lines on stderr: $(cat "$T/err")"; return; fi
+    ok
+}
+
+# key VALUE from 'key: value' output
+key() { sed -n "s/^$1: //p" "$2"; }
+
+# ---- help -------------------------------------------------------------------
+for c in encode decode info compare grid synth; do
+    expect_ok "help $c" "$BW" "$c" --help
+    grep -q "usage: brdfwave $c" "$T/out" && ok || bad "help $c: no usage line"
+done
+expect_ok "top-level help" "$BW" --help
+expect_error "unknown command" "$BW" frobnicate
+
+# ---- grid -------------------------------------------------------------------
+for L in 0 1 2 3 4 5 6; do
+    "$BW" grid --level $L >"$T/grid.csv" || bad "grid level $L"
+    rows=$(($(wc -l <"$T/grid.csv") - 1))
+    [ "$rows" = $((4 << (2 * L))) ] && ok || bad "grid level $L: $rows rows"
+done
+[ "$(head -1 "$T/grid.csv")" = "index,theta_deg,phi_deg,x,y,z,solid_angle_sr" ] && ok || bad "grid header"
+$PY - "$T/grid.csv" <<'PY' && ok || bad "grid level 6: solid angles do not sum to 2 pi"
+import sys, math
+rows = [l.split(',') for l in open(sys.argv[1]).read().split('\n')[1:] if l]
+s = sum(float(r[6]) for r in rows)
+assert abs(s - 2 * math.pi) < 1e-5, s
+assert all(0 <= float(r[1]) <= 90 for r in rows)
+PY
+expect_error "grid bad level" "$BW" grid --level 7
+
+# ---- lossless on integers -----------------------------------------------------
+head -c $((2 * 1024 * 3)) /dev/urandom >"$T/r.u16"   # level 4 reflectance, 3 bands
+expect_ok "encode u16 lossless" "$BW" encode -i "$T/r.u16" -o "$T/r.bwv" --input-format u16 --bands 3 --level 4 --lossless
+expect_ok "decode i32" "$BW" decode -i "$T/r.bwv" -o "$T/r.i32" --output-format i32
+$PY - "$T/r.u16" "$T/r.i32" <<'PY' && ok || bad "u16 lossless round trip not bit-exact"
+import sys, struct
+a = open(sys.argv[1], 'rb').read(); b = open(sys.argv[2], 'rb').read()
+x = struct.unpack('<%dH' % (len(a) // 2), a); y = struct.unpack('<%di' % (len(b) // 4), b)
+assert list(x) == list(y)
+PY
+"$BW" info "$T/r.bwv" >"$T/info"
+[ "$(key shape "$T/info")" = reflectance ] && [ "$(key bands "$T/info")" = 3 ] &&
+    [ "$(key samples "$T/info")" = 3072 ] && [ "$(key mode "$T/info")" = lossless ] &&
+    [ "$(key payload_bytes "$T/info")" = "$(stat -c %s "$T/r.bwv")" ] && ok || bad "info fields: $(cat "$T/info")"
+
+# ---- the field spectra: .sed lossless is exact on the file's digits -----------
+expect_ok "encode sed" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/fs.bwv"
+expect_ok "decode sed" "$BW" decode -i "$T/fs.bwv" -o "$T/fs.i32" --output-format i32
+$PY - "$T/fs.i32" $DATA/*.sed <<'PY' && ok || bad "sed lossless round trip"
+import sys, struct
+b = open(sys.argv[1], 'rb').read()
+y = struct.unpack('<%di' % (len(b) // 4), b)
+ref = []
+for f in sys.argv[2:]:
+    lines = open(f).read().split('\n')
+    i = lines.index('Data:') if 'Data:' in lines else [k for k, l in enumerate(lines) if l.startswith('Data:')][0]
+    for l in lines[i + 2:]:
+        if l.strip():
+            v = l.split()[4]
+            whole, _, frac = v.partition('.')
+            ref.append(int(whole) * 100000 + int((frac + '00000')[:5]))
+assert len(ref) == len(y) == 60 * 1024, (len(ref), len(y))
+assert list(y) == ref
+PY
+
+# ---- float data: max-error bound and byte budget ------------------------------
+expect_ok "synth phong" "$BW" synth --model phong --kd 0.75 --ks 0.25 --n 20 --level 4 --incoming 16 -o "$T/p.f32"
+for E in 0.001 0.01 0.1; do
+    expect_ok "encode max-error $E" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --max-error $E
+    "$BW" decode -i "$T/p.bwv" -o "$T/pd.f32" && "$BW" compare "$T/p.f32" "$T/pd.f32" >"$T/cmp"
+    $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
+        bad "max-error $E: max_abs_error $(key max_abs_error "$T/cmp")"
+done
+for R in 8 64 256; do
+    expect_ok "encode ratio $R" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --ratio $R
+    size=$(stat -c %s "$T/p.bwv")
+    [ "$size" -le $((4 * 16384 / R)) ] && ok || bad "ratio $R: $size bytes > budget $((4 * 16384 / R))"
+done
+expect_ok "encode bytes" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --bytes 3000
+[ "$(stat -c %s "$T/p.bwv")" -le 3000 ] && ok || bad "bytes 3000 exceeded"
+expect_ok "compare identical" "$BW" compare "$T/p.f32" "$T/p.f32"
+[ "$(key max_abs_error "$T/out")" = 0 ] && [ "$(key psnr_db "$T/out")" = inf ] && ok || bad "compare identical: $(cat "$T/out")"
+
+# compare: the paper's relative errors, zero references counted, not divided by
+$PY - "$T" <<'PY'
+import struct, sys
+t = sys.argv[1]
+open(t + '/a.f32', 'wb').write(struct.pack('<4f', 1.0, 2.0, 0.0, 4.0))
+open(t + '/b.f32', 'wb').write(struct.pack('<4f', 1.5, 2.0, 1.0, 3.0))
+PY
+"$BW" compare "$T/a.f32" "$T/b.f32" >"$T/cmp" || bad "compare small"
+$PY - "$T/cmp" <<'PY' && ok || bad "compare values: $(cat "$T/cmp")"
+import sys, math
+kv = dict(l.split(': ') for l in open(sys.argv[1]).read().strip().split('\n'))
+l1 = 100 * (0.5 / 1 + 0 + 1 / 4) / 3
+l2 = 100 * math.sqrt((0.25 + 0 + 1 / 16) / 3)
+rmse = math.sqrt((0.25 + 0 + 1 + 1) / 4)
+assert kv['zero_reference_samples'] == '1'
+assert abs(float(kv['relative_l1_percent']) - l1) < 1e-4 * l1
+assert abs(float(kv['relative_l2_percent']) - l2) < 1e-4 * l2
+assert abs(float(kv['rmse']) - rmse) < 1e-6
+assert float(kv['max_abs_error']) == 1.0
+PY
+
+# ---- bad input: one line, non-zero exit, no output left behind ---------------
+expect_error "missing input file" "$BW" encode -i "$T/nope.f32" -o "$T/x.bwv" --bands 1
+expect_error "wrong size for shape" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 3
+expect_error "not whole samples" sh -c "head -c 7 '$T/p.f32' > '$T/odd.f32'; exec '$BW' encode -i '$T/odd.f32' -o '$T/x.bwv' --bands 1"
+$PY -c "import struct; open('$T/nan.f32','wb').write(struct.pack('<4f', 1, float('nan'), 2, 3))"
+expect_error "NaN sample" "$BW" encode -i "$T/nan.f32" -o "$T/x.bwv" --bands 4 --max-error 0.1
+$PY -c "import struct; open('$T/inf.f32','wb').write(struct.pack('<4f', 1, float('inf'), 2, 3))"
+expect_error "infinite sample" "$BW" encode -i "$T/inf.f32" -o "$T/x.bwv" --bands 4 --bytes 100
+expect_error "lossless on fractions" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --lossless
+$PY -c "import struct; open('$T/big.f32','wb').write(struct.pack('<4f', 1, 3e38, 2, 3))"
+expect_error "out-of-range sample" "$BW" encode -i "$T/big.f32" -o "$T/x.bwv" --bands 4 --max-error 0.001
+expect_error "budget too small" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --bytes 10
+expect_error "two modes" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --lossless --bytes 100
+expect_error "bad level" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 9
+expect_error "bad bands" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 0
+expect_error "bad max-error" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --max-error -1
+expect_error "unknown option" "$BW" encode --frobnicate
+expect_error "sed channel mismatch" "$BW" encode --input-format sed -i $DATA/1116037_00041.sed -o "$T/x.bwv" --bands 100 --level 0
+head -c 5000 $DATA/1116037_00041.sed >"$T/trunc.sed"
+expect_error "truncated sed" "$BW" encode --input-format sed -i "$T/trunc.sed" -o "$T/x.bwv"
+[ ! -e "$T/x.bwv" ] && ok || bad "a failed encode left an output file"
+ls "$T" | grep -q '\.tmp' && bad "temporary files left behind" || ok
+
+cp "$T/fs.bwv" "$T/c.bwv"
+printf '\x55' | dd of="$T/c.bwv" bs=1 seek=200 conv=notrunc 2>/dev/null
+expect_error "corrupted payload" "$BW" decode -i "$T/c.bwv" -o "$T/x.f32"
+grep -q -i crc "$T/err" && ok || bad "corruption not reported as CRC: $(cat "$T/err")"
+head -c 100 "$T/fs.bwv" >"$T/t.bwv"
+expect_error "truncated payload" "$BW" decode -i "$T/t.bwv" -o "$T/x.f32"
+head -c 30 "$T/fs.bwv" >"$T/t.bwv"
+expect_error "truncated header" "$BW" decode -i "$T/t.bwv" -o "$T/x.f32"
+expect_error "info on garbage" "$BW" info "$DATA/LICENSE"
+expect_error "info on empty" sh -c ": > '$T/e.bwv'; exec '$BW' info '$T/e.bwv'"
+expect_error "decode missing file" "$BW" decode -i "$T/none.bwv" -o "$T/x.f32"
+[ ! -e "$T/x.f32" ] && ok || bad "a failed decode left an output file"
+expect_error "compare sizes differ" "$BW" compare "$T/a.f32" "$T/p.f32"
+expect_error "compare NaN" "$BW" compare "$T/nan.f32" "$T/nan.f32"
+
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" = 0 ]

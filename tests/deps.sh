@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian packages a make goal needs, when they are missing.
+#   tests/deps.sh [check|run|bench|fuzz]   (default: check)
+set -eu
+goal=${1:-check}
+case "$goal" in
+check) pkgs="gcc make libc6-dev libcmocka-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
+             gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf" ;;
+run)   pkgs="gcc make libc6-dev" ;;
+bench) pkgs="gcc make libc6-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
+             python3 python3-numpy python3-matplotlib" ;;
+fuzz)  pkgs="clang libclang-rt-14-dev" ;;
+*) echo "tests/deps.sh: unknown goal '$goal'" >&2; exit 2 ;;
+esac
+
+missing=""
+for p in $pkgs; do
+    # a package counts as present when dpkg says it is installed
+    st=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+    case "$st" in *"install ok installed"*) ;; *) missing="$missing $p" ;; esac
+done
+[ -z "$missing" ] && exit 0
+
+echo "installing Debian packages:$missing"
+sudo=""
+if [ "$(id -u)" != 0 ]; then
+    command -v sudo >/dev/null || { echo "tests/deps.sh: need root (or sudo) to install:$missing" >&2; exit 1; }
+    sudo=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q >/dev/null
+# shellcheck disable=SC2086
+$sudo apt-get install -y -q --no-install-recommends $missing >/dev/null
