@@ -24,3 +24,9 @@ $(BW_CLI): $(CLI_OBJ) $(LIB)
 
 include mk/tests.mk
 -include mk/bench.mk
+
+run: deps-run all
+	$(Q)host-tools/scripts/run.sh
+
+deps-run:
+	$(Q)tests/deps.sh run

@@ -239,6 +239,28 @@ uint32_t bwh_float_to_bits(float f)
     return b;
 }
 
+/* The float value of an integer sample. A scale that is the reciprocal of
+ * a whole number (1e-5 for .sed reflectance) divides by that number in
+ * double, so decimal data comes back as the float nearest its decimal
+ * value rather than one ulp off through the rounded float32 scale. */
+typedef struct {
+    double scale, offset, divisor;
+} value_map_t;
+
+static value_map_t value_map(float scale, float offset)
+{
+    value_map_t m = {scale, offset, 0};
+    double inv = 1.0 / (double)scale, r = nearbyint(inv);
+    if (r >= 2 && r <= 1e9 && fabs(inv - r) <= 1e-6 * r)
+        m.divisor = r;
+    return m;
+}
+
+static float map_value(const value_map_t *m, int32_t q)
+{
+    return (float)(m->offset + (m->divisor ? (double)q / m->divisor : m->scale * (double)q));
+}
+
 static int status_fail(int st)
 {
     return fail("%s", bw_strerror(st));
@@ -316,15 +338,27 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     }
     double scale = o->scale;
     bwh_encode_opts_t io = *o;
+    /* MAX_ERROR: the decoded value is rounded to float32, so one ulp of the
+     * largest value is kept in hand; the rest is split into 3 integer steps
+     * of coding error plus half a step of rounding to the integer grid. */
+    double budget = 0;
+    if (o->mode == BW_MODE_MAX_ERROR) {
+        if (!(o->max_error > 0))
+            return fail("max error must be positive");
+        float top = (float)(maxabs + o->max_error);
+        budget = o->max_error - ((double)nextafterf(top, INFINITY) - (double)top);
+        if (!(budget > 0))
+            return fail("max error %g is below the float32 resolution of the data (max |x| = %g)",
+                        o->max_error, maxabs);
+        io.max_error = 3;
+    }
     if (!(scale > 0)) {
         switch (o->mode) {
         case BW_MODE_LOSSLESS:
             scale = 1.0;
             break;
         case BW_MODE_MAX_ERROR:
-            if (!(o->max_error > 0))
-                return fail("max error must be positive");
-            scale = o->max_error / 3.5;
+            scale = budget / 3.5;
             break;
         default:
             scale = maxabs > 0 ? maxabs / 1048576.0 : 1.0;
@@ -333,24 +367,29 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     }
     /* the header carries the scale as float32: use exactly that value */
     float scale_f = (float)scale;
+    if (o->mode == BW_MODE_MAX_ERROR && !(o->scale > 0))
+        while (scale_f > 0 && 3.5 * (double)scale_f > budget)
+            scale_f = nextafterf(scale_f, 0);
     if (!(scale_f > 0) || !isfinite(scale_f))
         return fail("scale %g is not representable", scale);
     scale = scale_f;
     if (maxabs / scale > BW_SAMPLE_MAX)
         return fail("the data range (max |x| = %g) needs a coarser step than %g: %s", maxabs, scale,
                     o->mode == BW_MODE_MAX_ERROR ? "raise --max-error" : "give a larger --scale");
-    if (o->mode == BW_MODE_MAX_ERROR) {
-        io.max_error = floor((o->max_error - 0.5 * scale) / scale);
+    if (o->mode == BW_MODE_MAX_ERROR && o->scale > 0) {
+        io.max_error = floor((budget - 0.5 * scale) / scale);
         if (io.max_error < 1)
-            return fail("max error %g is below the step %g", o->max_error, scale);
+            return fail("max error %g is below 1.5 steps of the given scale %g", o->max_error, scale);
     }
+    value_map_t vm = value_map(scale_f, 0.0f);
     int32_t *q = malloc(n * sizeof *q);
     if (!q)
         return fail("out of memory");
     for (size_t i = 0; i < n; i++) {
         double v = (double)x[i] / scale;
         double r = nearbyint(v);
-        if (o->mode == BW_MODE_LOSSLESS && r != v) {
+        /* lossless: the value must come back as the very same float */
+        if (o->mode == BW_MODE_LOSSLESS && map_value(&vm, (int32_t)r) != x[i]) {
             free(q);
             return fail("lossless needs values that are whole multiples of the scale %g "
                         "(sample %zu = %.9g); use --max-error, --bytes or --scale",
@@ -380,7 +419,7 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
                 free(*out);
                 *out = NULL;
                 return fail("error bound not met at sample %zu after float conversion "
-                            "(|%.9g - %.9g| > %g): the values are too large for this bound",
+                            "(|%.9g - %.9g| > %g)",
                             i, (double)v[i], (double)x[i], bound);
             }
         }
@@ -414,14 +453,15 @@ int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, 
             free(w);
             return fail("out of memory");
         }
-        double scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
-        if (!isfinite(scale) || !isfinite(off)) {
+        float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
+        if (!isfinite(scale) || !isfinite(off) || scale == 0) {
             free(v);
             free(w);
-            return fail("payload header has a non-finite scale or offset");
+            return fail("payload header has a zero or non-finite scale or offset");
         }
+        value_map_t vm = value_map(scale, off);
         for (size_t i = 0; i < n; i++)
-            v[i] = (float)(off + scale * (double)w[i]);
+            v[i] = map_value(&vm, w[i]);
         *values = v;
     }
     *samples = w;

@@ -293,8 +293,20 @@ int bw_cmd_encode(int argc, char **argv)
         if (f == BWH_FMT_I32 && !is_sed && o.scale > 0)
             scale = (float)o.scale;
         bwh_encode_opts_t io = o;
-        if (o.mode == BW_MODE_MAX_ERROR)
-            io.max_error = o.max_error / scale; /* value units -> sample units */
+        if (o.mode == BW_MODE_MAX_ERROR) {
+            /* value units -> sample units. Values scaled by a non-unit step
+             * are rounded to float32 when decoded: keep one ulp of the
+             * largest value in hand for that rounding. */
+            double margin = 0;
+            if (scale != 1.0f) {
+                double maxabs = 0;
+                for (size_t i = 0; i < count; i++)
+                    maxabs = fmax(maxabs, fabs((double)ints[i] * scale));
+                float top = (float)(maxabs + o.max_error);
+                margin = (double)nextafterf(top, INFINITY) - (double)top;
+            }
+            io.max_error = floor((o.max_error - margin) / scale);
+        }
         st = bwh_encode_i32(&d, ints, &io, scale, 0.0f, &payload, &plen);
     }
     if (st != 0) {

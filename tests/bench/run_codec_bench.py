@@ -61,10 +61,11 @@ def log(msg):
 
 
 def rel(path):
-    try:
-        return os.path.relpath(path, ROOT)
-    except ValueError:
-        return path
+    """Path relative to the repository root if it lies inside it."""
+    ap = os.path.abspath(path)
+    if ap.startswith(ROOT + os.sep):
+        return os.path.relpath(ap, ROOT)
+    return path
 
 
 class ToolError(Exception):
