@@ -508,7 +508,7 @@ static void header_write(uint8_t *h, const plan_t *pl, const bw_params_t *pa, ui
     h[16] = (uint8_t)pl->basis;
     h[17] = (uint8_t)pl->spec_levels;
     h[18] = (uint8_t)mode;
-    h[19] = 0; /* flags */
+    h[19] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
     put_u32(h + 20, pl->prequant);
     put_u32(h + 24, pl->step_q8);
     put_u32(h + 28, mode == BW_MODE_MAX_ERROR ? pa->max_error : 0u);
@@ -569,7 +569,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
     if (bw_dims_check(d) != BW_OK)
         return BW_ERR_HEADER;
     if (h->basis >= BW_BASIS_COUNT || h->spectral_levels != bw_spec_levels(d->bands) ||
-        h->mode > BW_MODE_STEP || h->flags != 0u)
+        h->mode > BW_MODE_STEP || (h->flags & ~BW_FLAGS_KNOWN) != 0u)
         return BW_ERR_HEADER;
     if (h->prequant < 1u || h->prequant > 2u * (uint32_t)BW_SAMPLE_MAX + 1u ||
         h->step_q8 < STEP_ONE_Q8)
@@ -714,7 +714,8 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     bw_status_t st = bw_dims_check(dims);
     if (st != BW_OK)
         return st;
-    if (pa->mode > BW_MODE_STEP || (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO))
+    if (pa->mode > BW_MODE_STEP || (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO) ||
+        (pa->flags & ~BW_FLAGS_KNOWN) != 0u)
         return BW_ERR_ARG;
     if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
         return BW_ERR_ARG;

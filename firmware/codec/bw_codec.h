@@ -91,7 +91,13 @@ typedef struct {
      * float value = offset + scale * integer sample). */
     uint32_t scale_bits;
     uint32_t offset_bits;
+    uint8_t flags;         /* BW_FLAG_*, recorded for the host            */
 } bw_params_t;
+
+/* Header flags, opaque to the core. DECIMAL_SCALE: the scale is exactly
+ * 10^-k; the host divides by 10^k instead of multiplying by the float. */
+#define BW_FLAG_DECIMAL_SCALE 0x01u
+#define BW_FLAGS_KNOWN 0x01u
 
 /* ---- sizes -------------------------------------------------------------- */
 

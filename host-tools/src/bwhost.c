@@ -239,20 +239,29 @@ uint32_t bwh_float_to_bits(float f)
     return b;
 }
 
-/* The float value of an integer sample. A scale that is the reciprocal of
- * a whole number (1e-5 for .sed reflectance) divides by that number in
- * double, so decimal data comes back as the float nearest its decimal
- * value rather than one ulp off through the rounded float32 scale. */
+/* The float value of an integer sample. With BW_FLAG_DECIMAL_SCALE the
+ * scale stands for 10^-k exactly (1e-5 for .sed reflectance) and samples are
+ * divided by 10^k in double, so decimal data comes back as the float nearest
+ * its decimal value rather than one ulp off through the rounded float32
+ * scale. */
 typedef struct {
     double scale, offset, divisor;
 } value_map_t;
 
-static value_map_t value_map(float scale, float offset)
+int bwh_decimal_exponent(float scale)
+{
+    for (int k = 1; k <= 9; k++)
+        if ((float)pow(10.0, -k) == scale)
+            return k;
+    return 0;
+}
+
+static value_map_t value_map(float scale, float offset, unsigned flags)
 {
     value_map_t m = {scale, offset, 0};
-    double inv = 1.0 / (double)scale, r = nearbyint(inv);
-    if (r >= 2 && r <= 1e9 && fabs(inv - r) <= 1e-6 * r)
-        m.divisor = r;
+    int k = bwh_decimal_exponent(scale);
+    if ((flags & BW_FLAG_DECIMAL_SCALE) && k)
+        m.divisor = pow(10.0, k);
     return m;
 }
 
@@ -281,6 +290,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.basis = (uint8_t)o->basis;
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
+    p.flags = (uint8_t)o->flags;
     if (o->mode == BW_MODE_MAX_ERROR) {
         if (!(o->max_error >= 1.0) || o->max_error > BW_SAMPLE_MAX)
             return fail("max error must be at least 1 sample unit (and below %d)", BW_SAMPLE_MAX);
@@ -381,7 +391,8 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
         if (io.max_error < 1)
             return fail("max error %g is below 1.5 steps of the given scale %g", o->max_error, scale);
     }
-    value_map_t vm = value_map(scale_f, 0.0f);
+    unsigned flags = o->scale > 0 && bwh_decimal_exponent(scale_f) ? BW_FLAG_DECIMAL_SCALE : 0u;
+    value_map_t vm = value_map(scale_f, 0.0f, flags);
     int32_t *q = malloc(n * sizeof *q);
     if (!q)
         return fail("out of memory");
@@ -397,6 +408,7 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
         }
         q[i] = (int32_t)r;
     }
+    io.flags = flags;
     int rc = bwh_encode_i32(dims, q, &io, scale_f, 0.0f, out, out_len);
     free(q);
     if (rc != 0)
@@ -414,13 +426,13 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
         double bound = o->mode == BW_MODE_LOSSLESS ? 0.0 : o->max_error;
         for (size_t i = 0; i < n; i++) {
             if (fabs((double)v[i] - (double)x[i]) > bound) {
+                fail("error bound not met at sample %zu after float conversion (|%.9g - %.9g| > %g)",
+                     i, (double)v[i], (double)x[i], bound);
                 free(s);
                 free(v);
                 free(*out);
                 *out = NULL;
-                return fail("error bound not met at sample %zu after float conversion "
-                            "(|%.9g - %.9g| > %g)",
-                            i, (double)v[i], (double)x[i], bound);
+                return -1;
             }
         }
         free(s);
@@ -459,7 +471,7 @@ int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, 
             free(w);
             return fail("payload header has a zero or non-finite scale or offset");
         }
-        value_map_t vm = value_map(scale, off);
+        value_map_t vm = value_map(scale, off, h->flags);
         for (size_t i = 0; i < n; i++)
             v[i] = map_value(&vm, w[i]);
         *values = v;

@@ -40,7 +40,11 @@ typedef struct {
     size_t byte_budget; /* BYTES */
     unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
     double scale;       /* > 0: force the integer step of float input */
+    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE) */
 } bwh_encode_opts_t;
+
+/* k if scale is float32(10^-k), k = 1..9, else 0. */
+int bwh_decimal_exponent(float scale);
 
 /* Encodes float samples (NaN/Inf rejected). *out is allocated. The mapping
  * to integers is chosen from the mode:

@@ -88,7 +88,7 @@ int bw_cmd_encode(int argc, char **argv)
     int nin = 0;
     const char *outp = NULL, *fmt = "f32";
     uint32_t bands = 0, level = UINT32_MAX, incoming = 0, level_in = UINT32_MAX;
-    bwh_encode_opts_t o = {BW_MODE_LOSSLESS, 0, 0, BW_BASIS_AUTO, 0};
+    bwh_encode_opts_t o = {BW_MODE_LOSSLESS, 0, 0, BW_BASIS_AUTO, 0, 0};
     int modes = 0;
     double ratio = 0;
     int c;
@@ -306,7 +306,12 @@ int bw_cmd_encode(int argc, char **argv)
                 margin = (double)nextafterf(top, INFINITY) - (double)top;
             }
             io.max_error = floor((o.max_error - margin) / scale);
+            /* a bound finer than the integer grid: only exact coding meets it */
+            if (io.max_error < 1 && o.max_error > 0)
+                io.mode = BW_MODE_LOSSLESS;
         }
+        if (bwh_decimal_exponent(scale))
+            io.flags |= BW_FLAG_DECIMAL_SCALE;
         st = bwh_encode_i32(&d, ints, &io, scale, 0.0f, &payload, &plen);
     }
     if (st != 0) {

@@ -105,6 +105,38 @@ for E in 0.001 0.01 0.1; do
     $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
         bad "max-error $E: max_abs_error $(key max_abs_error "$T/cmp")"
 done
+# tight bounds, near the float32 resolution of the values
+for E in 8.41108805e-06 2e-05; do
+    expect_ok "encode tight max-error $E" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --max-error $E
+    "$BW" decode -i "$T/p.bwv" -o "$T/pd.f32" && "$BW" compare "$T/p.f32" "$T/pd.f32" >"$T/cmp"
+    $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
+        bad "tight max-error $E: max_abs_error $(key max_abs_error "$T/cmp")"
+done
+# float32 copies of 5-decimal reflectance: lossless at --scale 1e-5 gives the same floats back
+"$BW" decode -i "$T/fs.bwv" -o "$T/fs.f32" || bad "decode sed to f32"
+$PY - "$T/fs.f32" $DATA/*.sed <<'PY' && ok || bad "sed decoded to f32 is not the float of the decimal text"
+import sys, struct
+b = open(sys.argv[1], 'rb').read()
+y = struct.unpack('<%df' % (len(b) // 4), b)
+ref = []
+for f in sys.argv[2:]:
+    lines = open(f).read().split('\n')
+    i = [k for k, l in enumerate(lines) if l.startswith('Data:')][0]
+    ref += [struct.unpack('<f', struct.pack('<f', float(l.split()[4])))[0] for l in lines[i + 2:] if l.strip()]
+assert list(y) == ref
+PY
+expect_ok "f32 lossless at decimal scale" "$BW" encode -i "$T/fs.f32" -o "$T/fsf.bwv" --bands 1024 --lossless --scale 1e-5
+"$BW" decode -i "$T/fsf.bwv" -o "$T/fsf.f32" && cmp -s "$T/fs.f32" "$T/fsf.f32" && ok || bad "f32 lossless at scale 1e-5 not bit-exact"
+for E in 5e-06 0.0005; do
+    expect_ok "sed f32 max-error $E" "$BW" encode -i "$T/fs.f32" -o "$T/fse.bwv" --bands 1024 --max-error $E
+    "$BW" decode -i "$T/fse.bwv" -o "$T/fsed.f32" && "$BW" compare "$T/fs.f32" "$T/fsed.f32" >"$T/cmp"
+    $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
+        bad "f32 max-error $E: $(key max_abs_error "$T/cmp")"
+    expect_ok "sed max-error $E" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/fse.bwv" --max-error $E
+    "$BW" decode -i "$T/fse.bwv" -o "$T/fsed.f32" && "$BW" compare "$T/fs.f32" "$T/fsed.f32" >"$T/cmp"
+    $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
+        bad "sed max-error $E: $(key max_abs_error "$T/cmp")"
+done
 for R in 8 64 256; do
     expect_ok "encode ratio $R" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --ratio $R
     size=$(stat -c %s "$T/p.bwv")
