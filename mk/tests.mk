@@ -19,3 +19,8 @@ deps:
 check: deps
 	$(Q)$(MAKE) --no-print-directory all tests
 	$(Q)tests/run.sh
+
+# coverage-guided fuzzing of the decoder and the round trip (clang, libFuzzer)
+fuzz:
+	$(Q)tests/deps.sh fuzz
+	$(Q)tests/fuzz/run.sh

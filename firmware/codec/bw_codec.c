@@ -574,8 +574,10 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
     if (h->prequant < 1u || h->prequant > 2u * (uint32_t)BW_SAMPLE_MAX + 1u ||
         h->step_q8 < STEP_ONE_Q8)
         return BW_ERR_HEADER;
-    if (h->mode == BW_MODE_MAX_ERROR ? h->prequant != 2u * h->max_error + 1u
-                                     : (h->max_error != 0u || h->prequant != 1u))
+    if (h->mode == BW_MODE_MAX_ERROR
+            ? (h->max_error < 1u || h->max_error > BW_SAMPLE_MAX ||
+               h->prequant != 2u * h->max_error + 1u)
+            : (h->max_error != 0u || h->prequant != 1u))
         return BW_ERR_HEADER;
     if (get_u32(p + 44) != 0u)
         return BW_ERR_HEADER;
@@ -665,6 +667,19 @@ static bw_status_t verify_payload(const plan_t *pl, const bw_params_t *pa, uint3
     return BW_OK;
 }
 
+/* The plan of one encode: basis, prequantiser and step from the mode. */
+static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw_params_t *pa,
+                     int32_t *work)
+{
+    plan_init(pl, dims, basis, work);
+    if (pa->mode == BW_MODE_MAX_ERROR)
+        pl->prequant = 2u * pa->max_error + 1u;
+    if (pa->mode == BW_MODE_STEP)
+        pl->step_q8 = pa->step_q8;
+    if (pa->vec_thresh_q8)
+        pl->vec_thresh_q8 = pa->vec_thresh_q8;
+}
+
 /* Encodes with one basis; for BYTES searches the step. */
 static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                 int32_t *work, uint8_t *out, size_t cap, size_t *len)
@@ -727,6 +742,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
             return BW_ERR_RANGE;
 
     plan_t pl;
+    bw_status_t fit = BW_OK;
     unsigned first = pa->basis, last = pa->basis;
     if (pa->basis == BW_BASIS_AUTO) {
         first = 0;
@@ -741,13 +757,13 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         uint64_t best_score = UINT64_MAX;
         for (unsigned b = first; b <= last; b++) {
             size_t sz;
-            plan_init(&pl, dims, b, work);
-            if (pa->mode == BW_MODE_MAX_ERROR)
-                pl.prequant = 2u * pa->max_error + 1u;
-            if (pa->mode == BW_MODE_STEP)
-                pl.step_q8 = pa->step_q8;
+            plan_for(&pl, dims, b, pa, work);
             st = encode_basis(&pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
                               out_cap, &sz);
+            if (st == BW_ERR_BUDGET) { /* another basis may still fit */
+                fit = st;
+                continue;
+            }
             if (st != BW_OK)
                 return st;
             uint64_t score = sz;
@@ -762,14 +778,10 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
                 best = b;
             }
         }
+        if (best_score == UINT64_MAX)
+            return fit; /* no basis fits the budget */
     }
-    plan_init(&pl, dims, best, work);
-    if (pa->mode == BW_MODE_MAX_ERROR)
-        pl.prequant = 2u * pa->max_error + 1u;
-    if (pa->mode == BW_MODE_STEP)
-        pl.step_q8 = pa->step_q8;
-    if (pa->vec_thresh_q8)
-        pl.vec_thresh_q8 = pa->vec_thresh_q8;
+    plan_for(&pl, dims, best, pa, work);
     st = encode_basis(&pl, pa, samples, work, out, out_cap, out_len);
     if (st != BW_OK)
         return st;
