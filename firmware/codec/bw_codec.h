@@ -133,7 +133,9 @@ size_t bw_dims_samples(const bw_dims_t *dims);
  * work must hold bw_work_bound(n, bands) int32 elements; samples are not
  * modified. verify (may be NULL) is a second work area of the same size: when
  * given, the encoder decodes its own payload and checks the mode's guarantee
- * (bit-exact, or every sample within max_error) before returning.
+ * (bit-exact, or every sample within max_error) before returning; in BYTES
+ * mode with BW_BASIS_AUTO it also ranks the bases by decoded squared error
+ * (without it, by quantiser step).
  * On success *out_len is the payload size.
  */
 bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *params, const int32_t *samples,

@@ -161,11 +161,13 @@ static void add_sub_scale_dot_match_dense_arithmetic(void **state)
                 }
             }
 
-            int64_t dot, ref = 0;
+            /* the dot product wraps modulo 2^64 like the core's */
+            int64_t dot;
+            uint64_t ref = 0;
             assert_int_equal(bw_sparse_dot(&a.s, &b.s, &dot), BW_OK);
             for (uint32_t i = 0; i < n; i++)
-                ref += (int64_t)da[i] * db[i];
-            assert_true(dot == ref);
+                ref += (uint64_t)((int64_t)da[i] * db[i]);
+            assert_true((uint64_t)dot == ref);
 
             owned_free(&a);
             owned_free(&b);

@@ -1,0 +1,191 @@
+/*
+ * libFuzzer target: the payload decoder on arbitrary bytes.
+ *
+ * Calls bw_header_read, bw_decode and bw_decode_unchecked on the input and
+ * aborts if any of them returns a status outside bw_error.h, if bw_decode
+ * accepts a payload whose header bw_header_read refused, or if the checked
+ * and unchecked decoders disagree on a payload the checked one accepts.
+ * Memory stays small: a header declaring more than FUZZ_MAX_SAMPLES samples
+ * is only offered buffers far too small (the decoders must refuse them)
+ * instead of being allocated for.
+ *
+ * Built by tests/fuzz/run.sh: with clang -fsanitize=fuzzer,address,undefined
+ * for fuzzing, or with -DBW_FUZZ_REPLAY (any C11 compiler plus sanitizers)
+ * as a program that runs the target once on every file named on its command
+ * line (directories: every file in them).
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bw_codec.h"
+
+#define FUZZ_MAX_SAMPLES ((size_t)1 << 20)
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static void require(int cond, const char *what, int st)
+{
+    if (!cond) {
+        fprintf(stderr, "fuzz_decode: %s (status %d: %s)\n", what, st, bw_strerror(st));
+        abort();
+    }
+}
+
+static int known(int st) { return st <= BW_OK && st >= BW_ERR_TRAILING; }
+
+static int same_dims(const bw_dims_t *a, const bw_dims_t *b)
+{
+    return a->shape == b->shape && a->level_out == b->level_out && a->level_in == b->level_in &&
+           a->n_in == b->n_in && a->n_out == b->n_out && a->bands == b->bands;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    int32_t tiny[64];
+    bw_header_t hr, hf, hd;
+    int st_read = bw_header_read(data, size, &hr);
+    require(known(st_read), "bw_header_read: unknown status", st_read);
+
+    /* the sample count the header declares, if its fields are valid */
+    size_t n = 0;
+    int st_fields = BW_ERR_TRUNCATED;
+    if (size >= BW_HEADER_SIZE) {
+        memset(&hf, 0, sizeof hf);
+        st_fields = bw_header_parse_fields(data, &hf);
+        require(known(st_fields), "bw_header_parse_fields: unknown status", st_fields);
+        if (st_fields == BW_OK)
+            n = bw_dims_samples(&hf.dims);
+    }
+    if (st_read == BW_OK)
+        require(st_fields == BW_OK && same_dims(&hr.dims, &hf.dims),
+                "bw_header_read accepts fields that bw_header_parse_fields refuses", st_fields);
+
+    if (n == 0 || n > FUZZ_MAX_SAMPLES) {
+        /* invalid or too large to allocate for: both decoders must fail
+         * before writing beyond these buffers */
+        int st = bw_decode(data, size, tiny, 64, tiny, 64, &hd);
+        require(known(st) && (st != BW_OK || n <= 64), "bw_decode on small buffers", st);
+        st = bw_decode_unchecked(data, size, tiny, 64, tiny, 64);
+        require(known(st) && (st != BW_OK || n <= 64), "bw_decode_unchecked on small buffers",
+                st);
+        return 0;
+    }
+
+    size_t wb = bw_work_bound(n, hf.dims.bands);
+    int32_t *s1 = malloc(n * sizeof *s1), *w1 = malloc(wb * sizeof *w1);
+    int32_t *s2 = malloc(n * sizeof *s2), *w2 = malloc(wb * sizeof *w2);
+    if (!s1 || !w1 || !s2 || !w2)
+        abort();
+
+    int st1 = bw_decode(data, size, s1, n, w1, wb, &hd);
+    require(known(st1), "bw_decode: unknown status", st1);
+    int st2 = bw_decode_unchecked(data, size, s2, n, w2, wb);
+    require(known(st2), "bw_decode_unchecked: unknown status", st2);
+
+    if (st1 == BW_OK) {
+        require(st_read == BW_OK, "bw_decode accepts a payload bw_header_read refuses", st_read);
+        require(same_dims(&hd.dims, &hf.dims), "bw_decode reports other dims", st1);
+        require(st2 == BW_OK, "bw_decode_unchecked refuses what bw_decode accepts", st2);
+        require(memcmp(s1, s2, n * sizeof *s1) == 0, "the two decoders disagree", st2);
+        /* samples may be the work array itself */
+        int st3 = bw_decode(data, size, w2, wb, w2, wb, NULL);
+        require(st3 == BW_OK && memcmp(s1, w2, n * sizeof *s1) == 0,
+                "decoding into the work array differs", st3);
+    } else if (st_read == BW_OK) {
+        /* a valid header and CRC: only the body can be wrong */
+        require(st1 == BW_ERR_CORRUPT, "valid header, but an error other than CORRUPT", st1);
+    }
+    /* undersized buffers are refused */
+    if (st1 == BW_OK) {
+        int st = bw_decode(data, size, s1, n - 1, w1, wb, NULL);
+        require(st == BW_ERR_WORK, "samples_cap n-1 not refused", st);
+        st = bw_decode(data, size, s1, n, w1, wb - 1, NULL);
+        require(st == BW_ERR_WORK, "work_cap too small not refused", st);
+    }
+    free(s1);
+    free(w1);
+    free(s2);
+    free(w2);
+    return 0;
+}
+
+#ifdef BW_FUZZ_REPLAY
+#include <dirent.h>
+#include <sys/stat.h>
+
+static unsigned long replayed;
+
+static void replay_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        perror(path);
+        exit(2);
+    }
+    size_t cap = 4096, len = 0;
+    uint8_t *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len == cap) {
+            uint8_t *grown = realloc(buf, cap *= 2);
+            if (!grown)
+                free(buf);
+            buf = grown;
+        }
+    }
+    fclose(f);
+    if (!buf)
+        abort();
+    /* an exact-size copy, so that the sanitizer sees any read past the end */
+    uint8_t *exact = malloc(len ? len : 1);
+    if (!exact)
+        abort();
+    memcpy(exact, buf, len);
+    free(buf);
+    LLVMFuzzerTestOneInput(exact, len);
+    free(exact);
+    replayed++;
+}
+
+static void replay_path(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        perror(path);
+        exit(2);
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        replay_file(path);
+        return;
+    }
+    DIR *d = opendir(path);
+    if (!d) {
+        perror(path);
+        exit(2);
+    }
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.')
+            continue;
+        char full[4096];
+        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
+        if (stat(full, &st) == 0 && S_ISREG(st.st_mode))
+            replay_file(full);
+    }
+    closedir(d);
+}
+
+int main(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        replay_path(argv[i]);
+    printf("fuzz_decode: %lu inputs replayed\n", replayed);
+    return 0;
+}
+#endif

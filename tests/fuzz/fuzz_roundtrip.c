@@ -1,0 +1,280 @@
+/*
+ * libFuzzer target: encode then decode, and check the mode's guarantee.
+ *
+ * The input is read as
+ *   byte 0     shape                          b % 4
+ *   byte 1     levels                         level_out = b % 4, level_in = (b >> 2) % 3
+ *   bytes 2-3  bands (little-endian)          1 + v % 2151, then cut so that
+ *                                             n <= FUZZ_MAX_SAMPLES
+ *   byte 4     n_in (spectra, BRDF_ISO)       1 + b % 32
+ *   byte 5     mode, basis                    b % 4, (b >> 2) % 4 (3 = AUTO)
+ *   bytes 6-7  parameter p (little-endian)    MAX_ERROR: E = 1 + p % 1000, or for
+ *                                               p >= 0xF000 up to BW_SAMPLE_MAX
+ *                                             BYTES: budget = 2p bytes
+ *                                             STEP: step_q8 = 256 + 8p
+ *   byte 8     sample style, vector threshold b % 4, (b >> 2) * 16 (0: default)
+ *   bytes 9..  samples, by style: 0 four bytes each, anywhere in the range;
+ *              1 a walk with steps of 16 * (int8)b; 2 sparse spikes; 3 small
+ *              values (int8)b. When the input runs out a generator seeded
+ *              from it supplies the rest.
+ * The target aborts when a valid input is refused (other than BW_ERR_BUDGET
+ * in byte-budget mode), the encoder's own verify fails, the payload exceeds
+ * bw_payload_bound() or the byte budget, the payloads encoded with and
+ * without the verify buffer differ (except AUTO in byte-budget mode, which
+ * ranks the bases differently when it can decode), the header does not
+ * describe the input, or the decoded samples break the guarantee (bit-exact;
+ * within E; bit-exact when a budget allowed step 1).
+ *
+ * Built like fuzz_decode.c (see tests/fuzz/run.sh), including the replay
+ * main under BW_FUZZ_REPLAY.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bw_codec.h"
+
+#define FUZZ_MAX_SAMPLES ((size_t)1 << 12)
+#define SMAX ((int32_t)BW_SAMPLE_MAX)
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static void require(int cond, const char *what, int st)
+{
+    if (!cond) {
+        fprintf(stderr, "fuzz_roundtrip: %s (status %d: %s)\n", what, st, bw_strerror(st));
+        abort();
+    }
+}
+
+typedef struct {
+    const uint8_t *p;
+    size_t len, pos;
+    uint64_t s;
+} src_t;
+
+static uint8_t next_byte(src_t *src)
+{
+    if (src->pos < src->len)
+        return src->p[src->pos++];
+    src->s ^= src->s >> 12;
+    src->s ^= src->s << 25;
+    src->s ^= src->s >> 27;
+    return (uint8_t)((src->s * 0x2545F4914F6CDD1Du) >> 56);
+}
+
+static int32_t clamp_sample(int64_t v) { return v > SMAX ? SMAX : v < -SMAX ? -SMAX : (int32_t)v; }
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 9)
+        return 0;
+    unsigned shape = data[0] % 4u, level_out = data[1] % 4u, level_in = (data[1] >> 2) % 3u;
+    uint32_t bands = 1u + (uint32_t)(data[2] | data[3] << 8) % 2151u;
+    uint32_t n_in = 1u + data[4] % 32u;
+    unsigned mode = data[5] % 4u, basis = (data[5] >> 2) % 4u;
+    uint32_t p = (uint32_t)(data[6] | data[7] << 8);
+    unsigned style = data[8] % 4u;
+    if (basis == 3u)
+        basis = BW_BASIS_AUTO;
+
+    bw_dims_t d;
+    int st = bw_dims_make(&d, (bw_shape_t)shape, level_out, level_in, n_in, bands);
+    require(st == BW_OK, "bw_dims_make refuses valid dims", st);
+    size_t vectors = (size_t)d.n_in * d.n_out;
+    if (vectors > FUZZ_MAX_SAMPLES)
+        return 0;
+    if (vectors * d.bands > FUZZ_MAX_SAMPLES) {
+        st = bw_dims_make(&d, (bw_shape_t)shape, level_out, level_in, n_in,
+                          (uint32_t)(FUZZ_MAX_SAMPLES / vectors));
+        require(st == BW_OK, "bw_dims_make refuses valid dims", st);
+    }
+    size_t n = bw_dims_samples(&d);
+
+    bw_params_t pa;
+    memset(&pa, 0, sizeof pa);
+    pa.mode = (uint8_t)mode;
+    pa.basis = (uint8_t)basis;
+    pa.vec_thresh_q8 = (uint32_t)(data[8] >> 2) * 16u;
+    pa.scale_bits = 0x3F800000u;
+    if (mode == BW_MODE_MAX_ERROR)
+        pa.max_error = p < 0xF000u ? 1u + p % 1000u
+                                   : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
+    else if (mode == BW_MODE_BYTES)
+        pa.byte_budget = 2u * p;
+    else if (mode == BW_MODE_STEP)
+        pa.step_q8 = 256u + 8u * p;
+
+    int32_t *x = malloc(n * sizeof *x);
+    if (!x)
+        abort();
+    src_t src = {data, size, 9, 0x9E3779B97F4A7C15u ^ size};
+    int64_t acc = 30000;
+    for (size_t i = 0; i < n; i++) {
+        switch (style) {
+        case 0: {
+            uint32_t u = 0;
+            for (int k = 0; k < 4; k++)
+                u = u << 8 | next_byte(&src);
+            x[i] = (int32_t)(u % (2u * (uint32_t)SMAX + 1u)) - SMAX;
+            break;
+        }
+        case 1:
+            acc = clamp_sample(acc + 16 * (int8_t)next_byte(&src));
+            x[i] = (int32_t)acc;
+            break;
+        case 2: {
+            uint8_t b = next_byte(&src);
+            x[i] = b % 8u ? 0 : clamp_sample((int64_t)(int8_t)b * 131072);
+            break;
+        }
+        default:
+            x[i] = (int8_t)next_byte(&src);
+            break;
+        }
+    }
+
+    size_t wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n);
+    int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
+    uint8_t *out = malloc(cap), *out2 = malloc(cap);
+    int32_t *y = malloc(n * sizeof *y);
+    if (!work || !ver || !out || !out2 || !y)
+        abort();
+
+    size_t len = 0, len2 = 0;
+    st = bw_encode(&d, &pa, x, work, ver, out, cap, &len);
+    int st2 = bw_encode(&d, &pa, x, work, NULL, out2, cap, &len2);
+    require(st == st2, "encoding with and without verify differ in status", st2);
+    if (st == BW_ERR_BUDGET && mode == BW_MODE_BYTES)
+        goto done;
+    require(st == BW_OK, "valid input refused (or its verify failed)", st);
+    /* the same bytes with and without the verify buffer, except for AUTO in
+     * byte-budget mode, which ranks the bases by decoded error when it can
+     * decode and by step otherwise */
+    if (!(mode == BW_MODE_BYTES && basis == BW_BASIS_AUTO))
+        require(len == len2 && memcmp(out, out2, len) == 0,
+                "encoding with and without verify differ", st);
+    for (int pass = 0; pass < 2; pass++) {
+        const uint8_t *pl = pass ? out2 : out;
+        size_t pl_len = pass ? len2 : len;
+        require(pl_len >= BW_HEADER_SIZE + BW_TRAILER_SIZE && pl_len <= cap,
+                "payload size out of bounds", st);
+        if (mode == BW_MODE_BYTES)
+            require(pl_len <= pa.byte_budget, "payload exceeds the byte budget", st);
+
+        bw_header_t h;
+        st = bw_decode(pl, pl_len, y, n, work, wb, &h);
+        require(st == BW_OK, "own payload does not decode", st);
+        require(h.dims.shape == d.shape && h.dims.level_out == d.level_out &&
+                    h.dims.level_in == d.level_in && h.dims.n_in == d.n_in &&
+                    h.dims.n_out == d.n_out && h.dims.bands == d.bands,
+                "header dims differ from the input's", st);
+        require(h.mode == mode, "header mode differs", st);
+        require(basis == BW_BASIS_AUTO ? h.basis < BW_BASIS_COUNT : h.basis == basis,
+                "header basis differs", st);
+        if (mode == BW_MODE_STEP)
+            require(h.step_q8 == pa.step_q8, "header step differs", st);
+
+        int exact = mode == BW_MODE_LOSSLESS || (mode == BW_MODE_BYTES && h.step_q8 == 256u);
+        for (size_t i = 0; i < n; i++) {
+            int64_t err = (int64_t)y[i] - x[i];
+            if (err < 0)
+                err = -err;
+            if (exact)
+                require(err == 0, "decoded sample differs", st);
+            else if (mode == BW_MODE_MAX_ERROR)
+                require(err <= (int64_t)pa.max_error, "decoded sample beyond the max error", st);
+        }
+        st = bw_decode_unchecked(pl, pl_len, work, wb, work, wb);
+        require(st == BW_OK && memcmp(work, y, n * sizeof *y) == 0,
+                "bw_decode_unchecked differs from bw_decode", st);
+    }
+
+done:
+    free(x);
+    free(work);
+    free(ver);
+    free(out);
+    free(out2);
+    free(y);
+    return 0;
+}
+
+#ifdef BW_FUZZ_REPLAY
+#include <dirent.h>
+#include <sys/stat.h>
+
+static unsigned long replayed;
+
+static void replay_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        perror(path);
+        exit(2);
+    }
+    size_t cap = 4096, len = 0;
+    uint8_t *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len == cap) {
+            uint8_t *grown = realloc(buf, cap *= 2);
+            if (!grown)
+                free(buf);
+            buf = grown;
+        }
+    }
+    fclose(f);
+    if (!buf)
+        abort();
+    uint8_t *exact = malloc(len ? len : 1);
+    if (!exact)
+        abort();
+    memcpy(exact, buf, len);
+    free(buf);
+    LLVMFuzzerTestOneInput(exact, len);
+    free(exact);
+    replayed++;
+}
+
+static void replay_path(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        perror(path);
+        exit(2);
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        replay_file(path);
+        return;
+    }
+    DIR *d = opendir(path);
+    if (!d) {
+        perror(path);
+        exit(2);
+    }
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.')
+            continue;
+        char full[4096];
+        snprintf(full, sizeof full, "%s/%s", path, e->d_name);
+        if (stat(full, &st) == 0 && S_ISREG(st.st_mode))
+            replay_file(full);
+    }
+    closedir(d);
+}
+
+int main(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        replay_path(argv[i]);
+    printf("fuzz_roundtrip: %lu inputs replayed\n", replayed);
+    return 0;
+}
+#endif

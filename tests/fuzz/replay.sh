@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# `make check`: the fuzz targets rebuilt as ordinary programs (gcc, ASan + UBSan)
+# and run once on every corpus input. See tests/fuzz/run.sh.
+set -eu
+exec "$(dirname "$0")/run.sh" --replay

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The unit tests (tests/unit/test_*.c) built with AddressSanitizer and
+# UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
+# aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
+# trips. Compiles the sources directly (firmware/codec/*.c, host-tools/src/
+# bwhost.c and geodesic.c, each test) into $SANITIZE_BUILD (default
+# build/sanitize), independent of the Makefile's build.
+# Prints one line per test program and "RESULT: N passed, M failed" (cmocka
+# test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
+# Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
+set -eu
+cd "$(dirname "$0")/.."
+
+OUT=${SANITIZE_BUILD:-build/sanitize}
+CC=${SANITIZE_CC:-gcc}
+CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
+        -fsanitize=address,undefined -fno-sanitize-recover=all
+        -Ifirmware/codec -Ihost-tools/src -Itests/unit"
+LIB_SRC="$(ls firmware/codec/*.c) host-tools/src/bwhost.c host-tools/src/geodesic.c"
+export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+mkdir -p "$OUT/obj"
+echo "== building with $CC -fsanitize=address,undefined into $OUT"
+objs=()
+for src in $LIB_SRC; do
+    obj="$OUT/obj/$(echo "${src%.c}" | tr / _).o"
+    # shellcheck disable=SC2086
+    $CC $CFLAGS -c "$src" -o "$obj"
+    objs+=("$obj")
+done
+
+passed=0
+failed=0
+for t in tests/unit/test_*.c; do
+    name=$(basename "${t%.c}")
+    bin="$OUT/$name"
+    log="$OUT/$name.log"
+    # shellcheck disable=SC2086
+    if ! $CC $CFLAGS "$t" "${objs[@]}" -lcmocka -lm -o "$bin" >"$log" 2>&1; then
+        printf '  %-24s does not build\n' "$name"
+        sed 's/^/    | /' "$log" | tail -20
+        failed=$((failed + 1))
+        continue
+    fi
+    t0=$(date +%s)
+    rc=0
+    "$bin" >"$log" 2>&1 || rc=$?
+    secs=$(($(date +%s) - t0))
+    p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
+    f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
+    if [ "$rc" != 0 ] && [ "$f" = 0 ]; then f=1; fi # a sanitizer abort ends the program early
+    passed=$((passed + p))
+    failed=$((failed + f))
+    if [ "$f" = 0 ]; then
+        printf '  %-24s %4d passed            (%ss)\n' "$name" "$p" "$secs"
+    else
+        printf '  %-24s %4d passed %4d FAILED (%ss, exit %s); last lines of %s:\n' \
+            "$name" "$p" "$f" "$secs" "$rc" "$log"
+        grep -E 'runtime error|ERROR: AddressSanitizer|SUMMARY|FAILED|ERROR' "$log" | head -20 | sed 's/^/    | /'
+        tail -25 "$log" | sed 's/^/    | /'
+    fi
+done
+echo "RESULT: $passed passed, $failed failed"
+[ "$failed" = 0 ]

@@ -1,0 +1,2270 @@
+/*
+ * Codec core (firmware/codec): lossless round trips on every shape, the
+ * spectral and Bio-Haar liftings and the range coder on their own, the
+ * max-error and byte-budget guarantees, decoder robustness, bad encoder
+ * input, CRC-32 and golden payload checksums.
+ *
+ * Run from the repository root: the golden file and the field spectra are
+ * found by paths relative to it. Environment:
+ *   BW_TEST_QUICK=1     leave out the round trips of 2^22 samples or more
+ *                       (sanitizer builds; see tests/sanitize.sh)
+ *   BW_GOLDEN_UPDATE=1  rewrite tests/golden/payload_crc.txt instead of
+ *                       checking it (after an intended format change)
+ *
+ * Every input comes from a fixed-seed xorshift64* generator or a fixed
+ * integer formula, so a failure reproduces exactly.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <dirent.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bw_biohaar.h"
+#include "bw_codec.h"
+#include "bw_crc32.h"
+#include "bw_error.h"
+#include "bw_geodesic.h"
+#include "bw_rc.h"
+#include "bw_spectral.h"
+#include "bwhost.h"
+
+#define ARRAY_LEN(a) (sizeof(a) / sizeof((a)[0]))
+#define SMAX ((int32_t)BW_SAMPLE_MAX)
+/* BW_TEST_QUICK leaves out round trips of this many samples or more. */
+#define QUICK_MAX_SAMPLES ((size_t)1 << 22)
+
+#define GOLDEN_PATH "tests/golden/payload_crc.txt"
+static const char *const field_dirs[] = {
+    "tests/data/field_psr3500",
+    "/work/shared/data/spectra/field_psr3500",
+};
+
+/* ---- helpers ------------------------------------------------------------- */
+
+static bool env_on(const char *name)
+{
+    const char *v = getenv(name);
+    return v != NULL && *v != '\0' && strcmp(v, "0") != 0;
+}
+
+static bool quick(void) { return env_on("BW_TEST_QUICK"); }
+
+static void *xmalloc(size_t size)
+{
+    void *p = malloc(size ? size : 1u);
+    if (p == NULL)
+        fail_msg("out of memory (%zu bytes)", size);
+    return p;
+}
+
+/* xorshift64* */
+typedef struct {
+    uint64_t s;
+} rng_t;
+
+static void rng_seed(rng_t *r, uint64_t seed)
+{
+    r->s = seed * 0x9E3779B97F4A7C15u + 0x2545F4914F6CDD1Du;
+    if (r->s == 0)
+        r->s = 1;
+}
+
+static uint64_t rng_u64(rng_t *r)
+{
+    uint64_t x = r->s;
+    x ^= x >> 12;
+    x ^= x << 25;
+    x ^= x >> 27;
+    r->s = x;
+    return x * 0x2545F4914F6CDD1Du;
+}
+
+static uint32_t rng_u32(rng_t *r) { return (uint32_t)(rng_u64(r) >> 32); }
+
+/* uniform in [0, n) */
+static uint32_t rng_below(rng_t *r, uint32_t n) { return (uint32_t)(((uint64_t)rng_u32(r) * n) >> 32); }
+
+/* uniform in [lo, hi] */
+static int32_t rng_between(rng_t *r, int32_t lo, int32_t hi)
+{
+    uint64_t span = (uint64_t)((int64_t)hi - lo) + 1u;
+    return (int32_t)((int64_t)lo + (int64_t)(rng_u64(r) % span));
+}
+
+static int32_t clamp_sample(int64_t v) { return v > SMAX ? SMAX : v < -SMAX ? -SMAX : (int32_t)v; }
+
+/* Smooth spectra plus uniform noise of +-noise: a level per vector that
+ * drifts slowly from one vector to the next, a slope, and broad features. */
+static void fill_smooth(int32_t *x, size_t vectors, uint32_t bands, uint64_t seed, int32_t noise)
+{
+    rng_t r;
+    rng_seed(&r, seed);
+    int32_t level = rng_between(&r, 5000, 60000);
+    for (size_t v = 0; v < vectors; v++) {
+        level += rng_between(&r, -500, 500);
+        int32_t slope = rng_between(&r, -40, 40);
+        for (uint32_t k = 0; k < bands; k++) {
+            int32_t tri = (int32_t)((k * 37u) % 512u);
+            tri = tri < 256 ? tri : 511 - tri;
+            int64_t val = (int64_t)level + (int64_t)slope * (int64_t)(k % 1000u) / 8 + tri * 40 +
+                          (noise ? rng_between(&r, -noise, noise) : 0);
+            x[v * bands + k] = clamp_sample(val);
+        }
+    }
+}
+
+/* Uniform over the whole sample range, with both extremes present. */
+static void fill_full(int32_t *x, size_t n, uint64_t seed)
+{
+    rng_t r;
+    rng_seed(&r, seed);
+    for (size_t i = 0; i < n; i++)
+        x[i] = rng_between(&r, -SMAX, SMAX);
+    x[0] = SMAX;
+    if (n > 1)
+        x[n - 1] = -SMAX;
+}
+
+/* Cheap content hash (FNV-1a over the words) to see that an input is left
+ * untouched. */
+static uint64_t hash_i32(const int32_t *x, size_t n)
+{
+    uint64_t h = 0xCBF29CE484222325u;
+    for (size_t i = 0; i < n; i++) {
+        h ^= (uint32_t)x[i];
+        h *= 0x100000001B3u;
+    }
+    return h;
+}
+
+static size_t first_mismatch(const int32_t *a, const int32_t *b, size_t n)
+{
+    if (memcmp(a, b, n * sizeof *a) == 0)
+        return n;
+    for (size_t i = 0; i < n; i++)
+        if (a[i] != b[i])
+            return i;
+    return n;
+}
+
+static bw_params_t params_of(unsigned mode, unsigned basis)
+{
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = (uint8_t)mode;
+    p.basis = (uint8_t)basis;
+    p.scale_bits = 0x3727C5ACu; /* 1e-5f */
+    p.offset_bits = 0u;
+    return p;
+}
+
+static bw_dims_t dims_of(unsigned shape, unsigned level_out, unsigned level_in, uint32_t n_in,
+                         uint32_t bands)
+{
+    bw_dims_t d;
+    bw_status_t st = bw_dims_make(&d, (bw_shape_t)shape, level_out, level_in, n_in, bands);
+    if (st != BW_OK)
+        fail_msg("bw_dims_make(shape %u, out %u, in %u, n_in %u, bands %u): %s", shape, level_out,
+                 level_in, n_in, bands, bw_strerror(st));
+    return d;
+}
+
+static const char *basis_name(unsigned b)
+{
+    return b == BW_BASIS_HAAR ? "haar" : b == BW_BASIS_53 ? "53" : b == BW_BASIS_97 ? "97" : "auto";
+}
+
+/* Encodes into a new buffer of bw_payload_bound(n) bytes (*out: free it). */
+static bw_status_t encode_new(const bw_dims_t *d, const bw_params_t *p, const int32_t *x,
+                              bool verify, uint8_t **out, size_t *len)
+{
+    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands), cap = bw_payload_bound(n);
+    int32_t *work = xmalloc(wb * sizeof *work);
+    int32_t *ver = verify ? xmalloc(wb * sizeof *ver) : NULL;
+    *out = xmalloc(cap);
+    *len = 0;
+    bw_status_t st = bw_encode(d, p, x, work, ver, *out, cap, len);
+    free(work);
+    free(ver);
+    return st;
+}
+
+/* Decodes into a new array sized from the header (*samples: free it). */
+static bw_status_t decode_new(const uint8_t *payload, size_t len, int32_t **samples,
+                              bw_header_t *h)
+{
+    bw_header_t hh;
+    *samples = NULL;
+    bw_status_t st = bw_header_read(payload, len, &hh);
+    if (st != BW_OK)
+        return st;
+    size_t n = bw_dims_samples(&hh.dims), wb = bw_work_bound(n, hh.dims.bands);
+    int32_t *work = xmalloc(wb * sizeof *work);
+    *samples = xmalloc(n * sizeof **samples);
+    st = bw_decode(payload, len, *samples, n, work, wb, h);
+    free(work);
+    return st;
+}
+
+static void check_header_dims(const bw_header_t *h, const bw_dims_t *d, const char *what)
+{
+    if (h->dims.shape != d->shape || h->dims.level_out != d->level_out ||
+        h->dims.level_in != d->level_in || h->dims.n_in != d->n_in || h->dims.n_out != d->n_out ||
+        h->dims.bands != d->bands)
+        fail_msg("%s: header dims (%u %u %u %u %u %u) differ from the input's (%u %u %u %u %u %u)",
+                 what, h->dims.shape, h->dims.level_out, h->dims.level_in, h->dims.n_in,
+                 h->dims.n_out, h->dims.bands, d->shape, d->level_out, d->level_in, d->n_in,
+                 d->n_out, d->bands);
+    if (h->spectral_levels != bw_spec_levels(d->bands))
+        fail_msg("%s: header spectral levels %u, expected %u", what, h->spectral_levels,
+                 bw_spec_levels(d->bands));
+}
+
+/* Lossless encode + decode, bit-exact check; returns the payload size.
+ * alias: decode into the work array itself (samples == work). */
+static size_t check_lossless(const bw_dims_t *d, unsigned basis, const int32_t *x, bool alias,
+                             const char *what)
+{
+    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands), cap = bw_payload_bound(n);
+    int32_t *work = xmalloc(wb * sizeof *work);
+    uint8_t *out = xmalloc(cap);
+    uint64_t before = hash_i32(x, n);
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
+    size_t len = 0;
+    bw_status_t st = bw_encode(d, &p, x, work, NULL, out, cap, &len);
+    if (st != BW_OK)
+        fail_msg("%s: bw_encode: %s", what, bw_strerror(st));
+    if (hash_i32(x, n) != before)
+        fail_msg("%s: bw_encode modified its input", what);
+    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE || len > cap)
+        fail_msg("%s: payload length %zu outside [52, %zu]", what, len, cap);
+
+    int32_t *y = alias ? work : xmalloc(n * sizeof *y);
+    bw_header_t h;
+    st = bw_decode(out, len, y, alias ? wb : n, work, wb, &h);
+    if (st != BW_OK)
+        fail_msg("%s: bw_decode: %s", what, bw_strerror(st));
+    check_header_dims(&h, d, what);
+    if (basis < BW_BASIS_COUNT ? h.basis != basis : h.basis >= BW_BASIS_COUNT)
+        fail_msg("%s: header basis %u (asked for %s)", what, h.basis, basis_name(basis));
+    if (h.mode != BW_MODE_LOSSLESS || h.prequant != 1u || h.step_q8 != 256u || h.max_error != 0u ||
+        h.payload_len != len || h.scale_bits != p.scale_bits || h.offset_bits != p.offset_bits)
+        fail_msg("%s: header mode %u prequant %u step %u max_error %u payload_len %u", what, h.mode,
+                 h.prequant, h.step_q8, h.max_error, h.payload_len);
+    size_t bad = first_mismatch(x, y, n);
+    if (bad < n)
+        fail_msg("%s: sample %zu decodes to %d, expected %d", what, bad, y[bad], x[bad]);
+    if (!alias)
+        free(y);
+    free(work);
+    free(out);
+    return len;
+}
+
+/* Lossless size of x with one basis. */
+static size_t lossless_size(const bw_dims_t *d, const int32_t *x, unsigned basis)
+{
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(d, &p, x, false, &out, &len), BW_OK);
+    free(out);
+    return len;
+}
+
+/* ---- field spectra -------------------------------------------------------- */
+
+static int32_t *field_data;
+static uint32_t field_count, field_bands;
+static bool field_loaded;
+
+static int cmp_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+/* All *.sed of the first directory that has any, in name order, as a
+ * [spectrum][band] array of integers of 1e-5. NULL if there are none. */
+static const int32_t *field_spectra(uint32_t *count, uint32_t *bands)
+{
+    if (!field_loaded) {
+        field_loaded = true;
+        for (size_t di = 0; di < ARRAY_LEN(field_dirs) && field_count == 0; di++) {
+            DIR *dir = opendir(field_dirs[di]);
+            if (dir == NULL)
+                continue;
+            char **names = NULL;
+            size_t nn = 0, cap = 0;
+            struct dirent *e;
+            while ((e = readdir(dir)) != NULL) {
+                if (!ends_with(e->d_name, ".sed"))
+                    continue;
+                if (nn == cap) {
+                    cap = cap ? 2 * cap : 64;
+                    char **grown = realloc(names, cap * sizeof *names);
+                    assert_non_null(grown);
+                    names = grown;
+                }
+                names[nn] = xmalloc(strlen(e->d_name) + 1);
+                strcpy(names[nn++], e->d_name);
+            }
+            closedir(dir);
+            if (nn)
+                qsort(names, nn, sizeof *names, cmp_names);
+            for (size_t i = 0; i < nn; i++) {
+                char path[1024];
+                snprintf(path, sizeof path, "%s/%s", field_dirs[di], names[i]);
+                int32_t *v = NULL;
+                uint32_t b = 0;
+                if (bwh_sed_read(path, &v, &b, NULL) != 0)
+                    fail_msg("%s: %s", path, bwh_last_error());
+                if (field_count == 0) {
+                    field_bands = b;
+                    field_data = xmalloc(nn * (size_t)b * sizeof *field_data);
+                }
+                if (b == field_bands) {
+                    memcpy(field_data + (size_t)field_count * b, v, (size_t)b * sizeof *v);
+                    field_count++;
+                }
+                free(v);
+                free(names[i]);
+            }
+            free(names);
+        }
+    }
+    *count = field_count;
+    *bands = field_bands;
+    return field_count ? field_data : NULL;
+}
+
+static const int32_t *need_field_spectra(bw_dims_t *d)
+{
+    uint32_t count, bands;
+    const int32_t *x = field_spectra(&count, &bands);
+    if (x == NULL) {
+        print_message("no field spectra in %s or %s\n", field_dirs[0], field_dirs[1]);
+        skip();
+    }
+    *d = dims_of(BW_SHAPE_SPECTRA, 0, 0, count, bands);
+    return x;
+}
+
+static int teardown_group(void **state)
+{
+    (void)state;
+    free(field_data);
+    field_data = NULL;
+    field_count = 0;
+    field_loaded = false;
+    return 0;
+}
+
+/* ---- lossless round trips ------------------------------------------------- */
+
+static void lossless_reflectance_round_trip_is_bit_exact_for_every_level_and_band_count(
+    void **state)
+{
+    (void)state;
+    static const uint32_t bands[] = {1, 2, 3, 81, 1024, 2151};
+    unsigned case_no = 0, run = 0, left_out = 0;
+    for (unsigned level = 0; level <= BW_MAX_LEVEL; level++) {
+        for (size_t bi = 0; bi < ARRAY_LEN(bands); bi++, case_no++) {
+            bw_dims_t d = dims_of(BW_SHAPE_REFLECTANCE, level, 0, 1, bands[bi]);
+            size_t n = bw_dims_samples(&d);
+            if (quick() && n >= QUICK_MAX_SAMPLES) {
+                left_out++;
+                continue;
+            }
+            unsigned basis = case_no % 3u;
+            bool full = case_no % 4u == 3u;
+            int32_t *x = xmalloc(n * sizeof *x);
+            if (full)
+                fill_full(x, n, 1000u + case_no);
+            else
+                fill_smooth(x, d.n_out, bands[bi], 1000u + case_no, 64);
+            char what[128];
+            snprintf(what, sizeof what, "reflectance level %u x %u bands, %s, %s data", level,
+                     bands[bi], basis_name(basis), full ? "full-range" : "smooth");
+            check_lossless(&d, basis, x, case_no % 2u == 0u, what);
+            free(x);
+            run++;
+        }
+    }
+    print_message("%u cases, %u left out (BW_TEST_QUICK)\n", run, left_out);
+}
+
+typedef struct {
+    uint8_t shape, level_out, level_in;
+    uint32_t n_in, bands;
+} shape_case_t;
+
+static void lossless_round_trip_is_bit_exact_for_spectra_and_brdf_shapes(void **state)
+{
+    (void)state;
+    static const shape_case_t cases[] = {
+        {BW_SHAPE_SPECTRA, 0, 0, 1, 1},      {BW_SHAPE_SPECTRA, 0, 0, 1, 2},
+        {BW_SHAPE_SPECTRA, 0, 0, 7, 3},      {BW_SHAPE_SPECTRA, 0, 0, 3, 81},
+        {BW_SHAPE_SPECTRA, 0, 0, 60, 1024},  {BW_SHAPE_SPECTRA, 0, 0, 2, 2151},
+        {BW_SHAPE_SPECTRA, 0, 0, 5000, 5},   {BW_SHAPE_SPECTRA, 0, 0, 1, 65535},
+        {BW_SHAPE_BRDF_ISO, 4, 0, 16, 1},    {BW_SHAPE_BRDF_ISO, 4, 0, 16, 3},
+        {BW_SHAPE_BRDF_ISO, 4, 0, 16, 81},   {BW_SHAPE_BRDF_ISO, 0, 0, 5, 33},
+        {BW_SHAPE_BRDF_ISO, 2, 0, 9, 2},     {BW_SHAPE_BRDF_ISO, 1, 0, 1, 2151},
+        {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},    {BW_SHAPE_BRDF_FULL, 2, 3, 0, 5},
+        {BW_SHAPE_BRDF_FULL, 3, 2, 0, 17},   {BW_SHAPE_BRDF_FULL, 3, 3, 0, 1},
+        {BW_SHAPE_BRDF_FULL, 3, 3, 0, 33},   {BW_SHAPE_BRDF_FULL, 2, 2, 0, 81},
+        {BW_SHAPE_BRDF_FULL, 0, 0, 0, 7},    {BW_SHAPE_BRDF_FULL, 1, 0, 0, 3},
+        {BW_SHAPE_BRDF_FULL, 0, 1, 0, 2},
+    };
+    unsigned run = 0, left_out = 0;
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        const shape_case_t *sc = &cases[c];
+        bw_dims_t d = dims_of(sc->shape, sc->level_out, sc->level_in, sc->n_in, sc->bands);
+        size_t n = bw_dims_samples(&d);
+        if (quick() && n >= QUICK_MAX_SAMPLES) {
+            left_out++;
+            continue;
+        }
+        unsigned basis = (unsigned)c % 3u;
+        bool full = c % 2u == 1u;
+        int32_t *x = xmalloc(n * sizeof *x);
+        if (full)
+            fill_full(x, n, 2000u + c);
+        else
+            fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 2000u + c, 100);
+        char what[160];
+        snprintf(what, sizeof what, "%s out %u in %u n_in %u x %u bands, %s, %s data",
+                 bwh_shape_name(sc->shape), sc->level_out, sc->level_in, d.n_in, sc->bands,
+                 basis_name(basis), full ? "full-range" : "smooth");
+        check_lossless(&d, basis, x, c % 3u == 0u, what);
+        free(x);
+        run++;
+    }
+    print_message("%u cases, %u left out (BW_TEST_QUICK)\n", run, left_out);
+}
+
+static const shape_case_t small_cases[] = {
+    {BW_SHAPE_REFLECTANCE, 2, 0, 1, 81}, {BW_SHAPE_REFLECTANCE, 1, 0, 1, 4},
+    {BW_SHAPE_REFLECTANCE, 3, 0, 1, 1},  {BW_SHAPE_SPECTRA, 0, 0, 5, 100},
+    {BW_SHAPE_SPECTRA, 0, 0, 3, 2151},   {BW_SHAPE_BRDF_ISO, 1, 0, 3, 17},
+    {BW_SHAPE_BRDF_FULL, 1, 1, 0, 9},    {BW_SHAPE_BRDF_FULL, 0, 2, 0, 5},
+};
+
+static void auto_basis_keeps_the_smallest_payload_and_names_a_real_basis(void **state)
+{
+    (void)state;
+    static const unsigned modes[] = {BW_MODE_LOSSLESS, BW_MODE_MAX_ERROR, BW_MODE_STEP};
+    for (size_t c = 0; c < ARRAY_LEN(small_cases); c++) {
+        const shape_case_t *sc = &small_cases[c];
+        bw_dims_t d = dims_of(sc->shape, sc->level_out, sc->level_in, sc->n_in, sc->bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        if (c % 2u)
+            fill_full(x, n, 3000u + c);
+        else
+            fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 3000u + c, 30);
+        for (size_t mi = 0; mi < ARRAY_LEN(modes); mi++) {
+            bw_params_t p = params_of(modes[mi], BW_BASIS_AUTO);
+            p.max_error = 3;
+            p.step_q8 = 256u * 20u;
+            size_t best = SIZE_MAX;
+            for (unsigned b = 0; b < BW_BASIS_COUNT; b++) {
+                bw_params_t pb = p;
+                pb.basis = (uint8_t)b;
+                uint8_t *out;
+                size_t len;
+                assert_int_equal(encode_new(&d, &pb, x, false, &out, &len), BW_OK);
+                if (len < best)
+                    best = len;
+                free(out);
+            }
+            uint8_t *out;
+            size_t len;
+            bw_status_t st = encode_new(&d, &p, x, true, &out, &len);
+            if (st != BW_OK)
+                fail_msg("case %zu mode %u: AUTO encode: %s", c, modes[mi], bw_strerror(st));
+            int32_t *y;
+            bw_header_t h;
+            assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
+            if (h.basis >= BW_BASIS_COUNT)
+                fail_msg("case %zu mode %u: AUTO wrote basis %u into the header", c, modes[mi],
+                         h.basis);
+            if (len != best)
+                fail_msg("case %zu mode %u: AUTO payload %zu bytes, best single basis %zu", c,
+                         modes[mi], len, best);
+            if (modes[mi] == BW_MODE_LOSSLESS && first_mismatch(x, y, n) < n)
+                fail_msg("case %zu: AUTO lossless is not bit-exact", c);
+            if (modes[mi] == BW_MODE_MAX_ERROR)
+                for (size_t i = 0; i < n; i++)
+                    if (llabs((long long)y[i] - x[i]) > 3)
+                        fail_msg("case %zu: AUTO max-error sample %zu off by %lld", c, i,
+                                 llabs((long long)y[i] - x[i]));
+            free(y);
+            free(out);
+        }
+        /* BYTES with AUTO: within budget, a real basis */
+        {
+            bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+            uint8_t *out;
+            size_t lossless;
+            assert_int_equal(encode_new(&d, &p, x, false, &out, &lossless), BW_OK);
+            free(out);
+            p = params_of(BW_MODE_BYTES, BW_BASIS_AUTO);
+            p.byte_budget = (uint32_t)(lossless * 2u / 3u);
+            size_t len;
+            bw_status_t st = encode_new(&d, &p, x, true, &out, &len);
+            if (st == BW_OK) {
+                bw_header_t h;
+                assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+                assert_true(h.basis < BW_BASIS_COUNT);
+                assert_true(len <= p.byte_budget);
+            } else if (st != BW_ERR_BUDGET) {
+                fail_msg("case %zu: AUTO bytes: %s", c, bw_strerror(st));
+            }
+            free(out);
+        }
+        free(x);
+    }
+}
+
+/* Smallest byte budget one basis meets (success is monotone in the budget). */
+static size_t smallest_budget(const bw_dims_t *d, const int32_t *x, unsigned basis)
+{
+    size_t lo = 0, hi = lossless_size(d, x, basis); /* lo refused, hi met */
+    while (hi - lo > 1u) {
+        size_t mid = lo + (hi - lo) / 2u;
+        bw_params_t p = params_of(BW_MODE_BYTES, basis);
+        p.byte_budget = (uint32_t)mid;
+        uint8_t *out;
+        size_t len;
+        bw_status_t st = encode_new(d, &p, x, false, &out, &len);
+        free(out);
+        if (st == BW_OK)
+            hi = mid;
+        else if (st == BW_ERR_BUDGET)
+            lo = mid;
+        else
+            fail_msg("%s, budget %zu: %s", basis_name(basis), mid, bw_strerror(st));
+    }
+    return hi;
+}
+
+/* AUTO tries every basis, so in byte-budget mode it meets every budget that
+ * one of the bases meets on its own. A constant full-scale spectrum of 65535
+ * bands: Haar and 5/3 fit in fewer bytes than 9/7 (their coarsest
+ * approximations need fewer bits at the largest step). */
+static void auto_basis_meets_any_byte_budget_a_single_basis_meets(void **state)
+{
+    (void)state;
+    bw_dims_t dc = dims_of(BW_SHAPE_SPECTRA, 0, 0, 1, 65535);
+    bw_dims_t dr = dims_of(BW_SHAPE_REFLECTANCE, 2, 0, 1, 81);
+    int32_t *xc = xmalloc(65535 * sizeof *xc);
+    int32_t *xr = xmalloc(bw_dims_samples(&dr) * sizeof *xr);
+    for (uint32_t i = 0; i < 65535; i++)
+        xc[i] = SMAX;
+    fill_full(xr, bw_dims_samples(&dr), 3500);
+    const struct {
+        const char *name;
+        const bw_dims_t *d;
+        const int32_t *x;
+    } cases[] = {
+        {"constant full-scale spectrum of 65535 bands", &dc, xc},
+        {"full-range reflectance level 2 x 81", &dr, xr},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        size_t least[BW_BASIS_COUNT];
+        for (unsigned b = 0; b < BW_BASIS_COUNT; b++)
+            least[b] = smallest_budget(cases[c].d, cases[c].x, b);
+        print_message("%s: smallest budgets haar %zu, 53 %zu, 97 %zu\n", cases[c].name, least[0],
+                      least[1], least[2]);
+        for (unsigned b = 0; b < BW_BASIS_COUNT; b++) {
+            bw_params_t p = params_of(BW_MODE_BYTES, BW_BASIS_AUTO);
+            p.byte_budget = (uint32_t)least[b];
+            uint8_t *out;
+            size_t len;
+            bw_status_t st = encode_new(cases[c].d, &p, cases[c].x, false, &out, &len);
+            if (st != BW_OK)
+                fail_msg("%s: AUTO refuses a budget of %zu bytes that %s meets alone (%s)",
+                         cases[c].name, least[b], basis_name(b), bw_strerror(st));
+            bw_header_t h;
+            assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+            assert_true(len <= least[b]);
+            assert_true(h.basis < BW_BASIS_COUNT && least[h.basis] <= least[b]);
+            free(out);
+        }
+    }
+    free(xc);
+    free(xr);
+}
+
+/* AUTO keeps the smallest payload also when the caller sets the vector
+ * threshold (vec_thresh_q8): the bases must be compared under the threshold
+ * the payload is then coded with. Three STEP-mode cases where the ranking of
+ * the bases changes with the threshold. */
+static void auto_basis_compares_the_bases_under_the_callers_vector_threshold(void **state)
+{
+    (void)state;
+    static const struct {
+        unsigned level, bands;
+        int32_t amp;
+        uint32_t seed, step_q8, vec_thresh_q8;
+    } cases[] = {
+        {2, 9, 1600, 1542, 2048, 4096},
+        {3, 17, 3200, 1619, 2304, 8192},
+        {2, 17, 3200, 2235, 4352, 16384},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        bw_dims_t d = dims_of(BW_SHAPE_REFLECTANCE, cases[c].level, 0, 1, cases[c].bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        uint32_t r = cases[c].seed; /* xorshift32 */
+        for (size_t i = 0; i < n; i++) {
+            r ^= r << 13;
+            r ^= r >> 17;
+            r ^= r << 5;
+            int32_t k = (int32_t)(i % cases[c].bands);
+            x[i] = 30000 + k * k * 7 + (int32_t)(r % (uint32_t)(2 * cases[c].amp + 1)) -
+                   cases[c].amp;
+        }
+        size_t lens[BW_BASIS_COUNT], best = SIZE_MAX, len;
+        uint8_t *out;
+        for (unsigned b = 0; b <= BW_BASIS_COUNT; b++) {
+            bw_params_t p = params_of(BW_MODE_STEP, b < BW_BASIS_COUNT ? b : BW_BASIS_AUTO);
+            p.step_q8 = cases[c].step_q8;
+            p.vec_thresh_q8 = cases[c].vec_thresh_q8;
+            assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_OK);
+            free(out);
+            if (b < BW_BASIS_COUNT) {
+                lens[b] = len;
+                if (len < best)
+                    best = len;
+            } else if (len != best) {
+                fail_msg("reflectance level %u x %u, step_q8 %u, vec_thresh_q8 %u: AUTO payload "
+                         "%zu bytes, but haar %zu, 53 %zu, 97 %zu",
+                         cases[c].level, cases[c].bands, cases[c].step_q8,
+                         cases[c].vec_thresh_q8, len, lens[0], lens[1], lens[2]);
+            }
+        }
+        free(x);
+    }
+}
+
+/* The worst sign pattern of the spectral coefficient with the largest L1
+ * gain, spread over directions so that both Bio-Haar spaces double it: the
+ * largest coefficients the format must carry (about 2^29.5 for 9/7 and 2151
+ * bands) still round-trip. */
+static void lossless_round_trip_survives_worst_case_coefficient_growth(void **state)
+{
+    (void)state;
+    const uint32_t bands = 2151;
+    unsigned levels = bw_spec_levels(bands);
+    int32_t *imp = xmalloc(bands * sizeof *imp), *tmp = xmalloc(bands * sizeof *tmp);
+    int32_t *pattern = xmalloc(bands * sizeof *pattern);
+    double *l1 = xmalloc(bands * sizeof *l1);
+    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+        /* row k of the analysis operator, from the impulse responses */
+        for (uint32_t k = 0; k < bands; k++)
+            l1[k] = 0;
+        for (uint32_t i = 0; i < bands; i++) {
+            memset(imp, 0, bands * sizeof *imp);
+            imp[i] = 1 << 16;
+            bw_spec_fwd(imp, bands, basis, levels, tmp);
+            for (uint32_t k = 0; k < bands; k++)
+                l1[k] += imp[k] < 0 ? -(double)imp[k] : (double)imp[k];
+        }
+        uint32_t kmax = 0;
+        for (uint32_t k = 1; k < bands; k++)
+            if (l1[k] > l1[kmax])
+                kmax = k;
+        for (uint32_t i = 0; i < bands; i++) {
+            memset(imp, 0, bands * sizeof *imp);
+            imp[i] = 1 << 16;
+            bw_spec_fwd(imp, bands, basis, levels, tmp);
+            pattern[i] = imp[kmax] >= 0 ? SMAX : -SMAX;
+        }
+        memcpy(imp, pattern, bands * sizeof *imp);
+        bw_spec_fwd(imp, bands, basis, levels, tmp);
+        int64_t peak = imp[kmax] < 0 ? -(int64_t)imp[kmax] : imp[kmax];
+        /* about SMAX * L1; 9/7 is the largest (~2^27.5 at 2151 bands) */
+        assert_true(peak > (int64_t)SMAX);
+        assert_true(peak < ((int64_t)1 << 29));
+
+        bw_dims_t d = dims_of(BW_SHAPE_BRDF_FULL, 1, 1, 0, bands);
+        size_t vectors = (size_t)d.n_in * d.n_out;
+        int32_t *x = xmalloc(vectors * bands * sizeof *x);
+        for (uint32_t i = 0; i < d.n_in; i++)
+            for (uint32_t o = 0; o < d.n_out; o++) {
+                /* + on centre children (digit 0), - elsewhere, in both spaces */
+                int s = ((i % 4u == 0u) ? 1 : -1) * ((o % 4u == 0u) ? 1 : -1);
+                int32_t *v = x + ((size_t)i * d.n_out + o) * bands;
+                for (uint32_t k = 0; k < bands; k++)
+                    v[k] = s * pattern[k];
+            }
+        char what[96];
+        snprintf(what, sizeof what, "worst-case pattern, full BRDF 1x1 x %u bands, %s", bands,
+                 basis_name(basis));
+        check_lossless(&d, basis, x, false, what);
+        bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
+        uint8_t *out;
+        size_t len;
+        assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+        free(out);
+        free(x);
+    }
+    free(imp);
+    free(tmp);
+    free(pattern);
+    free(l1);
+}
+
+/* ---- spectral lifting ----------------------------------------------------- */
+
+#define GUARD 8u
+#define GUARD_VAL ((int32_t)0x5A5AA5A5)
+
+static void set_guard(int32_t *p) { for (unsigned g = 0; g < GUARD; g++) p[g] = GUARD_VAL; }
+static bool guard_ok(const int32_t *p)
+{
+    for (unsigned g = 0; g < GUARD; g++)
+        if (p[g] != GUARD_VAL)
+            return false;
+    return true;
+}
+
+static void spectral_inverse_undoes_forward_for_every_length_basis_and_depth(void **state)
+{
+    (void)state;
+    uint32_t lengths[301];
+    for (uint32_t i = 0; i < 300; i++)
+        lengths[i] = i + 1u;
+    lengths[300] = 2151;
+    int32_t *x = xmalloc((2151 + GUARD) * sizeof *x), *ref = xmalloc(2151 * sizeof *ref);
+    int32_t *tmp = xmalloc((2151 + GUARD) * sizeof *tmp);
+    rng_t r;
+    rng_seed(&r, 11);
+    unsigned checks = 0;
+    for (size_t li = 0; li < ARRAY_LEN(lengths); li++) {
+        uint32_t n = lengths[li];
+        for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+            for (unsigned lv = 0; lv <= bw_spec_levels(n); lv++) {
+                bool full = (n + lv + basis) % 2u == 0u;
+                for (uint32_t i = 0; i < n; i++)
+                    ref[i] = full ? rng_between(&r, -SMAX, SMAX)
+                                  : 20000 + (int32_t)(i * 13u % 700u) + rng_between(&r, -9, 9);
+                memcpy(x, ref, n * sizeof *x);
+                set_guard(x + n);
+                set_guard(tmp + n);
+                bw_spec_fwd(x, n, basis, lv, tmp);
+                if (!guard_ok(x + n) || !guard_ok(tmp + n))
+                    fail_msg("bw_spec_fwd n=%u basis %s levels %u writes past n", n,
+                             basis_name(basis), lv);
+                if (lv > 0 && n >= 2 && memcmp(x, ref, n * sizeof *x) == 0)
+                    fail_msg("bw_spec_fwd n=%u basis %s levels %u left the signal unchanged", n,
+                             basis_name(basis), lv);
+                bw_spec_inv(x, n, basis, lv, tmp);
+                if (!guard_ok(x + n) || !guard_ok(tmp + n))
+                    fail_msg("bw_spec_inv n=%u basis %s levels %u writes past n", n,
+                             basis_name(basis), lv);
+                size_t bad = first_mismatch(ref, x, n);
+                if (bad < n)
+                    fail_msg("n=%u basis %s levels %u: sample %zu comes back as %d, was %d", n,
+                             basis_name(basis), lv, bad, x[bad], ref[bad]);
+                checks++;
+            }
+        }
+    }
+    print_message("%u (length, basis, depth) combinations\n", checks);
+    free(x);
+    free(ref);
+    free(tmp);
+}
+
+static void spectral_depth_halves_while_longer_than_four(void **state)
+{
+    (void)state;
+    assert_int_equal(bw_spec_levels(1), 0);
+    assert_int_equal(bw_spec_levels(4), 0);
+    assert_int_equal(bw_spec_levels(5), 1);
+    assert_int_equal(bw_spec_levels(8), 1);
+    assert_int_equal(bw_spec_levels(9), 2);
+    assert_int_equal(bw_spec_levels(81), 5);
+    assert_int_equal(bw_spec_levels(1024), 8);
+    assert_int_equal(bw_spec_levels(2151), 10);
+    assert_int_equal(bw_spec_levels(65535), 12);
+    for (uint32_t n = 1; n <= 5000; n++) {
+        unsigned lv = bw_spec_levels(n);
+        uint32_t a = bw_spec_approx_len(n, lv);
+        assert_true(lv <= BW_SPEC_MAX_LEVELS);
+        assert_true(a <= 4u || lv == BW_SPEC_MAX_LEVELS);
+        if (lv)
+            assert_true(bw_spec_approx_len(n, lv - 1u) > 4u);
+        /* subbands: approximation first, then details coarse to fine */
+        uint32_t count[BW_SPEC_MAX_LEVELS + 1] = {0};
+        unsigned prev = 0;
+        for (uint32_t k = 0; k < n; k++) {
+            unsigned sb = bw_spec_subband(n, lv, k);
+            assert_true(sb <= lv);
+            if (k > 0)
+                assert_true(sb == prev || (prev == 0 ? sb == lv : sb == prev - 1u));
+            prev = sb;
+            count[sb]++;
+        }
+        assert_int_equal(count[0], a);
+        for (unsigned l = 1; l <= lv; l++)
+            assert_int_equal(count[l], bw_spec_approx_len(n, l - 1u) / 2u);
+    }
+}
+
+/* Independent one-level lifting from the formulas in bw_spectral.c. */
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+static int64_t clampi(int64_t i, int64_t len) { return i < 0 ? 0 : i >= len ? len - 1 : i; }
+
+static void ref_fwd1(int32_t *x, uint32_t n, unsigned basis)
+{
+    if (n < 2)
+        return;
+    int64_t ns = (n + 1) / 2, nd = n / 2, s[4096], d[4096];
+    for (int64_t k = 0; k < ns; k++)
+        s[k] = x[2 * k];
+    for (int64_t k = 0; k < nd; k++)
+        d[k] = x[2 * k + 1];
+    if (basis == BW_BASIS_HAAR) {
+        for (int64_t k = 0; k < nd; k++) {
+            d[k] -= s[k];
+            s[k] += floor_div(d[k], 2);
+        }
+    } else if (basis == BW_BASIS_53) {
+        for (int64_t k = 0; k < nd; k++)
+            d[k] -= floor_div(s[clampi(k, ns)] + s[clampi(k + 1, ns)], 2);
+        for (int64_t k = 0; k < ns; k++)
+            s[k] += floor_div(d[clampi(k - 1, nd)] + d[clampi(k, nd)] + 2, 4);
+    } else {
+        static const int64_t c[4] = {-103949, -3472, 57862, 29066};
+        for (int step = 0; step < 4; step++) {
+            if (step % 2 == 0)
+                for (int64_t k = 0; k < nd; k++)
+                    d[k] += floor_div(c[step] * (s[clampi(k, ns)] + s[clampi(k + 1, ns)]) + 32768,
+                                      65536);
+            else
+                for (int64_t k = 0; k < ns; k++)
+                    s[k] += floor_div(c[step] * (d[clampi(k - 1, nd)] + d[clampi(k, nd)]) + 32768,
+                                      65536);
+        }
+    }
+    for (int64_t k = 0; k < ns; k++)
+        x[k] = (int32_t)s[k];
+    for (int64_t k = 0; k < nd; k++)
+        x[ns + k] = (int32_t)d[k];
+}
+
+static void spectral_forward_step_matches_the_lifting_formulas(void **state)
+{
+    (void)state;
+    int32_t x[300], y[300], tmp[300];
+    rng_t r;
+    rng_seed(&r, 12);
+    for (uint32_t n = 1; n <= 300; n++)
+        for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+            int32_t amp = n % 2 ? SMAX : 1000;
+            for (uint32_t i = 0; i < n; i++)
+                x[i] = y[i] = rng_between(&r, -amp, amp);
+            bw_spec_fwd1(x, n, basis, tmp);
+            ref_fwd1(y, n, basis);
+            size_t bad = first_mismatch(y, x, n);
+            if (bad < n)
+                fail_msg("n=%u basis %s: coefficient %zu is %d, the formula gives %d", n,
+                         basis_name(basis), bad, x[bad], y[bad]);
+        }
+    /* a two-sample Haar step by hand: d = b - a, s = a + floor(d / 2) */
+    int32_t h[2] = {10, 3};
+    bw_spec_fwd1(h, 2, BW_BASIS_HAAR, tmp);
+    assert_int_equal(h[1], -7);
+    assert_int_equal(h[0], 6);
+}
+
+static void spectral_step_of_a_constant_has_zero_details(void **state)
+{
+    (void)state;
+    int32_t x[257], tmp[257];
+    static const uint32_t lengths[] = {2, 3, 4, 5, 16, 17, 64, 255, 256, 257};
+    int64_t worst97 = 0;
+    for (size_t li = 0; li < ARRAY_LEN(lengths); li++) {
+        uint32_t n = lengths[li], ns = (n + 1) / 2;
+        for (int32_t c = -SMAX; c <= SMAX; c += 99991) {
+            for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+                for (uint32_t i = 0; i < n; i++)
+                    x[i] = c;
+                bw_spec_fwd1(x, n, basis, tmp);
+                for (uint32_t k = ns; k < n; k++) {
+                    int64_t dk = x[k] < 0 ? -(int64_t)x[k] : x[k];
+                    int64_t ac = c < 0 ? -(int64_t)c : c;
+                    if (basis != BW_BASIS_97) {
+                        if (dk != 0)
+                            fail_msg("basis %s n=%u c=%d: detail %u is %d", basis_name(basis), n,
+                                     c, k - ns, x[k]);
+                    } else {
+                        /* 9/7's first vanishing moment holds to the precision of its
+                         * Q16 constants (a residual of -3.2e-5 of the constant), so
+                         * the details are zero up to rounding (|d| <= 1) only for
+                         * |c| <= 5000; above that they stay within 2 + |c| / 24576
+                         * (538 for a full-range constant). */
+                        if (ac <= 5000 ? dk > 1 : dk > 2 + ac / 24576)
+                            fail_msg("basis 97 n=%u c=%d: detail %u is %d", n, c, k - ns, x[k]);
+                        if (dk > worst97)
+                            worst97 = dk;
+                    }
+                }
+                for (uint32_t k = 0; k < ns; k++) {
+                    /* approximations: c for Haar and 5/3, about K c = 1.2302 c for 9/7 */
+                    int64_t want = basis == BW_BASIS_97 ? (int64_t)c * 12302 / 10000 : c;
+                    int64_t tol = basis == BW_BASIS_97 ? 2 + (c < 0 ? -(int64_t)c : c) / 5000 : 0;
+                    int64_t diff = (int64_t)x[k] - want;
+                    if (diff < -tol || diff > tol)
+                        fail_msg("basis %s n=%u c=%d: approximation %u is %d, expected %lld",
+                                 basis_name(basis), n, c, k, x[k], (long long)want);
+                }
+            }
+        }
+        /* small constants, every value: 9/7 details within rounding */
+        for (int32_t c = -5000; c <= 5000; c++) {
+            for (uint32_t i = 0; i < n; i++)
+                x[i] = c;
+            bw_spec_fwd1(x, n, BW_BASIS_97, tmp);
+            for (uint32_t k = ns; k < n; k++)
+                if (x[k] < -1 || x[k] > 1)
+                    fail_msg("basis 97 n=%u c=%d: detail %u is %d", n, c, k - ns, x[k]);
+        }
+    }
+    print_message("largest 9/7 detail of a full-range constant: %lld\n", (long long)worst97);
+}
+
+/* ---- Bio-Haar lifting ----------------------------------------------------- */
+
+static void biohaar_inverse_undoes_forward_for_every_level_and_vector_length(void **state)
+{
+    (void)state;
+    static const size_t vlens[] = {1, 3, 32};
+    rng_t r;
+    rng_seed(&r, 21);
+    for (unsigned level = 0; level <= BW_MAX_LEVEL; level++) {
+        for (size_t vi = 0; vi < ARRAY_LEN(vlens); vi++) {
+            size_t n = ((size_t)4u << (2u * level)) * vlens[vi];
+            int32_t *x = xmalloc((n + GUARD) * sizeof *x), *ref = xmalloc(n * sizeof *ref);
+            bool full = (level + vi) % 2u == 0u;
+            for (size_t i = 0; i < n; i++)
+                ref[i] = full ? rng_between(&r, -SMAX, SMAX)
+                              : 30000 + (int32_t)((i / vlens[vi]) % 97u) * 50 + rng_between(&r, -5, 5);
+            memcpy(x, ref, n * sizeof *x);
+            set_guard(x + n);
+            bw_biohaar_fwd(x, level, vlens[vi]);
+            if (!guard_ok(x + n))
+                fail_msg("bw_biohaar_fwd level %u vlen %zu writes past the array", level,
+                         vlens[vi]);
+            if (level > 0 && memcmp(x, ref, n * sizeof *x) == 0)
+                fail_msg("bw_biohaar_fwd level %u left the field unchanged", level);
+            bw_biohaar_inv(x, level, vlens[vi]);
+            if (!guard_ok(x + n))
+                fail_msg("bw_biohaar_inv level %u vlen %zu writes past the array", level,
+                         vlens[vi]);
+            size_t bad = first_mismatch(ref, x, n);
+            if (bad < n)
+                fail_msg("level %u vlen %zu: element %zu comes back as %d, was %d", level,
+                         vlens[vi], bad, x[bad], ref[bad]);
+            free(x);
+            free(ref);
+        }
+    }
+}
+
+static void biohaar_of_a_constant_field_is_the_constant_and_zero_details(void **state)
+{
+    (void)state;
+    static const int32_t consts[] = {0, 1, -1, 12345, -SMAX, SMAX};
+    const size_t vlen = 3;
+    for (unsigned level = 0; level <= BW_MAX_LEVEL; level++) {
+        uint32_t tris = 4u << (2u * level);
+        int32_t *x = xmalloc((size_t)tris * vlen * sizeof *x);
+        for (size_t ci = 0; ci < ARRAY_LEN(consts); ci++) {
+            /* element e of every vector holds consts[ci] - e */
+            for (uint32_t t = 0; t < tris; t++)
+                for (size_t e = 0; e < vlen; e++)
+                    x[t * vlen + e] = clamp_sample((int64_t)consts[ci] - (int64_t)e);
+            bw_biohaar_fwd(x, level, vlen);
+            for (uint32_t idx = 0; idx < tris; idx++) {
+                uint32_t pos = bw_biohaar_pos(idx, level);
+                for (size_t e = 0; e < vlen; e++) {
+                    int32_t want = idx < 4u ? clamp_sample((int64_t)consts[ci] - (int64_t)e) : 0;
+                    if (x[(size_t)pos * vlen + e] != want)
+                        fail_msg("level %u constant %d: coefficient %u (position %u) element %zu "
+                                 "is %d, expected %d",
+                                 level, consts[ci], idx, pos, e, x[(size_t)pos * vlen + e], want);
+                }
+            }
+        }
+        free(x);
+    }
+}
+
+static void biohaar_positions_are_a_bijection_for_every_level(void **state)
+{
+    (void)state;
+    for (unsigned level = 0; level <= BW_MAX_LEVEL; level++) {
+        uint32_t tris = 4u << (2u * level);
+        uint8_t *seen = calloc(tris, 1);
+        assert_non_null(seen);
+        for (uint32_t idx = 0; idx < tris; idx++) {
+            uint32_t pos = bw_biohaar_pos(idx, level);
+            if (pos >= tris)
+                fail_msg("level %u: index %u maps to position %u >= %u", level, idx, pos, tris);
+            if (seen[pos])
+                fail_msg("level %u: position %u is hit twice (index %u)", level, pos, idx);
+            seen[pos] = 1;
+            int j = bw_biohaar_coef_level(idx);
+            if (idx < 4u) {
+                assert_int_equal(j, -1);
+                assert_int_equal(pos, idx << (2u * level)); /* base b at leaf b * 4^L */
+            } else {
+                /* index 4^(j+1) + 3P + (m-1), m = 1..3: never a centre child */
+                assert_true(j >= 0 && j < (int)level);
+                assert_true(idx >= (4u << (2u * (unsigned)j)) && idx < (16u << (2u * (unsigned)j)));
+                uint32_t stride = 1u << (2u * (level - (unsigned)j - 1u));
+                assert_int_equal(pos % stride, 0);
+                assert_true((pos / stride) % 4u != 0u);
+            }
+        }
+        free(seen);
+    }
+}
+
+static void biohaar_level_one_matches_the_weighted_lifting(void **state)
+{
+    (void)state;
+    const size_t vlen = 5;
+    int32_t x[16 * 5], ref[16 * 5];
+    rng_t r;
+    rng_seed(&r, 22);
+    const uint16_t *w = bw_geo_weights(0, 0);
+    /* the children's area fractions: L1..L3 of the centre split, L0 implied */
+    assert_true((uint32_t)w[0] + w[1] + w[2] < 65536u);
+    assert_true(w[0] > 0 && w[1] > 0 && w[2] > 0);
+    for (int rep = 0; rep < 200; rep++) {
+        int32_t amp = rep % 2 ? SMAX : 5000;
+        for (size_t i = 0; i < ARRAY_LEN(x); i++)
+            x[i] = ref[i] = rng_between(&r, -amp, amp);
+        bw_biohaar_fwd(x, 1, vlen);
+        for (unsigned b = 0; b < 4; b++)
+            for (size_t e = 0; e < vlen; e++) {
+                int64_t c0 = ref[(b * 4 + 0) * vlen + e], c1 = ref[(b * 4 + 1) * vlen + e];
+                int64_t c2 = ref[(b * 4 + 2) * vlen + e], c3 = ref[(b * 4 + 3) * vlen + e];
+                int64_t d1 = c1 - c0, d2 = c2 - c0, d3 = c3 - c0;
+                int64_t s = c0 + floor_div((int64_t)w[0] * d1 + (int64_t)w[1] * d2 +
+                                               (int64_t)w[2] * d3 + 32768,
+                                           65536);
+                assert_int_equal(x[(b * 4 + 0) * vlen + e], s);
+                assert_int_equal(x[(b * 4 + 1) * vlen + e], d1);
+                assert_int_equal(x[(b * 4 + 2) * vlen + e], d2);
+                assert_int_equal(x[(b * 4 + 3) * vlen + e], d3);
+            }
+    }
+}
+
+/* Every (d1, d2, d3) with d2, d3 in [-R, R] and d1 within R of 0, +-2^15 or
+ * 3 * 2^15, around c0 = 0 and c0 = -7777: the update's rounding against the
+ * formula, ties included (floor(x + 1/2)). The level-0 weights are equal and
+ * odd, so the update sum w (d1 + d2 + d3) is a tie exactly when
+ * d1 + d2 + d3 is an odd multiple of 2^15. */
+static void biohaar_update_rounds_every_small_difference_like_the_formula(void **state)
+{
+    (void)state;
+    enum { R = 32, SIDE = 2 * R + 1, V = SIDE * SIDE };
+    static const int32_t centres[] = {0, -7777};
+    static const int32_t d1_base[] = {0, 32768, -32768, 98304};
+    int32_t *x = xmalloc((size_t)16 * V * sizeof *x);
+    unsigned ties = 0;
+    for (size_t ci = 0; ci < ARRAY_LEN(centres); ci++) {
+        int32_t c0 = centres[ci];
+        for (int32_t j = 0; j < (int32_t)ARRAY_LEN(d1_base) * SIDE; j++) {
+            int32_t d1 = d1_base[j / SIDE] + j % SIDE - R;
+            /* 4 bases x 4 children, vectors of V elements: element e = (d2, d3) */
+            for (unsigned b = 0; b < 4; b++)
+                for (int32_t e = 0; e < V; e++) {
+                    int32_t d2 = e / SIDE - R, d3 = e % SIDE - R;
+                    x[(size_t)(b * 4 + 0) * V + e] = c0;
+                    x[(size_t)(b * 4 + 1) * V + e] = c0 + d1;
+                    x[(size_t)(b * 4 + 2) * V + e] = c0 + d2;
+                    x[(size_t)(b * 4 + 3) * V + e] = c0 + d3;
+                }
+            bw_biohaar_fwd(x, 1, V);
+            const uint16_t *w = bw_geo_weights(0, 0);
+            for (unsigned b = 0; b < 4; b++)
+                for (int32_t e = 0; e < V; e++) {
+                    int32_t d2 = e / SIDE - R, d3 = e % SIDE - R;
+                    int64_t acc = (int64_t)w[0] * d1 + (int64_t)w[1] * d2 + (int64_t)w[2] * d3;
+                    int64_t want = c0 + floor_div(acc + 32768, 65536);
+                    ties += b == 0 && (acc & 0xFFFF) == 0x8000;
+                    if (x[(size_t)(b * 4) * V + e] != want)
+                        fail_msg("c0 %d d = (%d, %d, %d): scaling %d, formula %lld", c0, d1, d2,
+                                 d3, x[(size_t)(b * 4) * V + e], (long long)want);
+                }
+        }
+    }
+    print_message("%u exact ties among the updates\n", ties);
+    assert_true(ties > 0);
+    free(x);
+}
+
+/* Small signals make the 9/7 products land on exact ties now and then; the
+ * forward step still follows the formula (floor(x + 1/2)). */
+static void spectral_rounding_ties_follow_the_formula(void **state)
+{
+    (void)state;
+    int32_t x[64], y[64], tmp[64];
+    rng_t r;
+    rng_seed(&r, 13);
+    for (int rep = 0; rep < 20000; rep++) {
+        uint32_t n = 2u + rng_below(&r, 63);
+        unsigned basis = (unsigned)rep % 3u;
+        int32_t amp = rep % 2 ? 70000 : 300;
+        for (uint32_t i = 0; i < n; i++)
+            x[i] = y[i] = rng_between(&r, -amp, amp);
+        bw_spec_fwd1(x, n, basis, tmp);
+        ref_fwd1(y, n, basis);
+        size_t bad = first_mismatch(y, x, n);
+        if (bad < n)
+            fail_msg("rep %d n=%u basis %s: coefficient %zu is %d, the formula gives %d", rep, n,
+                     basis_name(basis), bad, x[bad], y[bad]);
+    }
+}
+
+/* ---- range coder ---------------------------------------------------------- */
+
+static void range_coder_round_trips_adaptive_and_direct_bits(void **state)
+{
+    (void)state;
+    enum { NSYM = 300000, NCTX = 16 };
+    uint8_t *kind = xmalloc(NSYM), *ctx = xmalloc(NSYM), *nbits = xmalloc(NSYM);
+    uint32_t *val = xmalloc(NSYM * sizeof *val);
+    uint32_t pzero[NCTX] = {1, 65535, 32768, 64, 65472};
+    rng_t r;
+    rng_seed(&r, 31);
+    for (unsigned c = 5; c < NCTX; c++)
+        pzero[c] = rng_below(&r, 65536);
+    for (size_t i = 0; i < NSYM; i++) {
+        kind[i] = rng_below(&r, 6) == 0; /* 1: direct bits */
+        if (kind[i]) {
+            nbits[i] = (uint8_t)(1u + rng_below(&r, 32));
+            val[i] = nbits[i] == 32 ? rng_u32(&r) : rng_u32(&r) & ((1u << nbits[i]) - 1u);
+        } else {
+            ctx[i] = (uint8_t)rng_below(&r, NCTX);
+            val[i] = rng_below(&r, 65536) >= pzero[ctx[i]];
+        }
+    }
+    size_t cap = (size_t)NSYM * 5u;
+    uint8_t *buf = xmalloc(cap + 64);
+    memset(buf, 0xA5, cap + 64);
+
+    bw_rc_enc_t e, cnt;
+    bw_prob_t pe[NCTX], pc[NCTX], pd[NCTX];
+    for (unsigned c = 0; c < NCTX; c++)
+        pe[c] = pc[c] = pd[c] = BW_PROB_INIT;
+    bw_rc_enc_init(&e, buf, cap);
+    bw_rc_enc_init(&cnt, NULL, 0);
+    for (size_t i = 0; i < NSYM; i++) {
+        if (kind[i]) {
+            bw_rc_enc_direct(&e, val[i], nbits[i]);
+            bw_rc_enc_direct(&cnt, val[i], nbits[i]);
+        } else {
+            bw_rc_enc_bit(&e, &pe[ctx[i]], val[i]);
+            bw_rc_enc_bit(&cnt, &pc[ctx[i]], val[i]);
+        }
+    }
+    size_t len = bw_rc_enc_finish(&e), counted = bw_rc_enc_finish(&cnt);
+    assert_false(e.overflow);
+    assert_false(cnt.overflow);
+    assert_int_equal(counted, len);
+    assert_true(len > 0 && len < cap);
+    for (size_t i = len; i < cap + 64; i++)
+        if (buf[i] != 0xA5)
+            fail_msg("the encoder wrote byte %zu past its %zu-byte output", i, len);
+
+    bw_rc_dec_t d;
+    bw_rc_dec_init(&d, buf, len);
+    for (size_t i = 0; i < NSYM; i++) {
+        uint32_t got = kind[i] ? bw_rc_dec_direct(&d, nbits[i]) : bw_rc_dec_bit(&d, &pd[ctx[i]]);
+        if (got != val[i])
+            fail_msg("symbol %zu (%s) decodes to %u, was %u", i, kind[i] ? "direct" : "adaptive",
+                     got, val[i]);
+    }
+    assert_false(d.overrun);
+    assert_true(d.pos <= len);
+    print_message("%d symbols in %zu bytes; the decoder read %zu\n", NSYM, len, d.pos);
+
+    /* too small a buffer: flagged, and nothing written past it */
+    memset(buf, 0xA5, cap + 64);
+    for (unsigned c = 0; c < NCTX; c++)
+        pe[c] = BW_PROB_INIT;
+    bw_rc_enc_init(&e, buf, len / 2);
+    for (size_t i = 0; i < NSYM; i++) {
+        if (kind[i])
+            bw_rc_enc_direct(&e, val[i], nbits[i]);
+        else
+            bw_rc_enc_bit(&e, &pe[ctx[i]], val[i]);
+    }
+    assert_int_equal(bw_rc_enc_finish(&e), len);
+    assert_true(e.overflow);
+    for (size_t i = len / 2; i < cap + 64; i++)
+        assert_int_equal(buf[i], 0xA5);
+
+    /* a skewed source compresses: 100000 zeros in one context */
+    bw_prob_t p = BW_PROB_INIT;
+    bw_rc_enc_init(&cnt, NULL, 0);
+    for (int i = 0; i < 100000; i++)
+        bw_rc_enc_bit(&cnt, &p, 0);
+    size_t zeros = bw_rc_enc_finish(&cnt);
+    /* the probability saturates at 2017/2048: 0.022 bits a symbol */
+    assert_true(zeros <= 100000 * 25 / 8000);
+
+    free(kind);
+    free(ctx);
+    free(nbits);
+    free(val);
+    free(buf);
+}
+
+static void range_decoder_flags_reading_past_its_input(void **state)
+{
+    (void)state;
+    uint8_t buf[4096];
+    bw_rc_enc_t e;
+    bw_prob_t p = BW_PROB_INIT;
+    rng_t r;
+    rng_seed(&r, 32);
+    uint8_t bits[8000];
+    bw_rc_enc_init(&e, buf, sizeof buf);
+    for (size_t i = 0; i < sizeof bits; i++) {
+        bits[i] = (uint8_t)(rng_below(&r, 4) == 0);
+        bw_rc_enc_bit(&e, &p, bits[i]);
+    }
+    size_t len = bw_rc_enc_finish(&e);
+    assert_false(e.overflow);
+    for (size_t cut = 0; cut < len; cut += 1 + cut / 4) {
+        bw_rc_dec_t d;
+        bw_prob_t q = BW_PROB_INIT;
+        bw_rc_dec_init(&d, buf, cut);
+        for (size_t i = 0; i < sizeof bits; i++)
+            (void)bw_rc_dec_bit(&d, &q);
+        if (!d.overrun)
+            fail_msg("decoding %zu of %zu bytes did not report an overrun", cut, len);
+        assert_int_equal(d.pos, cut);
+    }
+}
+
+/* ---- CRC-32 ------------------------------------------------------------- */
+
+static void crc32_of_the_check_string_is_cbf43926(void **state)
+{
+    (void)state;
+    const uint8_t *s = (const uint8_t *)"123456789";
+    assert_int_equal(bw_crc32(s, 9), 0xCBF43926u);
+    assert_int_equal(bw_crc32(s, 0), 0u);
+    assert_int_equal(bw_crc32_update(bw_crc32(s, 4), s + 4, 5), 0xCBF43926u);
+    const uint8_t a = 'a';
+    assert_int_equal(bw_crc32(&a, 1), 0xE8B7BE43u);
+}
+
+/* ---- max-error mode ----------------------------------------------------- */
+
+static const uint32_t error_bounds[] = {1, 2, 4, 8, 16, 100};
+
+/* Encodes with verify, decodes, checks every sample; returns the largest
+ * error seen. */
+static uint32_t check_max_error(const bw_dims_t *d, const int32_t *x, uint32_t E, unsigned basis,
+                                const char *what)
+{
+    size_t n = bw_dims_samples(d);
+    bw_params_t p = params_of(BW_MODE_MAX_ERROR, basis);
+    p.max_error = E;
+    uint8_t *out;
+    size_t len;
+    bw_status_t st = encode_new(d, &p, x, true, &out, &len);
+    if (st != BW_OK)
+        fail_msg("%s E=%u: bw_encode with verify: %s", what, E, bw_strerror(st));
+    int32_t *y;
+    bw_header_t h;
+    st = decode_new(out, len, &y, &h);
+    if (st != BW_OK)
+        fail_msg("%s E=%u: bw_decode: %s", what, E, bw_strerror(st));
+    check_header_dims(&h, d, what);
+    if (h.mode != BW_MODE_MAX_ERROR || h.max_error != E || h.prequant != 2u * E + 1u)
+        fail_msg("%s E=%u: header mode %u max_error %u prequant %u", what, E, h.mode, h.max_error,
+                 h.prequant);
+    uint32_t worst = 0;
+    for (size_t i = 0; i < n; i++) {
+        long long err = llabs((long long)y[i] - x[i]);
+        if (err > (long long)E)
+            fail_msg("%s E=%u: sample %zu decodes to %d, input %d (error %lld)", what, E, i, y[i],
+                     x[i], err);
+        if ((uint32_t)err > worst)
+            worst = (uint32_t)err;
+    }
+    free(y);
+    free(out);
+    return worst;
+}
+
+static void max_error_mode_keeps_every_sample_within_the_bound_on_random_data(void **state)
+{
+    (void)state;
+    static const shape_case_t cases[] = {
+        {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, {BW_SHAPE_REFLECTANCE, 2, 0, 1, 33},
+        {BW_SHAPE_SPECTRA, 0, 0, 40, 200},   {BW_SHAPE_BRDF_ISO, 2, 0, 3, 17},
+        {BW_SHAPE_BRDF_FULL, 2, 1, 0, 9},    {BW_SHAPE_REFLECTANCE, 2, 0, 1, 1},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        const shape_case_t *sc = &cases[c];
+        bw_dims_t d = dims_of(sc->shape, sc->level_out, sc->level_in, sc->n_in, sc->bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        bool full = c % 2u == 1u;
+        if (full)
+            fill_full(x, n, 4000u + c);
+        else
+            fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 4000u + c, 300);
+        /* the listed bounds, then two extreme ones */
+        for (size_t ei = 0; ei < ARRAY_LEN(error_bounds) + 2u; ei++) {
+            uint32_t E = ei < ARRAY_LEN(error_bounds)               ? error_bounds[ei]
+                         : ei == ARRAY_LEN(error_bounds) ? 1u << 20
+                                                                    : (uint32_t)BW_SAMPLE_MAX;
+            unsigned basis = (unsigned)(c + ei) % 3u;
+            char what[128];
+            snprintf(what, sizeof what, "%s out %u in %u x %u bands, %s, %s data",
+                     bwh_shape_name(sc->shape), sc->level_out, sc->level_in, sc->bands,
+                     basis_name(basis), full ? "full-range" : "smooth");
+            uint32_t worst = check_max_error(&d, x, E, basis, what);
+            /* uniform data over the whole range uses the whole bound (for
+             * small E every error value is frequent; E = BW_SAMPLE_MAX turns
+             * the sample SMAX into 0) */
+            if (full && n >= 1000 && (E <= 100u || E == (uint32_t)BW_SAMPLE_MAX) && worst != E)
+                fail_msg("%s E=%u: largest error %u (the bound is not used)", what, E, worst);
+        }
+        free(x);
+    }
+}
+
+static void max_error_mode_keeps_every_sample_within_the_bound_on_field_spectra(void **state)
+{
+    (void)state;
+    bw_dims_t d;
+    const int32_t *x = need_field_spectra(&d);
+    for (size_t ei = 0; ei < ARRAY_LEN(error_bounds); ei++)
+        for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+            char what[96];
+            snprintf(what, sizeof what, "field spectra %u x %u, %s", d.n_in, d.bands,
+                     basis_name(basis));
+            check_max_error(&d, x, error_bounds[ei], basis, what);
+        }
+}
+
+/* ---- byte-budget mode ----------------------------------------------------- */
+
+static void check_budgets(const bw_dims_t *d, const int32_t *x, unsigned basis, const char *what)
+{
+    size_t n = bw_dims_samples(d);
+    size_t lossless = lossless_size(d, x, basis);
+    size_t budgets[40], nb = 0;
+    static const size_t fixed[] = {0,   1,   51,   52,   53,   56,   60,    64,    80,   100,
+                                   128, 200, 300, 500, 1000, 2000, 5000, 10000, 30000};
+    for (size_t i = 0; i < ARRAY_LEN(fixed); i++)
+        if (fixed[i] < lossless)
+            budgets[nb++] = fixed[i];
+    for (unsigned pct = 5; pct < 100; pct += 15)
+        budgets[nb++] = lossless * pct / 100u;
+    budgets[nb++] = lossless - 1u;
+    budgets[nb++] = lossless;
+    budgets[nb++] = lossless + 1u;
+    budgets[nb++] = 2u * lossless;
+    bool fitted = false;
+    unsigned ok = 0, refused = 0;
+    for (size_t bi = 0; bi < nb; bi++) {
+        size_t budget = budgets[bi];
+        bw_params_t p = params_of(BW_MODE_BYTES, basis);
+        p.byte_budget = (uint32_t)budget;
+        uint8_t *out;
+        size_t len;
+        bw_status_t st = encode_new(d, &p, x, bi % 3u == 0u, &out, &len);
+        if (st == BW_ERR_BUDGET) {
+            if (fitted)
+                fail_msg("%s: budget %zu refused although a smaller one fitted", what, budget);
+            if (budget >= lossless)
+                fail_msg("%s: budget %zu >= lossless size %zu refused", what, budget, lossless);
+            refused++;
+            free(out);
+            continue;
+        }
+        if (st != BW_OK)
+            fail_msg("%s: budget %zu: %s", what, budget, bw_strerror(st));
+        fitted = true;
+        ok++;
+        if (len > budget)
+            fail_msg("%s: payload of %zu bytes exceeds the budget of %zu", what, len, budget);
+        int32_t *y;
+        bw_header_t h;
+        st = decode_new(out, len, &y, &h);
+        if (st != BW_OK)
+            fail_msg("%s: budget %zu: bw_decode: %s", what, budget, bw_strerror(st));
+        check_header_dims(&h, d, what);
+        assert_int_equal(h.mode, BW_MODE_BYTES);
+        assert_int_equal(h.basis, basis);
+        assert_int_equal(h.prequant, 1);
+        if (budget >= lossless) {
+            if (h.step_q8 != 256u || len != lossless)
+                fail_msg("%s: budget %zu >= lossless %zu but step %u, %zu bytes", what, budget,
+                         lossless, h.step_q8, len);
+            size_t bad = first_mismatch(x, y, n);
+            if (bad < n)
+                fail_msg("%s: budget %zu >= lossless size: sample %zu is %d, was %d", what, budget,
+                         bad, y[bad], x[bad]);
+        } else if (h.step_q8 <= 256u) {
+            fail_msg("%s: budget %zu < lossless %zu with step %u", what, budget, lossless,
+                     h.step_q8);
+        }
+        free(y);
+        free(out);
+    }
+    if (refused == 0)
+        fail_msg("%s: not even a budget of 0 bytes was refused", what);
+    print_message("%s: lossless %zu bytes, %u budgets met, %u refused\n", what, lossless, ok,
+                  refused);
+}
+
+static void byte_budget_payload_never_exceeds_the_budget_on_random_data(void **state)
+{
+    (void)state;
+    static const shape_case_t cases[] = {
+        {BW_SHAPE_REFLECTANCE, 2, 0, 1, 81},
+        {BW_SHAPE_REFLECTANCE, 1, 0, 1, 33},
+        {BW_SHAPE_BRDF_FULL, 1, 1, 0, 5},
+        {BW_SHAPE_SPECTRA, 0, 0, 7, 300},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        const shape_case_t *sc = &cases[c];
+        bw_dims_t d = dims_of(sc->shape, sc->level_out, sc->level_in, sc->n_in, sc->bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        bool full = c % 2u == 1u;
+        if (full)
+            fill_full(x, n, 5000u + c);
+        else
+            fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 5000u + c, 200);
+        unsigned basis = (unsigned)c % 3u;
+        char what[128];
+        snprintf(what, sizeof what, "%s out %u in %u x %u bands, %s, %s data",
+                 bwh_shape_name(sc->shape), sc->level_out, sc->level_in, sc->bands,
+                 basis_name(basis), full ? "full-range" : "smooth");
+        check_budgets(&d, x, basis, what);
+        free(x);
+    }
+}
+
+static void byte_budget_payload_never_exceeds_the_budget_on_field_spectra(void **state)
+{
+    (void)state;
+    bw_dims_t d;
+    const int32_t *x = need_field_spectra(&d);
+    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+        char what[64];
+        snprintf(what, sizeof what, "field spectra, %s", basis_name(basis));
+        check_budgets(&d, x, basis, what);
+    }
+}
+
+static void byte_budget_too_small_is_refused(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_REFLECTANCE, 2, 0, 1, 81);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    fill_full(x, n, 5100);
+    for (size_t budget = 0; budget <= BW_HEADER_SIZE + BW_TRAILER_SIZE; budget++) {
+        bw_params_t p = params_of(BW_MODE_BYTES, (unsigned)budget % 3u);
+        p.byte_budget = (uint32_t)budget;
+        uint8_t *out;
+        size_t len;
+        assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_ERR_BUDGET);
+        free(out);
+    }
+    /* the budget is also capped by the output buffer */
+    bw_params_t p = params_of(BW_MODE_BYTES, BW_BASIS_53);
+    p.byte_budget = 1u << 30;
+    size_t wb = bw_work_bound(n, d.bands), len;
+    int32_t *work = xmalloc(wb * sizeof *work);
+    uint8_t small[40];
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, small, sizeof small, &len), BW_ERR_BUDGET);
+    free(work);
+    free(x);
+}
+
+static void byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra(
+    void **state)
+{
+    (void)state;
+    bw_dims_t d;
+    const int32_t *x = need_field_spectra(&d);
+    double worst = 1.0;
+    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+        size_t lossless = lossless_size(&d, x, basis);
+        for (unsigned pct = 5; pct <= 50; pct += 5) {
+            bw_params_t p = params_of(BW_MODE_BYTES, basis);
+            p.byte_budget = (uint32_t)(lossless * pct / 100u);
+            uint8_t *out;
+            size_t len;
+            bw_status_t st = encode_new(&d, &p, x, false, &out, &len);
+            if (st != BW_OK)
+                fail_msg("%s, %u%% of %zu = %u bytes: %s", basis_name(basis), pct, lossless,
+                         p.byte_budget, bw_strerror(st));
+            double use = (double)len / p.byte_budget;
+            if (use < worst)
+                worst = use;
+            if (len > p.byte_budget || use < 0.90)
+                fail_msg("%s, %u%% of lossless %zu: budget %u, payload %zu (%.1f%%)",
+                         basis_name(basis), pct, lossless, p.byte_budget, len, 100.0 * use);
+            free(out);
+        }
+    }
+    print_message("lowest use of a budget: %.1f%%\n", 100.0 * worst);
+}
+
+/* ---- decoder robustness --------------------------------------------------- */
+
+typedef struct {
+    const char *name;
+    shape_case_t s;
+    uint8_t mode, basis;
+    uint32_t param; /* max_error, step_q8, or budget in percent of lossless */
+} payload_case_t;
+
+static const payload_case_t robust_cases[] = {
+    {"reflectance 1x5 lossless haar", {BW_SHAPE_REFLECTANCE, 1, 0, 1, 5}, BW_MODE_LOSSLESS,
+     BW_BASIS_HAAR, 0},
+    {"spectra 3x17 max-error 2 97", {BW_SHAPE_SPECTRA, 0, 0, 3, 17}, BW_MODE_MAX_ERROR,
+     BW_BASIS_97, 2},
+    {"iso 2 x level 1 x 9 bytes 53", {BW_SHAPE_BRDF_ISO, 1, 0, 2, 9}, BW_MODE_BYTES, BW_BASIS_53,
+     60},
+    {"full 1x0 x 2 step 97", {BW_SHAPE_BRDF_FULL, 1, 0, 0, 2}, BW_MODE_STEP, BW_BASIS_97, 2048},
+    {"reflectance 2x1 lossless 53", {BW_SHAPE_REFLECTANCE, 2, 0, 1, 1}, BW_MODE_LOSSLESS,
+     BW_BASIS_53, 0},
+};
+
+typedef struct {
+    uint8_t *buf;
+    size_t len;
+    bw_dims_t dims;
+    int32_t *x;
+} payload_t;
+
+static void make_payload(const payload_case_t *pc, uint64_t seed, payload_t *out)
+{
+    bw_dims_t d = dims_of(pc->s.shape, pc->s.level_out, pc->s.level_in, pc->s.n_in, pc->s.bands);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, seed, 400);
+    bw_params_t p = params_of(pc->mode, pc->basis);
+    if (pc->mode == BW_MODE_MAX_ERROR)
+        p.max_error = pc->param;
+    if (pc->mode == BW_MODE_STEP)
+        p.step_q8 = pc->param;
+    if (pc->mode == BW_MODE_BYTES)
+        p.byte_budget = (uint32_t)(lossless_size(&d, x, pc->basis) * pc->param / 100u);
+    bw_status_t st = encode_new(&d, &p, x, true, &out->buf, &out->len);
+    if (st != BW_OK)
+        fail_msg("%s: %s", pc->name, bw_strerror(st));
+    out->dims = d;
+    out->x = x;
+}
+
+static void free_payload(payload_t *p)
+{
+    free(p->buf);
+    free(p->x);
+}
+
+static bool known_status(int st) { return st <= 0 && st >= BW_ERR_TRAILING; }
+
+static void put_le32(uint8_t *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        p[i] = (uint8_t)(v >> (8 * i));
+}
+
+static uint32_t get_le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* Rewrites the CRC of a payload whose header states its body length. */
+static void fix_crc(uint8_t *p)
+{
+    uint32_t body = get_le32(p + 40);
+    put_le32(p + BW_HEADER_SIZE + body, bw_crc32(p, BW_HEADER_SIZE + body));
+}
+
+static void every_truncation_of_a_valid_payload_is_rejected(void **state)
+{
+    (void)state;
+    unsigned tried = 0;
+    for (size_t c = 0; c < ARRAY_LEN(robust_cases); c++) {
+        payload_t pl;
+        make_payload(&robust_cases[c], 6000u + c, &pl);
+        size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+        int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+        assert_int_equal(bw_decode(pl.buf, pl.len, y, n, work, wb, NULL), BW_OK);
+        for (size_t len = 0; len < pl.len; len++) {
+            /* a fresh copy of exactly len bytes, so ASan sees any over-read */
+            uint8_t *cut = xmalloc(len);
+            memcpy(cut, pl.buf, len);
+            bw_status_t st = bw_decode(cut, len, y, n, work, wb, NULL);
+            if (st != BW_ERR_TRUNCATED)
+                fail_msg("%s cut to %zu of %zu bytes: bw_decode returns %d (%s)",
+                         robust_cases[c].name, len, pl.len, st, bw_strerror(st));
+            st = bw_decode_unchecked(cut, len, y, n, work, wb);
+            if (st != BW_ERR_TRUNCATED)
+                fail_msg("%s cut to %zu of %zu bytes: bw_decode_unchecked returns %d (%s)",
+                         robust_cases[c].name, len, pl.len, st, bw_strerror(st));
+            free(cut);
+            tried++;
+        }
+        /* a body cut short whose header and CRC agree with the cut: the
+         * range decoder runs out of input */
+        for (size_t body = get_le32(pl.buf + 40); body-- > 0;) {
+            size_t len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+            uint8_t *cut = xmalloc(len);
+            memcpy(cut, pl.buf, BW_HEADER_SIZE + body);
+            put_le32(cut + 40, (uint32_t)body);
+            fix_crc(cut);
+            bw_status_t st = bw_decode(cut, len, y, n, work, wb, NULL);
+            if (st != BW_ERR_CORRUPT)
+                fail_msg("%s: body cut to %zu bytes with a consistent header: bw_decode returns "
+                         "%d (%s)",
+                         robust_cases[c].name, body, st, bw_strerror(st));
+            free(cut);
+            tried++;
+        }
+        free(y);
+        free(work);
+        free_payload(&pl);
+    }
+    print_message("%u truncated payloads\n", tried);
+}
+
+static void every_single_bit_flip_is_rejected_by_the_crc_or_the_header_checks(void **state)
+{
+    (void)state;
+    unsigned flips = 0, decoded = 0;
+    for (size_t c = 0; c < ARRAY_LEN(robust_cases); c++) {
+        payload_t pl;
+        make_payload(&robust_cases[c], 6100u + c, &pl);
+        size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+        int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+        uint8_t *bad = xmalloc(pl.len);
+        for (size_t byte = 0; byte < pl.len; byte++) {
+            for (unsigned bit = 0; bit < 8; bit++) {
+                memcpy(bad, pl.buf, pl.len);
+                bad[byte] ^= (uint8_t)(1u << bit);
+                bw_status_t st = bw_decode(bad, pl.len, y, n, work, wb, NULL);
+                if (st != BW_ERR_CRC && st != BW_ERR_MAGIC && st != BW_ERR_VERSION &&
+                    st != BW_ERR_HEADER && st != BW_ERR_TRUNCATED && st != BW_ERR_TRAILING)
+                    fail_msg("%s, byte %zu bit %u flipped: bw_decode returns %d (%s)",
+                             robust_cases[c].name, byte, bit, st, bw_strerror(st));
+                /* without the CRC the body parser sees the flip: any status,
+                 * but a known one and no memory error */
+                st = bw_decode_unchecked(bad, pl.len, y, n, work, wb);
+                if (!known_status(st))
+                    fail_msg("%s, byte %zu bit %u flipped: bw_decode_unchecked returns %d",
+                             robust_cases[c].name, byte, bit, st);
+                decoded += st == BW_OK;
+                flips++;
+            }
+        }
+        free(bad);
+        free(y);
+        free(work);
+        free_payload(&pl);
+    }
+    print_message("%u flips; bw_decode_unchecked decoded %u of them to samples\n", flips, decoded);
+}
+
+static void unchecked_decoding_of_garbage_bodies_returns_a_status(void **state)
+{
+    (void)state;
+    rng_t r;
+    rng_seed(&r, 41);
+    unsigned runs = 0, ok = 0;
+    for (size_t c = 0; c < ARRAY_LEN(robust_cases); c++) {
+        payload_t pl;
+        make_payload(&robust_cases[c], 6200u + c, &pl);
+        size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+        int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+        size_t body0 = get_le32(pl.buf + 40);
+        for (int it = 0; it < 3000; it++) {
+            size_t body = rng_below(&r, (uint32_t)(2u * body0 + 16u));
+            size_t len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+            uint8_t *g = xmalloc(len);
+            memcpy(g, pl.buf, BW_HEADER_SIZE);
+            unsigned style = (unsigned)it % 4u;
+            for (size_t i = 0; i < body; i++)
+                g[BW_HEADER_SIZE + i] = style == 0   ? (uint8_t)rng_u32(&r)
+                                        : style == 1 ? (uint8_t)(rng_below(&r, 8) ? 0x00 : rng_u32(&r))
+                                        : style == 2 ? (uint8_t)(rng_below(&r, 8) ? 0xFF : rng_u32(&r))
+                                                     : (pl.buf[BW_HEADER_SIZE + i % body0] ^
+                                                        (uint8_t)(rng_below(&r, 16) ? 0 : rng_u32(&r)));
+            put_le32(g + 40, (uint32_t)body);
+            /* other valid header values: basis, and large steps or bounds */
+            if (it % 3 == 1) {
+                g[16] = (uint8_t)rng_below(&r, BW_BASIS_COUNT);
+                if (g[18] == BW_MODE_MAX_ERROR) {
+                    uint32_t e = 1u + rng_below(&r, (uint32_t)BW_SAMPLE_MAX);
+                    put_le32(g + 28, e);
+                    put_le32(g + 20, 2u * e + 1u);
+                } else if (g[18] != BW_MODE_LOSSLESS) {
+                    put_le32(g + 24, 256u + rng_u32(&r) % (UINT32_MAX - 256u));
+                }
+            }
+            fix_crc(g);
+            bw_status_t st = bw_decode_unchecked(g, len, y, n, work, wb);
+            if (!known_status(st))
+                fail_msg("%s, garbage body %d: bw_decode_unchecked returns %d",
+                         robust_cases[c].name, it, st);
+            bw_status_t st2 = bw_decode(g, len, y, n, work, wb, NULL);
+            if (st2 != BW_OK && st2 != BW_ERR_CORRUPT)
+                fail_msg("%s, garbage body %d with a valid CRC: bw_decode returns %d (%s)",
+                         robust_cases[c].name, it, st2, bw_strerror(st2));
+            if (st2 != st)
+                fail_msg("%s, garbage body %d: bw_decode %d but bw_decode_unchecked %d",
+                         robust_cases[c].name, it, st2, st);
+            ok += st == BW_OK;
+            runs++;
+            free(g);
+        }
+        /* random bytes after a valid magic, including the header */
+        for (int it = 0; it < 3000; it++) {
+            size_t len = rng_below(&r, 400);
+            uint8_t *g = xmalloc(len);
+            for (size_t i = 0; i < len; i++)
+                g[i] = (uint8_t)rng_u32(&r);
+            if (len >= 4)
+                memcpy(g, "BWAV", 4);
+            if (len > 4)
+                g[4] = 1;
+            bw_status_t st = bw_decode_unchecked(g, len, y, n, work, wb);
+            if (!known_status(st))
+                fail_msg("random payload %d: bw_decode_unchecked returns %d", it, st);
+            st = bw_decode(g, len, y, n, work, wb, NULL);
+            if (!known_status(st) || st == BW_OK)
+                fail_msg("random payload %d: bw_decode returns %d", it, st);
+            free(g);
+        }
+        free(y);
+        free(work);
+        free_payload(&pl);
+    }
+    print_message("%u garbage bodies, %u decoded to samples\n", runs, ok);
+}
+
+static void undersized_decoder_buffers_are_refused(void **state)
+{
+    (void)state;
+    payload_t pl;
+    make_payload(&robust_cases[0], 6300, &pl);
+    size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+    int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+    assert_int_equal(bw_decode(pl.buf, pl.len, y, n - 1, work, wb, NULL), BW_ERR_WORK);
+    assert_int_equal(bw_decode(pl.buf, pl.len, y, n, work, wb - 1, NULL), BW_ERR_WORK);
+    assert_int_equal(bw_decode(pl.buf, pl.len, y, 0, work, 0, NULL), BW_ERR_WORK);
+    assert_int_equal(bw_decode_unchecked(pl.buf, pl.len, y, n - 1, work, wb), BW_ERR_WORK);
+    assert_int_equal(bw_decode_unchecked(pl.buf, pl.len, y, n, work, wb - 1), BW_ERR_WORK);
+    assert_int_equal(bw_decode(pl.buf, pl.len, y, n, work, wb, NULL), BW_OK);
+    /* a header declaring far more samples than the buffers hold */
+    bw_dims_t big = dims_of(BW_SHAPE_SPECTRA, 0, 0, 1u << 24, 16);
+    uint8_t *p = xmalloc(pl.len);
+    memcpy(p, pl.buf, pl.len);
+    p[5] = big.shape;
+    p[6] = p[7] = 0;
+    put_le32(p + 8, big.n_in);
+    put_le32(p + 12, big.bands);
+    p[17] = (uint8_t)bw_spec_levels(big.bands);
+    fix_crc(p);
+    assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_WORK);
+    free(p);
+    free(y);
+    free(work);
+    free_payload(&pl);
+}
+
+static void trailing_bytes_are_refused(void **state)
+{
+    (void)state;
+    payload_t pl;
+    make_payload(&robust_cases[1], 6400, &pl);
+    size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+    int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+    uint8_t *p = xmalloc(pl.len + 100);
+    memcpy(p, pl.buf, pl.len);
+    memset(p + pl.len, 0, 100);
+    assert_int_equal(bw_decode(p, pl.len + 1, y, n, work, wb, NULL), BW_ERR_TRAILING);
+    assert_int_equal(bw_decode(p, pl.len + 100, y, n, work, wb, NULL), BW_ERR_TRAILING);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(p, pl.len + 4, &h), BW_ERR_TRAILING);
+    /* the unchecked decoder ignores what follows the body */
+    assert_int_equal(bw_decode_unchecked(p, pl.len + 100, y, n, work, wb), BW_OK);
+    free(p);
+    free(y);
+    free(work);
+    free_payload(&pl);
+}
+
+static void a_bad_magic_or_version_is_refused(void **state)
+{
+    (void)state;
+    payload_t pl;
+    make_payload(&robust_cases[0], 6500, &pl);
+    size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+    int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+    uint8_t *p = xmalloc(pl.len);
+    for (int i = 0; i < 4; i++) {
+        memcpy(p, pl.buf, pl.len);
+        p[i] = (uint8_t)(p[i] ^ 0x20);
+        fix_crc(p);
+        assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_MAGIC);
+        assert_int_equal(bw_decode_unchecked(p, pl.len, y, n, work, wb), BW_ERR_MAGIC);
+    }
+    memcpy(p, pl.buf, pl.len);
+    p[4] = 2;
+    fix_crc(p);
+    assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_VERSION);
+    free(p);
+    free(y);
+    free(work);
+    free_payload(&pl);
+}
+
+static void out_of_range_header_fields_are_refused_after_recomputing_the_crc(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *field;
+        unsigned off, size;
+        uint32_t value;
+    } mods[] = {
+        {"shape 4", 5, 1, 4},
+        {"level_out 7", 6, 1, 7},
+        {"level_in 1 (reflectance)", 7, 1, 1},
+        {"n_in 2 (reflectance)", 8, 4, 2},
+        {"bands 0", 12, 4, 0},
+        {"bands 65536", 12, 4, 65536},
+        {"basis 3", 16, 1, 3},
+        {"basis 255", 16, 1, 255},
+        {"spectral levels +1", 17, 1, 0x100},
+        {"mode 4", 18, 1, 4},
+        {"an unknown flag", 19, 1, (uint8_t)(~BW_FLAGS_KNOWN & (BW_FLAGS_KNOWN + 1u))},
+        {"flags 0x80", 19, 1, 0x80},
+        {"prequant 0", 20, 4, 0},
+        {"prequant 3 (lossless)", 20, 4, 3},
+        {"step 255", 24, 4, 255},
+        {"max_error 1 (lossless)", 28, 4, 1},
+        {"reserved 1", 44, 4, 1},
+        {"reserved 0x80000000", 44, 4, 0x80000000u},
+    };
+    payload_t pl;
+    /* reflectance level 1 x 5 bands, lossless */
+    make_payload(&robust_cases[0], 6600, &pl);
+    size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
+    int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+    uint8_t *p = xmalloc(pl.len);
+    for (size_t m = 0; m < ARRAY_LEN(mods); m++) {
+        memcpy(p, pl.buf, pl.len);
+        if (mods[m].value == 0x100)
+            p[mods[m].off]++;
+        else if (mods[m].size == 1)
+            p[mods[m].off] = (uint8_t)mods[m].value;
+        else
+            put_le32(p + mods[m].off, mods[m].value);
+        fix_crc(p);
+        bw_header_t h;
+        bw_status_t st = bw_header_read(p, pl.len, &h);
+        if (st != BW_ERR_HEADER)
+            fail_msg("%s: bw_header_read returns %d (%s)", mods[m].field, st, bw_strerror(st));
+        st = bw_decode(p, pl.len, y, n, work, wb, NULL);
+        if (st != BW_ERR_HEADER)
+            fail_msg("%s: bw_decode returns %d (%s)", mods[m].field, st, bw_strerror(st));
+        st = bw_decode_unchecked(p, pl.len, y, n, work, wb);
+        if (st != BW_ERR_HEADER)
+            fail_msg("%s: bw_decode_unchecked returns %d (%s)", mods[m].field, st,
+                     bw_strerror(st));
+    }
+    /* max-error headers: prequant must be 2E+1 */
+    payload_t me;
+    make_payload(&robust_cases[1], 6601, &me);
+    size_t n2 = bw_dims_samples(&me.dims), wb2 = bw_work_bound(n2, me.dims.bands);
+    int32_t *y2 = xmalloc(n2 * sizeof *y2), *work2 = xmalloc(wb2 * sizeof *work2);
+    uint8_t *q = xmalloc(me.len);
+    memcpy(q, me.buf, me.len);
+    put_le32(q + 20, get_le32(q + 20) + 2u);
+    fix_crc(q);
+    assert_int_equal(bw_decode(q, me.len, y2, n2, work2, wb2, NULL), BW_ERR_HEADER);
+    free(q);
+    free(y2);
+    free(work2);
+    free_payload(&me);
+    free(p);
+    free(y);
+    free(work);
+    free_payload(&pl);
+}
+
+/* In max-error mode the header must hold prequant = 2E + 1 as numbers, not
+ * modulo 2^32: E = 2^31 with prequant 1 (or E = 2^31 + 1 with prequant 3)
+ * is a bound no encoder can write and must be refused, as must E = 0 and
+ * E > BW_SAMPLE_MAX. */
+static void a_max_error_header_whose_bound_wraps_is_refused(void **state)
+{
+    (void)state;
+    static const uint32_t bad[][2] = {
+        {0x80000000u, 1u},
+        {0x80000001u, 3u},
+        {0xFFFFFFFFu, 0xFFFFFFFFu},
+        {0u, 1u},
+        {(uint32_t)BW_SAMPLE_MAX + 1u, 2u * ((uint32_t)BW_SAMPLE_MAX + 1u) + 1u},
+    };
+    payload_t me;
+    make_payload(&robust_cases[1], 6700, &me); /* max-error 2 */
+    size_t n = bw_dims_samples(&me.dims), wb = bw_work_bound(n, me.dims.bands);
+    int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
+    uint8_t *q = xmalloc(me.len);
+    for (size_t i = 0; i < ARRAY_LEN(bad); i++) {
+        memcpy(q, me.buf, me.len);
+        put_le32(q + 28, bad[i][0]);
+        put_le32(q + 20, bad[i][1]);
+        fix_crc(q);
+        bw_header_t h;
+        bw_status_t st = bw_header_read(q, me.len, &h);
+        if (st != BW_ERR_HEADER)
+            fail_msg("max_error %u with prequant %u: bw_header_read returns %d (%s), max_error "
+                     "%u",
+                     bad[i][0], bad[i][1], st, bw_strerror(st), h.max_error);
+        assert_int_equal(bw_decode(q, me.len, y, n, work, wb, NULL), BW_ERR_HEADER);
+    }
+    free(q);
+    free(y);
+    free(work);
+    free_payload(&me);
+}
+
+/* ---- bad encoder input ------------------------------------------------------ */
+
+static void encoder_refuses_bad_input(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_REFLECTANCE, 1, 0, 1, 7);
+    size_t n = bw_dims_samples(&d), wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n);
+    int32_t *x = xmalloc(n * sizeof *x), *work = xmalloc(wb * sizeof *work);
+    int32_t *ver = xmalloc(wb * sizeof *ver);
+    uint8_t *out = xmalloc(cap);
+    size_t len;
+    fill_smooth(x, d.n_out, d.bands, 7000, 10);
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_53);
+
+    /* sample range: +-BW_SAMPLE_MAX is fine, one more is not */
+    static const int32_t outside[] = {BW_SAMPLE_MAX + 1, -BW_SAMPLE_MAX - 1, INT32_MAX, INT32_MIN};
+    for (size_t i = 0; i < ARRAY_LEN(outside); i++) {
+        int32_t keep = x[n / 2];
+        x[n / 2] = outside[i];
+        assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, cap, &len), BW_ERR_RANGE);
+        x[n / 2] = keep;
+    }
+    x[0] = SMAX;
+    x[n - 1] = -SMAX;
+    assert_int_equal(bw_encode(&d, &p, x, work, ver, out, cap, &len), BW_OK);
+    size_t good = len;
+
+    /* dims */
+    bw_dims_t bad;
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_REFLECTANCE, 7, 0, 1, 7), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_BRDF_FULL, 1, 7, 0, 7), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_SPECTRA, 0, 0, 1, 0), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_SPECTRA, 0, 0, 0, 5), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_SPECTRA, 0, 0, 1, 65536), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, BW_SHAPE_SPECTRA, 0, 0, 1u << 20, 65535), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(&bad, (bw_shape_t)4, 0, 0, 1, 5), BW_ERR_SHAPE);
+    assert_int_equal(bw_dims_make(NULL, BW_SHAPE_SPECTRA, 0, 0, 1, 5), BW_ERR_ARG);
+    bw_dims_t e;
+    e = d, e.shape = 4;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.n_in = 2;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.n_out = 15;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.level_out = 7;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.level_in = 1;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.bands = 0;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.shape = BW_SHAPE_SPECTRA, e.n_out = 16, e.level_out = 0;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+    e = d, e.shape = BW_SHAPE_BRDF_FULL, e.n_in = 1;
+    assert_int_equal(bw_encode(&e, &p, x, work, NULL, out, cap, &len), BW_ERR_SHAPE);
+
+    /* output buffer */
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, good - 1, &len), BW_ERR_OUTPUT_FULL);
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, BW_HEADER_SIZE, &len),
+                     BW_ERR_OUTPUT_FULL);
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, 0, &len), BW_ERR_OUTPUT_FULL);
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, good, &len), BW_OK);
+    assert_int_equal(len, good);
+    {
+        /* nothing written past out_cap */
+        uint8_t *tight = xmalloc(good + 16);
+        memset(tight, 0xC3, good + 16);
+        assert_int_equal(bw_encode(&d, &p, x, work, NULL, tight, good - 10, &len),
+                         BW_ERR_OUTPUT_FULL);
+        for (size_t i = good - 10; i < good + 16; i++)
+            assert_int_equal(tight[i], 0xC3);
+        free(tight);
+    }
+
+    /* NULL pointers */
+    assert_int_equal(bw_encode(NULL, &p, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    assert_int_equal(bw_encode(&d, NULL, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    assert_int_equal(bw_encode(&d, &p, NULL, work, NULL, out, cap, &len), BW_ERR_ARG);
+    assert_int_equal(bw_encode(&d, &p, x, NULL, NULL, out, cap, &len), BW_ERR_ARG);
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, NULL, cap, &len), BW_ERR_ARG);
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, cap, NULL), BW_ERR_ARG);
+    assert_int_equal(bw_decode(NULL, good, x, n, work, wb, NULL), BW_ERR_ARG);
+    assert_int_equal(bw_decode(out, good, NULL, n, work, wb, NULL), BW_ERR_ARG);
+    assert_int_equal(bw_decode(out, good, x, n, NULL, wb, NULL), BW_ERR_ARG);
+    assert_int_equal(bw_decode_unchecked(NULL, good, x, n, work, wb), BW_ERR_ARG);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(NULL, good, &h), BW_ERR_ARG);
+    assert_int_equal(bw_header_read(out, good, NULL), BW_ERR_ARG);
+
+    /* parameters */
+    bw_params_t q = p;
+    q.mode = 4;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    q = p, q.basis = 3;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    q = params_of(BW_MODE_MAX_ERROR, BW_BASIS_HAAR), q.max_error = 0;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    q.max_error = BW_SAMPLE_MAX + 1u;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    q = params_of(BW_MODE_STEP, BW_BASIS_HAAR), q.step_q8 = 255;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    q = p, q.flags = (uint8_t)(~BW_FLAGS_KNOWN & (BW_FLAGS_KNOWN + 1u));
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_ERR_ARG);
+    /* known flags are recorded in the header and change nothing else */
+    q = p, q.flags = BW_FLAGS_KNOWN;
+    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_OK);
+    assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+    assert_int_equal(h.flags, BW_FLAGS_KNOWN);
+    assert_int_equal(len, good);
+    assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
+    assert_int_equal(first_mismatch(x, ver, n), n);
+
+    free(x);
+    free(work);
+    free(ver);
+    free(out);
+}
+
+static void status_codes_have_messages(void **state)
+{
+    (void)state;
+    for (int st = 0; st >= BW_ERR_TRAILING; st--)
+        assert_string_not_equal(bw_strerror(st), "unknown status");
+    assert_string_equal(bw_strerror(1), "unknown status");
+    assert_string_equal(bw_strerror(BW_ERR_TRAILING - 1), "unknown status");
+}
+
+/* ---- golden payload checksums --------------------------------------------- */
+
+typedef struct {
+    const char *name;
+    shape_case_t s;
+    uint8_t mode, basis;
+    uint32_t param;
+} golden_case_t;
+
+static const golden_case_t golden_cases[] = {
+    {"refl3x81_lossless_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
+    {"refl3x81_lossless_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_53, 0},
+    {"refl3x81_lossless_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_97, 0},
+    {"refl3x81_maxerr4_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 4},
+    {"refl3x81_maxerr4_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_53, 4},
+    {"refl3x81_maxerr4_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_97, 4},
+    {"refl3x81_bytes2000_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_HAAR, 2000},
+    {"refl3x81_bytes2000_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_53, 2000},
+    {"refl3x81_bytes2000_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_97, 2000},
+    {"refl3x81_step2560_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_STEP, BW_BASIS_97, 2560},
+    {"refl3x1_lossless_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 1}, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
+    {"spectra5x2151_lossless_auto", {BW_SHAPE_SPECTRA, 0, 0, 5, 2151}, BW_MODE_LOSSLESS, BW_BASIS_AUTO, 0},
+    {"iso4x2x17_maxerr1_53", {BW_SHAPE_BRDF_ISO, 2, 0, 4, 17}, BW_MODE_MAX_ERROR, BW_BASIS_53, 1},
+    {"full1x1x9_bytes600_97", {BW_SHAPE_BRDF_FULL, 1, 1, 0, 9}, BW_MODE_BYTES, BW_BASIS_97, 600},
+};
+
+/* A fixed integer formula of (vector, band): no PRNG, no floating point. */
+static void golden_input(const bw_dims_t *d, int32_t *x)
+{
+    size_t vectors = (size_t)d->n_in * d->n_out;
+    for (size_t v = 0; v < vectors; v++)
+        for (uint32_t k = 0; k < d->bands; k++) {
+            int32_t kk = (int32_t)(k % 97u);
+            x[v * d->bands + k] = 30000 + 250 * kk - 3 * kk * kk +
+                                  (int32_t)((v * 7919u) % 613u) * 11 +
+                                  (int32_t)((v * 31u + k * 17u) % 23u);
+        }
+}
+
+static void golden_payload(const golden_case_t *g, uint32_t *crc, size_t *len)
+{
+    bw_dims_t d = dims_of(g->s.shape, g->s.level_out, g->s.level_in, g->s.n_in, g->s.bands);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    golden_input(&d, x);
+    bw_params_t p = params_of(g->mode, g->basis);
+    p.max_error = g->mode == BW_MODE_MAX_ERROR ? g->param : 0u;
+    p.byte_budget = g->mode == BW_MODE_BYTES ? g->param : 0u;
+    p.step_q8 = g->mode == BW_MODE_STEP ? g->param : 0u;
+    uint8_t *out;
+    bw_status_t st = encode_new(&d, &p, x, true, &out, len);
+    if (st != BW_OK)
+        fail_msg("golden case %s: %s", g->name, bw_strerror(st));
+    /* the CRC of header and body (the payload's own trailer): a CRC over the
+     * whole payload, trailer included, is the same constant for every payload */
+    *crc = bw_crc32(out, *len - BW_TRAILER_SIZE);
+    assert_int_equal(*crc, get_le32(out + *len - BW_TRAILER_SIZE));
+    free(out);
+    free(x);
+}
+
+static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
+{
+    (void)state;
+    uint32_t crc[ARRAY_LEN(golden_cases)];
+    size_t len[ARRAY_LEN(golden_cases)];
+    for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+        golden_payload(&golden_cases[i], &crc[i], &len[i]);
+
+    if (env_on("BW_GOLDEN_UPDATE")) {
+        FILE *f = fopen(GOLDEN_PATH, "w");
+        if (f == NULL)
+            fail_msg("cannot write %s (run from the repository root)", GOLDEN_PATH);
+        fprintf(f, "# name crc32-of-header-and-body length (tests/unit/test_codec.c; "
+                   "BW_GOLDEN_UPDATE=1 rewrites this file)\n");
+        for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+            fprintf(f, "%s %08x %zu\n", golden_cases[i].name, (unsigned)crc[i], len[i]);
+        assert_int_equal(fclose(f), 0);
+        print_message("rewrote %s (%zu cases)\n", GOLDEN_PATH, ARRAY_LEN(golden_cases));
+        return;
+    }
+
+    FILE *f = fopen(GOLDEN_PATH, "r");
+    if (f == NULL)
+        fail_msg("cannot read %s (run from the repository root; BW_GOLDEN_UPDATE=1 creates it)",
+                 GOLDEN_PATH);
+    bool found[ARRAY_LEN(golden_cases)] = {false};
+    unsigned bad = 0;
+    char line[256];
+    while (fgets(line, sizeof line, f)) {
+        char name[128];
+        unsigned want_crc;
+        size_t want_len;
+        if (line[0] == '#' || line[0] == '\n')
+            continue;
+        if (sscanf(line, "%127s %x %zu", name, &want_crc, &want_len) != 3) {
+            print_error("%s: cannot parse line: %s", GOLDEN_PATH, line);
+            bad++;
+            continue;
+        }
+        for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++) {
+            if (strcmp(name, golden_cases[i].name) != 0)
+                continue;
+            found[i] = true;
+            if (crc[i] != want_crc || len[i] != want_len) {
+                print_error("golden %s: payload crc %08x length %zu, recorded %08x %zu\n", name,
+                            (unsigned)crc[i], len[i], want_crc, want_len);
+                bad++;
+            }
+        }
+    }
+    fclose(f);
+    for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+        if (!found[i]) {
+            print_error("golden %s: missing from %s\n", golden_cases[i].name, GOLDEN_PATH);
+            bad++;
+        }
+    if (bad)
+        fail_msg("%u golden mismatches: the payload format changed (if intended, rerun with "
+                 "BW_GOLDEN_UPDATE=1 and commit %s)",
+                 bad, GOLDEN_PATH);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(crc32_of_the_check_string_is_cbf43926),
+        cmocka_unit_test(status_codes_have_messages),
+        cmocka_unit_test(range_coder_round_trips_adaptive_and_direct_bits),
+        cmocka_unit_test(range_decoder_flags_reading_past_its_input),
+        cmocka_unit_test(spectral_depth_halves_while_longer_than_four),
+        cmocka_unit_test(spectral_forward_step_matches_the_lifting_formulas),
+        cmocka_unit_test(spectral_rounding_ties_follow_the_formula),
+        cmocka_unit_test(spectral_inverse_undoes_forward_for_every_length_basis_and_depth),
+        cmocka_unit_test(spectral_step_of_a_constant_has_zero_details),
+        cmocka_unit_test(biohaar_positions_are_a_bijection_for_every_level),
+        cmocka_unit_test(biohaar_level_one_matches_the_weighted_lifting),
+        cmocka_unit_test(biohaar_update_rounds_every_small_difference_like_the_formula),
+        cmocka_unit_test(biohaar_inverse_undoes_forward_for_every_level_and_vector_length),
+        cmocka_unit_test(biohaar_of_a_constant_field_is_the_constant_and_zero_details),
+        cmocka_unit_test(lossless_reflectance_round_trip_is_bit_exact_for_every_level_and_band_count),
+        cmocka_unit_test(lossless_round_trip_is_bit_exact_for_spectra_and_brdf_shapes),
+        cmocka_unit_test(lossless_round_trip_survives_worst_case_coefficient_growth),
+        cmocka_unit_test(auto_basis_keeps_the_smallest_payload_and_names_a_real_basis),
+        cmocka_unit_test(auto_basis_meets_any_byte_budget_a_single_basis_meets),
+        cmocka_unit_test(auto_basis_compares_the_bases_under_the_callers_vector_threshold),
+        cmocka_unit_test(max_error_mode_keeps_every_sample_within_the_bound_on_random_data),
+        cmocka_unit_test(max_error_mode_keeps_every_sample_within_the_bound_on_field_spectra),
+        cmocka_unit_test(byte_budget_payload_never_exceeds_the_budget_on_random_data),
+        cmocka_unit_test(byte_budget_payload_never_exceeds_the_budget_on_field_spectra),
+        cmocka_unit_test(byte_budget_too_small_is_refused),
+        cmocka_unit_test(byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra),
+        cmocka_unit_test(every_truncation_of_a_valid_payload_is_rejected),
+        cmocka_unit_test(every_single_bit_flip_is_rejected_by_the_crc_or_the_header_checks),
+        cmocka_unit_test(unchecked_decoding_of_garbage_bodies_returns_a_status),
+        cmocka_unit_test(undersized_decoder_buffers_are_refused),
+        cmocka_unit_test(trailing_bytes_are_refused),
+        cmocka_unit_test(a_bad_magic_or_version_is_refused),
+        cmocka_unit_test(out_of_range_header_fields_are_refused_after_recomputing_the_crc),
+        cmocka_unit_test(a_max_error_header_whose_bound_wraps_is_refused),
+        cmocka_unit_test(encoder_refuses_bad_input),
+        cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
+    };
+    return cmocka_run_group_tests(tests, NULL, teardown_group);
+}
