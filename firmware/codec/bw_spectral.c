@@ -27,7 +27,7 @@
 
 #define Q16_A (-103949) /* -1.586134342 */
 #define Q16_B (-3472)   /* -0.052980118 */
-#define Q16_C (57862)   /*  0.882911075 */
+#define Q16_C (57863)   /*  0.882911075, rounded so that a constant signal leaves no detail */
 #define Q16_D (29066)   /*  0.443506852 */
 
 unsigned bw_spec_levels(uint32_t bands)
