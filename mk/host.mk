@@ -30,3 +30,11 @@ run: deps-run all
 
 deps-run:
 	$(Q)tests/deps.sh run
+
+# regenerate the committed geodesic tables of the core
+$(BUILD)/gen_geodesic_tables: host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c
+	$(Q)$(CC) $(WARN) -O2 -Ihost-tools/src $^ -lm -o $@
+
+tables: $(BUILD)/gen_geodesic_tables
+	$(Q)$< > firmware/codec/bw_geodesic_tables.c
+	$(Q)$< --areas > firmware/codec/bw_geodesic_areas.c

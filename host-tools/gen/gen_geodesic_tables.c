@@ -1,10 +1,14 @@
+#define _DEFAULT_SOURCE
 /*
  * Prints firmware/codec/bw_geodesic_tables.c: the Bio-Haar weight table
- * bw_geo_weight_q16 for base triangle 0's subtree (see bw_geodesic.h).
+ * bw_geo_weight_q16 for base triangle 0's subtree (see bw_geodesic.h); with
+ * --areas, firmware/codec/bw_geodesic_areas.c: the solid angles of that
+ * subtree's triangles at levels 0..6 as Q31 fractions of the base triangle.
  *
  *   cc -std=c11 -O2 -I host-tools/src -o /tmp/gen_geodesic_tables \
  *      host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c -lm
  *   /tmp/gen_geodesic_tables > firmware/codec/bw_geodesic_tables.c
+ *   /tmp/gen_geodesic_tables --areas > firmware/codec/bw_geodesic_areas.c
  *
  * The weights are checked rather than assert()ed so that the checks survive
  * -DNDEBUG; any failure exits non-zero without printing a table.
@@ -13,6 +17,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "geodesic.h"
 
@@ -118,8 +123,54 @@ static void emit(void)
     printf("};\n");
 }
 
-int main(void)
+#define AREA_LEVELS 7u  /* levels 0..6, as BW_GEO_AREA_LEVELS */
+
+/* Solid angle / solid angle of base 0 (pi/2), rounded to Q31. */
+static int emit_areas(void)
 {
+    bwh_tri_t *t = malloc(bwh_grid_count(AREA_LEVELS - 1) * sizeof *t);
+    if (!t) {
+        fprintf(stderr, "gen_geodesic_tables: out of memory\n");
+        return -1;
+    }
+    printf("/*\n"
+           " * GENERATED FILE - DO NOT EDIT.\n"
+           " * Written by host-tools/gen/gen_geodesic_tables.c --areas (see that file).\n"
+           " *\n"
+           " * Solid angle of each triangle of base 0's subtree, levels 0..6, as an\n"
+           " * unsigned Q31 fraction of the base triangle's pi/2 sr:\n"
+           " * round(2^31 * a / (pi/2)). Triangle p (0 <= p < 4^j) of level j is entry\n"
+           " * (4^j - 1)/3 + p.\n"
+           " */\n"
+           "#include \"bw_geodesic.h\"\n"
+           "\n"
+           "const uint32_t bw_geo_area_q31[BW_GEO_AREAS] = {\n");
+    for (unsigned j = 0; j < AREA_LEVELS; j++) {
+        if (bwh_grid_triangles(j, t) != 0) {
+            free(t);
+            return -1;
+        }
+        uint32_t n = 1u << (2u * j);
+        printf("    /* level %u */\n", j);
+        for (uint32_t p = 0; p < n; p++) {
+            double q = 2147483648.0 * tri_area(&t[p]) / (M_PI / 2);
+            printf("%s%10lu,%s", p % 6 == 0 ? "    " : "", (unsigned long)floor(q + 0.5),
+                   (p + 1 == n || (p + 1) % 6 == 0) ? "\n" : " ");
+        }
+    }
+    printf("};\n");
+    free(t);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && !strcmp(argv[1], "--areas"))
+        return emit_areas() != 0;
+    if (argc != 1) {
+        fprintf(stderr, "usage: gen_geodesic_tables [--areas]\n");
+        return 2;
+    }
     if (build() != 0)
         return 1;
     emit();

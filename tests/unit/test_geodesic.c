@@ -284,6 +284,30 @@ static void the_firmware_weight_table_equals_what_the_generator_computes(void **
     assert_int_equal(checked, BW_GEO_PARENTS);
 }
 
+static void the_firmware_area_table_equals_the_solid_angles(void **state)
+{
+    (void)state;
+    for (unsigned j = 0; j < BW_GEO_AREA_LEVELS; j++) {
+        size_t n = bwh_grid_count(j);
+        bwh_tri_t *t = malloc(n * sizeof *t);
+        assert_non_null(t);
+        assert_int_equal(bwh_grid_triangles(j, t), 0);
+        for (uint32_t i = 0; i < n; i++) {
+            double a = bwh_solid_angle(t[i].v[0], t[i].v[1], t[i].v[2]);
+            double want = floor(2147483648.0 * a / (3.14159265358979323846 / 2) + 0.5);
+            /* every base reads base 0's entry: exact for the congruent bases */
+            assert_true((double)bw_geo_area(j, i) == want);
+            if (j > 0) {
+                uint64_t parent = bw_geo_area(j - 1, i / 4), sum = 0;
+                for (unsigned m = 0; m < 4; m++)
+                    sum += bw_geo_area(j, (i & ~3u) + m);
+                assert_true(sum + 2 >= parent && sum <= parent + 2); /* rounding only */
+            }
+        }
+        free(t);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -300,6 +324,7 @@ int main(void)
             locate_rejects_the_lower_hemisphere_and_handles_edges_deterministically),
         cmocka_unit_test(the_four_base_triangles_are_congruent),
         cmocka_unit_test(the_firmware_weight_table_equals_what_the_generator_computes),
+        cmocka_unit_test(the_firmware_area_table_equals_the_solid_angles),
     };
     return cmocka_run_group_tests(tests, setup_grids, teardown_grids);
 }
