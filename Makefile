@@ -30,7 +30,7 @@ $(BUILD)/%.o: %.c
 
 -include $(shell find build -name '*.d' 2>/dev/null)
 
-.PHONY: all clean check run bench deps deps-run fuzz tests tables help
+.PHONY: all clean check run bench deps deps-run fuzz tests tables target-tests help
 .DEFAULT_GOAL := all
 
 clean:

@@ -11,3 +11,17 @@ all: $(BUILD)/libbwcore.a
 
 $(BUILD)/libbwcore.a: $(CORE_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+# target tests: the core on the emulated board, semihosting for I/O and exit
+TT_SRC := hal/cortex-m/startup.c hal/qemu-mps2/board.c tests/target/test_target.c
+TT_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(TT_SRC))
+TT_ELF := $(BUILD)/tests/test_target.elf
+$(TT_OBJ): CFLAGS += -Ihal -Itests
+
+target-tests: $(TT_ELF)
+
+$(TT_ELF): $(CORE_OBJ) $(TT_OBJ) $(LINKER_SCRIPT) linker/cortex-m.ld
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) $(CPU) --specs=rdimon.specs -nostartfiles -Llinker -T $(LINKER_SCRIPT) \
+	    -Wl,--gc-sections $(CORE_OBJ) $(TT_OBJ) -o $@

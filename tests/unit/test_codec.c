@@ -42,6 +42,8 @@
 /* BW_TEST_QUICK leaves out round trips of this many samples or more. */
 #define QUICK_MAX_SAMPLES ((size_t)1 << 22)
 
+#include "../golden/golden_cases.h"
+
 #define GOLDEN_PATH "tests/golden/payload_crc.txt"
 static const char *const field_dirs[] = {
     "tests/data/field_psr3500",
@@ -2105,53 +2107,13 @@ static void status_codes_have_messages(void **state)
 
 /* ---- golden payload checksums --------------------------------------------- */
 
-typedef struct {
-    const char *name;
-    shape_case_t s;
-    uint8_t mode, basis;
-    uint32_t param;
-} golden_case_t;
-
-static const golden_case_t golden_cases[] = {
-    {"refl3x81_lossless_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
-    {"refl3x81_lossless_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_53, 0},
-    {"refl3x81_lossless_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_LOSSLESS, BW_BASIS_97, 0},
-    {"refl3x81_maxerr4_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 4},
-    {"refl3x81_maxerr4_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_53, 4},
-    {"refl3x81_maxerr4_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_MAX_ERROR, BW_BASIS_97, 4},
-    {"refl3x81_bytes2000_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_HAAR, 2000},
-    {"refl3x81_bytes2000_53", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_53, 2000},
-    {"refl3x81_bytes2000_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_BYTES, BW_BASIS_97, 2000},
-    {"refl3x81_step2560_97", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81}, BW_MODE_STEP, BW_BASIS_97, 2560},
-    {"refl3x1_lossless_haar", {BW_SHAPE_REFLECTANCE, 3, 0, 1, 1}, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
-    {"spectra5x2151_lossless_auto", {BW_SHAPE_SPECTRA, 0, 0, 5, 2151}, BW_MODE_LOSSLESS, BW_BASIS_AUTO, 0},
-    {"iso4x2x17_maxerr1_53", {BW_SHAPE_BRDF_ISO, 2, 0, 4, 17}, BW_MODE_MAX_ERROR, BW_BASIS_53, 1},
-    {"full1x1x9_bytes600_97", {BW_SHAPE_BRDF_FULL, 1, 1, 0, 9}, BW_MODE_BYTES, BW_BASIS_97, 600},
-};
-
-/* A fixed integer formula of (vector, band): no PRNG, no floating point. */
-static void golden_input(const bw_dims_t *d, int32_t *x)
-{
-    size_t vectors = (size_t)d->n_in * d->n_out;
-    for (size_t v = 0; v < vectors; v++)
-        for (uint32_t k = 0; k < d->bands; k++) {
-            int32_t kk = (int32_t)(k % 97u);
-            x[v * d->bands + k] = 30000 + 250 * kk - 3 * kk * kk +
-                                  (int32_t)((v * 7919u) % 613u) * 11 +
-                                  (int32_t)((v * 31u + k * 17u) % 23u);
-        }
-}
-
 static void golden_payload(const golden_case_t *g, uint32_t *crc, size_t *len)
 {
-    bw_dims_t d = dims_of(g->s.shape, g->s.level_out, g->s.level_in, g->s.n_in, g->s.bands);
+    bw_dims_t d = dims_of(g->shape, g->level_out, g->level_in, g->n_in, g->bands);
     size_t n = bw_dims_samples(&d);
     int32_t *x = xmalloc(n * sizeof *x);
     golden_input(&d, x);
-    bw_params_t p = params_of(g->mode, g->basis);
-    p.max_error = g->mode == BW_MODE_MAX_ERROR ? g->param : 0u;
-    p.byte_budget = g->mode == BW_MODE_BYTES ? g->param : 0u;
-    p.step_q8 = g->mode == BW_MODE_STEP ? g->param : 0u;
+    bw_params_t p = golden_params(g);
     uint8_t *out;
     bw_status_t st = encode_new(&d, &p, x, true, &out, len);
     if (st != BW_OK)
@@ -2167,9 +2129,9 @@ static void golden_payload(const golden_case_t *g, uint32_t *crc, size_t *len)
 static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
 {
     (void)state;
-    uint32_t crc[ARRAY_LEN(golden_cases)];
-    size_t len[ARRAY_LEN(golden_cases)];
-    for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+    uint32_t crc[GOLDEN_CASES];
+    size_t len[GOLDEN_CASES];
+    for (size_t i = 0; i < GOLDEN_CASES; i++)
         golden_payload(&golden_cases[i], &crc[i], &len[i]);
 
     if (env_on("BW_GOLDEN_UPDATE")) {
@@ -2178,10 +2140,10 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
             fail_msg("cannot write %s (run from the repository root)", GOLDEN_PATH);
         fprintf(f, "# name crc32-of-header-and-body length (tests/unit/test_codec.c; "
                    "BW_GOLDEN_UPDATE=1 rewrites this file)\n");
-        for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+        for (size_t i = 0; i < GOLDEN_CASES; i++)
             fprintf(f, "%s %08x %zu\n", golden_cases[i].name, (unsigned)crc[i], len[i]);
         assert_int_equal(fclose(f), 0);
-        print_message("rewrote %s (%zu cases)\n", GOLDEN_PATH, ARRAY_LEN(golden_cases));
+        print_message("rewrote %s (%zu cases)\n", GOLDEN_PATH, GOLDEN_CASES);
         return;
     }
 
@@ -2189,7 +2151,7 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
     if (f == NULL)
         fail_msg("cannot read %s (run from the repository root; BW_GOLDEN_UPDATE=1 creates it)",
                  GOLDEN_PATH);
-    bool found[ARRAY_LEN(golden_cases)] = {false};
+    bool found[GOLDEN_CASES] = {false};
     unsigned bad = 0;
     char line[256];
     while (fgets(line, sizeof line, f)) {
@@ -2203,7 +2165,7 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
             bad++;
             continue;
         }
-        for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++) {
+        for (size_t i = 0; i < GOLDEN_CASES; i++) {
             if (strcmp(name, golden_cases[i].name) != 0)
                 continue;
             found[i] = true;
@@ -2215,7 +2177,7 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
         }
     }
     fclose(f);
-    for (size_t i = 0; i < ARRAY_LEN(golden_cases); i++)
+    for (size_t i = 0; i < GOLDEN_CASES; i++)
         if (!found[i]) {
             print_error("golden %s: missing from %s\n", golden_cases[i].name, GOLDEN_PATH);
             bad++;

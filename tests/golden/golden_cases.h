@@ -1,0 +1,68 @@
+/*
+ * The fixed inputs whose payload checksums are recorded in
+ * tests/golden/payload_crc.txt. Shared by the host unit test and the target
+ * test, so the emulated Cortex-M4 must produce byte-identical payloads.
+ */
+#ifndef BW_GOLDEN_CASES_H
+#define BW_GOLDEN_CASES_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "bw_codec.h"
+
+typedef struct {
+    const char *name;
+    uint8_t shape, level_out, level_in;
+    uint32_t n_in, bands;
+    uint8_t mode, basis;
+    uint32_t param; /* max_error, byte_budget or step_q8 by mode */
+} golden_case_t;
+
+static const golden_case_t golden_cases[] = {
+    {"refl3x81_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
+    {"refl3x81_lossless_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53, 0},
+    {"refl3x81_lossless_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_97, 0},
+    {"refl3x81_maxerr4_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 4},
+    {"refl3x81_maxerr4_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_53, 4},
+    {"refl3x81_maxerr4_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_97, 4},
+    {"refl3x81_bytes2000_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_HAAR, 2000},
+    {"refl3x81_bytes2000_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_53, 2000},
+    {"refl3x81_bytes2000_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_97, 2000},
+    {"refl3x81_step2560_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_STEP, BW_BASIS_97, 2560},
+    {"refl3x1_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 1, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
+    {"spectra5x2151_lossless_auto", BW_SHAPE_SPECTRA, 0, 0, 5, 2151, BW_MODE_LOSSLESS, BW_BASIS_AUTO, 0},
+    {"iso4x2x17_maxerr1_53", BW_SHAPE_BRDF_ISO, 2, 0, 4, 17, BW_MODE_MAX_ERROR, BW_BASIS_53, 1},
+    {"full1x1x9_bytes600_97", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97, 600},
+};
+
+#define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)
+
+/* A fixed integer formula of (vector, band): no PRNG, no floating point. */
+static inline void golden_input(const bw_dims_t *d, int32_t *x)
+{
+    size_t vectors = (size_t)d->n_in * d->n_out;
+    for (size_t v = 0; v < vectors; v++)
+        for (uint32_t k = 0; k < d->bands; k++) {
+            int32_t kk = (int32_t)(k % 97u);
+            x[v * d->bands + k] = 30000 + 250 * kk - 3 * kk * kk +
+                                  (int32_t)((v * 7919u) % 613u) * 11 +
+                                  (int32_t)((v * 31u + k * 17u) % 23u);
+        }
+}
+
+static inline bw_params_t golden_params(const golden_case_t *g)
+{
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = g->mode;
+    p.basis = g->basis;
+    p.scale_bits = 0x3727C5ACu; /* 1e-5f */
+    p.max_error = g->mode == BW_MODE_MAX_ERROR ? g->param : 0u;
+    p.byte_budget = g->mode == BW_MODE_BYTES ? g->param : 0u;
+    p.step_q8 = g->mode == BW_MODE_STEP ? g->param : 0u;
+    return p;
+}
+
+#endif

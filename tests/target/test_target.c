@@ -1,0 +1,117 @@
+/*
+ * The codec core on the emulated Cortex-M4 (QEMU mps2-an386, semihosting):
+ * every golden case encodes to the very payload the host produces (CRC and
+ * length from tests/golden/payload_crc.txt), decodes within its guarantee,
+ * and reports the instructions it took (-icount shift=0: deterministic).
+ * Ends with "RESULT: N passed, M failed"; the exit status is non-zero on a
+ * failure.
+ */
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bw_codec.h"
+#include "bw_crc32.h"
+#include "bw_hal.h"
+#include "golden/golden_cases.h"
+
+#define MAX_SAMPLES 20736u /* the largest golden case: level 3 x 81 bands */
+#define MAX_BANDS 2151u
+
+static int32_t x[MAX_SAMPLES];
+static int32_t work[BW_WORK_BOUND(MAX_SAMPLES, MAX_BANDS)];
+static int32_t verify[BW_WORK_BOUND(MAX_SAMPLES, MAX_BANDS)];
+static uint8_t payload[BW_PAYLOAD_BOUND(MAX_SAMPLES)];
+
+static unsigned passed, failed;
+
+static void check(int ok, const char *what, const char *name)
+{
+    if (ok) {
+        passed++;
+    } else {
+        failed++;
+        printf("FAIL: %s: %s\n", name, what);
+    }
+}
+
+/* Looks a case up in the golden file (run from the repository root). */
+static int golden_lookup(const char *name, uint32_t *crc, size_t *len)
+{
+    FILE *f = fopen("tests/golden/payload_crc.txt", "r");
+    if (!f)
+        return -1;
+    char line[256], n[128];
+    unsigned long c, l;
+    int found = -1;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#')
+            continue;
+        if (sscanf(line, "%127s %lx %lu", n, &c, &l) == 3 && !strcmp(n, name)) {
+            *crc = (uint32_t)c;
+            *len = (size_t)l;
+            found = 0;
+            break;
+        }
+    }
+    fclose(f);
+    return found;
+}
+
+int main(void)
+{
+    const bw_hal_t *hal = bw_board();
+    printf("codec core on %s\n", "mps2-an386 (Cortex-M4)");
+    for (size_t c = 0; c < GOLDEN_CASES; c++) {
+        const golden_case_t *g = &golden_cases[c];
+        bw_dims_t d;
+        if (bw_dims_make(&d, (bw_shape_t)g->shape, g->level_out, g->level_in, g->n_in, g->bands) !=
+                BW_OK ||
+            bw_dims_samples(&d) > MAX_SAMPLES || d.bands > MAX_BANDS) {
+            check(0, "dims", g->name);
+            continue;
+        }
+        size_t n = bw_dims_samples(&d);
+        golden_input(&d, x);
+        bw_params_t p = golden_params(g);
+        size_t len = 0;
+        uint64_t t0 = bw_hal_counter(hal);
+        bw_status_t st = bw_encode(&d, &p, x, work, verify, payload, sizeof payload, &len);
+        uint64_t t1 = bw_hal_counter(hal);
+        check(st == BW_OK, bw_strerror(st), g->name);
+        if (st != BW_OK)
+            continue;
+
+        uint32_t want_crc;
+        size_t want_len;
+        uint32_t crc = bw_crc32(payload, len - BW_TRAILER_SIZE);
+        if (golden_lookup(g->name, &want_crc, &want_len) != 0)
+            check(0, "not in tests/golden/payload_crc.txt", g->name);
+        else
+            check(crc == want_crc && len == want_len, "payload differs from the host's", g->name);
+
+        /* decode alone, then the guarantee */
+        bw_header_t h;
+        uint64_t t2 = bw_hal_counter(hal);
+        st = bw_decode(payload, len, verify, MAX_SAMPLES, work, sizeof work / sizeof *work, &h);
+        uint64_t t3 = bw_hal_counter(hal);
+        check(st == BW_OK, bw_strerror(st), g->name);
+        uint32_t worst = 0;
+        for (size_t i = 0; st == BW_OK && i < n; i++) {
+            int64_t e = (int64_t)verify[i] - x[i];
+            uint32_t a = (uint32_t)(e < 0 ? -e : e);
+            if (a > worst)
+                worst = a;
+        }
+        if (g->mode == BW_MODE_LOSSLESS)
+            check(worst == 0, "lossless decode not exact", g->name);
+        if (g->mode == BW_MODE_MAX_ERROR)
+            check(worst <= g->param, "max error exceeded", g->name);
+        printf("  %-28s %6lu samples %6lu bytes  encode+verify %8.1f instr/sample  decode %6.1f\n",
+               g->name, (unsigned long)n, (unsigned long)len, (double)(t1 - t0) / (double)n,
+               (double)(t3 - t2) / (double)n);
+    }
+    printf("RESULT: %u passed, %u failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
