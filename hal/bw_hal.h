@@ -21,7 +21,9 @@ typedef struct {
     int (*link_read)(uint8_t *buf, size_t cap);
     /* data-ready line towards the host */
     int (*drdy_set)(int level);
-    /* next block of input samples (sensor or file); returns samples read */
+    /* select the measurement to read (a file on the emulated board) */
+    int (*sensor_open)(const char *source);
+    /* next block of input samples; returns samples read, 0 at the end */
     int (*sensor_read)(int32_t *samples, size_t cap);
     /* a fatal fault: record it for the host and stop */
     void (*fault)(uint32_t code);
@@ -42,6 +44,10 @@ static inline int bw_hal_link_read(const bw_hal_t *h, uint8_t *b, size_t cap)
 static inline int bw_hal_drdy_set(const bw_hal_t *h, int level)
 {
     return h->drdy_set ? h->drdy_set(level) : -BW_HAL_ENOSYS;
+}
+static inline int bw_hal_sensor_open(const bw_hal_t *h, const char *source)
+{
+    return h->sensor_open ? h->sensor_open(source) : -BW_HAL_ENOSYS;
 }
 static inline int bw_hal_sensor_read(const bw_hal_t *h, int32_t *s, size_t cap)
 {

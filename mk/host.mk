@@ -1,12 +1,13 @@
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g
-CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ihost-tools/src $(EXTRA_CFLAGS)
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/src $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
-HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c
+HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c firmware/link/bw_frame.c \
+            host-tools/src/link.c
 CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
-           host-tools/src/cmd_synth.c
+           host-tools/src/cmd_synth.c host-tools/src/cmd_device.c
 HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 
@@ -23,9 +24,11 @@ $(BW_CLI): $(CLI_OBJ) $(LIB)
 	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
+include mk/ref.mk
 -include mk/bench.mk
 
 run: deps-run all
+	$(Q)$(MAKE) --no-print-directory TARGET=qemu all
 	$(Q)host-tools/scripts/run.sh
 
 deps-run:

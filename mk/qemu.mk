@@ -7,7 +7,19 @@ OPT ?= -O2
 CFLAGS := $(WARN) $(OPT) $(CPU) -ffreestanding -ffunction-sections -fdata-sections $(CORE_INC)
 LINKER_SCRIPT := linker/mps2-an386.ld
 
-all: $(BUILD)/libbwcore.a
+FW_SRC := firmware/link/bw_frame.c firmware/app/app.c firmware/app/main.c \
+          hal/cortex-m/startup.c hal/qemu-mps2/board.c
+FW_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FW_SRC))
+FW_ELF := $(BUILD)/brdfwave-fw.elf
+$(FW_OBJ): CFLAGS += -Ihal -Ifirmware/link -Ifirmware/app
+
+all: $(BUILD)/libbwcore.a $(FW_ELF)
+
+# the firmware image: the application on the codec core
+$(FW_ELF): $(CORE_OBJ) $(FW_OBJ) $(LINKER_SCRIPT) linker/cortex-m.ld
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) $(CPU) --specs=rdimon.specs -nostartfiles -Llinker -T $(LINKER_SCRIPT) \
+	    -Wl,--gc-sections -Wl,-Map,$(BUILD)/brdfwave-fw.map $(CORE_OBJ) $(FW_OBJ) -o $@
 
 $(BUILD)/libbwcore.a: $(CORE_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^

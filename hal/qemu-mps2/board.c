@@ -1,6 +1,7 @@
 /*
  * QEMU mps2-an386 backend: SysTick as the instruction counter, the CMSDK
- * APB UART0 as the host link.
+ * APB UART0 as the host link, a file read by semihosting as the sensor
+ * (little-endian int32 samples).
  *
  * Under `qemu-system-arm -icount shift=0` one instruction takes 1 ns of
  * virtual time and SysTick, clocked from the 25 MHz CPU clock, advances one
@@ -8,6 +9,8 @@
  * SysTick with an overflow count kept by its interrupt.
  */
 #include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "bw_hal.h"
 
@@ -71,10 +74,43 @@ static int link_read(uint8_t *buf, size_t cap)
     return (int)n;
 }
 
+static FILE *sensor;
+
+static int sensor_open(const char *source)
+{
+    if (sensor)
+        fclose(sensor);
+    sensor = fopen(source, "rb");
+    return sensor ? 0 : -BW_HAL_EIO;
+}
+
+static int sensor_read(int32_t *samples, size_t cap)
+{
+    if (!sensor)
+        return -BW_HAL_EIO;
+    size_t n = 0;
+    uint8_t b[4];
+    while (n < cap && fread(b, 1, 4, sensor) == 4)
+        samples[n++] = (int32_t)((uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
+                                 (uint32_t)b[3] << 24);
+    return (int)n;
+}
+
+static void fault(uint32_t code)
+{
+    printf("fault: vector %lu\n", (unsigned long)code);
+    exit(128 + (int)(code & 0x7Fu));
+}
+
+void bw_board_fault(uint32_t vector) { fault(vector); }
+
 static const bw_hal_t board = {
     .counter = counter,
     .link_write = link_write,
     .link_read = link_read,
+    .sensor_open = sensor_open,
+    .sensor_read = sensor_read,
+    .fault = fault,
 };
 
 const bw_hal_t *bw_board(void)

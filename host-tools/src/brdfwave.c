@@ -15,6 +15,7 @@ static const struct {
     {"compare", bw_cmd_compare, "error metrics between two raw sample files"},
     {"grid", bw_cmd_grid, "print the geodesic triangle grid as CSV"},
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
+    {"receive", bw_cmd_receive, "store payloads arriving on a serial port"},
 };
 
 static void usage(FILE *f)

@@ -41,7 +41,17 @@ typedef struct {
     unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
     double scale;       /* > 0: force the integer step of float input */
     unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE) */
+    /* encode on a device instead of the host: NULL or "qemu" (the emulated
+     * co-processor); the host then decodes and checks the payload */
+    const char *device;
+    const char *firmware;          /* NULL: the default image */
+    double device_timeout;         /* seconds, 0: 120 */
+    int drop_chunk;                /* tests: lose the first copy of a chunk, -1: none */
+    uint64_t *device_instructions; /* out: the device's count for the encode */
 } bwh_encode_opts_t;
+
+/* Sets bwh_last_error(); returns -1. */
+int bwh_fail(const char *fmt, ...);
 
 /* k if scale is float32(10^-k), k = 1..9, else 0. */
 int bwh_decimal_exponent(float scale);

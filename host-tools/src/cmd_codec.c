@@ -70,7 +70,11 @@ static const char encode_help[] =
     "  --bytes N         the payload is at most N bytes, best quality that fits\n"
     "  --ratio R         the payload is at most 4*samples/R bytes (R:1 against float32)\n"
     "  --basis B         spectral wavelet (default auto: the smallest payload)\n"
-    "  --scale S         float input: value of one integer step\n";
+    "  --scale S         float input: value of one integer step\n"
+    "  --device D        where to encode: host (default) or qemu, the emulated\n"
+    "                    Cortex-M4 co-processor (its payload comes back over the\n"
+    "                    UART link and is checked on the host)\n"
+    "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -82,13 +86,20 @@ int bw_cmd_encode(int argc, char **argv)
         {"max-error", required_argument, 0, 'e'},  {"bytes", required_argument, 0, 'B'},
         {"ratio", required_argument, 0, 'r'},      {"basis", required_argument, 0, 'w'},
         {"scale", required_argument, 0, 's'},      {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
+        {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
+        {"drop-chunk", required_argument, 0, 'K'}, {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
     int nin = 0;
     const char *outp = NULL, *fmt = "f32";
     uint32_t bands = 0, level = UINT32_MAX, incoming = 0, level_in = UINT32_MAX;
-    bwh_encode_opts_t o = {BW_MODE_LOSSLESS, 0, 0, BW_BASIS_AUTO, 0, 0};
+    bwh_encode_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.mode = BW_MODE_LOSSLESS;
+    o.basis = BW_BASIS_AUTO;
+    o.drop_chunk = -1;
+    uint64_t device_instructions = 0;
+    o.device_instructions = &device_instructions;
     int modes = 0;
     double ratio = 0;
     int c;
@@ -152,10 +163,23 @@ int bw_cmd_encode(int argc, char **argv)
             if (parse_pos_double(optarg, &o.scale))
                 return usage_err(C, "--scale must be a positive number");
             break;
+        case 'D': o.device = optarg; break;
+        case 'F': o.firmware = optarg; break;
+        case 'K': {
+            uint32_t k;
+            if (parse_u32(optarg, 65535, &k))
+                return usage_err(C, "--drop-chunk must be a chunk number");
+            o.drop_chunk = (int)k;
+            break;
+        }
         case 'h': fputs(encode_help, stdout); return 0;
         default: return usage_err(C, "unknown option or missing argument");
         }
     }
+    if (o.device && strcmp(o.device, "qemu") && strcmp(o.device, "host"))
+        return usage_err(C, "--device must be qemu or host");
+    if (o.device && !strcmp(o.device, "host"))
+        o.device = NULL;
     while (optind < argc && nin < (int)(sizeof in / sizeof *in))
         in[nin++] = argv[optind++];
     if (!nin || !outp)
@@ -322,6 +346,10 @@ int bw_cmd_encode(int argc, char **argv)
         err(C, bwh_last_error());
         goto out;
     }
+    if (o.device)
+        printf("device %s: %zu samples -> %zu bytes, %llu instructions (%.1f per sample)\n",
+               o.device, need, plen, (unsigned long long)device_instructions,
+               (double)device_instructions / (double)need);
     rc = 0;
 out:
     free(ints);

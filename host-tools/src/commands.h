@@ -9,5 +9,6 @@ int bw_cmd_info(int argc, char **argv);
 int bw_cmd_compare(int argc, char **argv);
 int bw_cmd_grid(int argc, char **argv);
 int bw_cmd_synth(int argc, char **argv);
+int bw_cmd_receive(int argc, char **argv);
 
 #endif

@@ -1,0 +1,191 @@
+/*
+ * The on-device application: wait for a job from the host, read the
+ * measurement from the sensor, encode it with the codec core, send the
+ * payload in frames, and keep it until the host acknowledges it.
+ *
+ *   idle --JOB--> read --> encode --> send --+--ACK--> idle
+ *                                    ^      |
+ *                                    +------+ RESEND (chunks), or silence
+ *                                             for ACK_WAIT instructions
+ *   idle --QUIT--> exit
+ *
+ * RAM is static and sized at compile time (APP_MAX_SAMPLES). This version
+ * holds the whole measurement; see docs/LINK.md.
+ */
+#include "app.h"
+
+#include <string.h>
+
+#include "bw_codec.h"
+#include "bw_crc32.h"
+#include "bw_frame.h"
+
+#ifndef APP_MAX_SAMPLES
+#define APP_MAX_SAMPLES 131072u
+#endif
+#ifndef APP_MAX_BANDS
+#define APP_MAX_BANDS 4096u
+#endif
+#ifndef APP_PAYLOAD_CAP
+#define APP_PAYLOAD_CAP (1024u * 1024u)
+#endif
+/* instructions without an answer before the payload is sent again */
+#define ACK_WAIT 4000000000ull
+#define MAX_SENDS 8u
+
+static int32_t samples[APP_MAX_SAMPLES];
+static int32_t work[BW_WORK_BOUND(APP_MAX_SAMPLES, APP_MAX_BANDS)];
+static uint8_t payload[APP_PAYLOAD_CAP];
+static uint8_t txbuf[BW_FRAME_MAX];
+static bw_frame_rx_t rx;
+static bw_frame_t frame;
+
+static void send(const bw_hal_t *hal, uint8_t type, uint16_t seq, const uint8_t *d, uint16_t len)
+{
+    size_t n = bw_frame_pack(txbuf, type, seq, d, len);
+    bw_hal_link_write(hal, txbuf, n);
+}
+
+static void send_error(const bw_hal_t *hal, int status)
+{
+    uint8_t d[4];
+    bw_put_u32(d, (uint32_t)status);
+    send(hal, BW_FT_ERROR, 0, d, 4);
+}
+
+/* Next frame from the host, or false after `wait` instructions (0: forever). */
+static bool receive(const bw_hal_t *hal, uint64_t wait)
+{
+    uint64_t t0 = bw_hal_counter(hal);
+    uint8_t b[64];
+    for (;;) {
+        int n = bw_hal_link_read(hal, b, sizeof b);
+        for (int i = 0; i < n; i++)
+            if (bw_frame_rx_byte(&rx, b[i], &frame))
+                return true; /* bytes after it are dropped: the host waits for us */
+        if (wait && bw_hal_counter(hal) - t0 > wait)
+            return false;
+    }
+}
+
+static uint16_t chunks_of(size_t len) { return (uint16_t)((len + BW_FRAME_MAX_DATA - 1u) / BW_FRAME_MAX_DATA); }
+
+static void send_chunk(const bw_hal_t *hal, size_t len, uint16_t c)
+{
+    size_t off = (size_t)c * BW_FRAME_MAX_DATA;
+    size_t n = len - off < BW_FRAME_MAX_DATA ? len - off : BW_FRAME_MAX_DATA;
+    send(hal, BW_FT_DATA, c, payload + off, (uint16_t)n);
+}
+
+static void send_payload(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t instructions)
+{
+    uint8_t d[22];
+    bw_put_u32(d, id);
+    bw_put_u32(d + 4, (uint32_t)len);
+    bw_put_u16(d + 8, chunks_of(len));
+    bw_put_u32(d + 10, bw_crc32(payload, len));
+    bw_put_u32(d + 14, (uint32_t)instructions);
+    bw_put_u32(d + 18, (uint32_t)(instructions >> 32));
+    send(hal, BW_FT_START, 0, d, sizeof d);
+    for (uint16_t c = 0; c < chunks_of(len); c++)
+        send_chunk(hal, len, c);
+    bw_put_u32(d, id);
+    send(hal, BW_FT_END, 0, d, 4);
+}
+
+/* Runs one job; returns 0 when the host acknowledged the payload. */
+static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
+{
+    bw_dims_t d;
+    bw_status_t st = bw_dims_make(&d, (bw_shape_t)job->shape, job->level_out, job->level_in,
+                                  job->n_in, job->bands);
+    if (st == BW_OK && (bw_dims_samples(&d) > APP_MAX_SAMPLES || d.bands > APP_MAX_BANDS))
+        st = BW_ERR_WORK;
+    if (st != BW_OK) {
+        send_error(hal, st);
+        return -1;
+    }
+    size_t n = bw_dims_samples(&d);
+    if (bw_hal_sensor_open(hal, job->source) < 0) {
+        send_error(hal, APP_ERR_SENSOR);
+        return -1;
+    }
+    size_t got = 0;
+    for (;;) {
+        int r = bw_hal_sensor_read(hal, samples + got, n - got);
+        if (r <= 0)
+            break;
+        got += (size_t)r;
+        if (got == n)
+            break;
+    }
+    if (got != n) {
+        send_error(hal, APP_ERR_SENSOR);
+        return -1;
+    }
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = job->mode;
+    p.basis = job->basis;
+    p.flags = job->flags;
+    p.max_error = job->max_error;
+    p.byte_budget = job->byte_budget;
+    p.scale_bits = job->scale_bits;
+    p.offset_bits = job->offset_bits;
+    size_t len = 0;
+    uint64_t t0 = bw_hal_counter(hal);
+    st = bw_encode(&d, &p, samples, work, NULL, payload, sizeof payload, &len);
+    uint64_t spent = bw_hal_counter(hal) - t0;
+    if (st != BW_OK) {
+        send_error(hal, st);
+        return -1;
+    }
+    send_payload(hal, id, len, spent);
+    unsigned sends = 1;
+    for (;;) {
+        if (!receive(hal, ACK_WAIT)) {
+            if (++sends > MAX_SENDS)
+                return -1; /* the payload stays until the next job */
+            send_payload(hal, id, len, spent);
+            continue;
+        }
+        if (frame.type == BW_FT_ACK && frame.len == 4 && bw_get_u32(frame.data) == id)
+            return 0;
+        if (frame.type == BW_FT_RESEND && frame.len >= 4 && bw_get_u32(frame.data) == id) {
+            if (frame.len == 4) {
+                send_payload(hal, id, len, spent);
+            } else {
+                for (uint16_t i = 4; i + 1u < frame.len; i += 2) {
+                    uint16_t c = bw_get_u16(frame.data + i);
+                    if (c < chunks_of(len))
+                        send_chunk(hal, len, c);
+                }
+                uint8_t e[4];
+                bw_put_u32(e, id);
+                send(hal, BW_FT_END, 0, e, 4);
+            }
+        }
+        if (frame.type == BW_FT_QUIT)
+            return 1;
+    }
+}
+
+int bw_app_run(const bw_hal_t *hal)
+{
+    bw_frame_rx_init(&rx);
+    uint32_t id = 0;
+    for (;;) {
+        receive(hal, 0);
+        if (frame.type == BW_FT_QUIT)
+            return 0;
+        if (frame.type != BW_FT_JOB)
+            continue;
+        bw_job_t job;
+        if (!bw_job_unpack(frame.data, frame.len, &job)) {
+            send_error(hal, BW_ERR_ARG);
+            continue;
+        }
+        if (run_job(hal, &job, ++id) == 1)
+            return 0;
+    }
+}

@@ -1,0 +1,125 @@
+#include "bw_frame.h"
+
+#include <string.h>
+
+#include "bw_crc32.h"
+
+size_t bw_frame_pack(uint8_t *out, uint8_t type, uint16_t seq, const uint8_t *data, uint16_t len)
+{
+    if (len > BW_FRAME_MAX_DATA)
+        return 0;
+    out[0] = BW_FRAME_SYNC0;
+    out[1] = BW_FRAME_SYNC1;
+    out[2] = type;
+    out[3] = 0;
+    bw_put_u16(out + 4, seq);
+    bw_put_u16(out + 6, len);
+    if (len)
+        memcpy(out + BW_FRAME_HEADER, data, len);
+    bw_put_u32(out + BW_FRAME_HEADER + len, bw_crc32(out + 2, BW_FRAME_HEADER - 2u + len));
+    return BW_FRAME_OVERHEAD + len;
+}
+
+void bw_frame_rx_init(bw_frame_rx_t *rx)
+{
+    rx->have = 0;
+    rx->dropped = 0;
+    rx->bad_crc = 0;
+}
+
+/* Drops the first byte and shifts to the next possible sync. */
+static void resync(bw_frame_rx_t *rx)
+{
+    size_t i = 1;
+    while (i < rx->have && rx->buf[i] != BW_FRAME_SYNC0)
+        i++;
+    rx->dropped += (uint32_t)i;
+    memmove(rx->buf, rx->buf + i, rx->have - i);
+    rx->have -= i;
+}
+
+bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out)
+{
+    rx->buf[rx->have++] = byte;
+    for (;;) {
+        if (rx->have >= 1 && rx->buf[0] != BW_FRAME_SYNC0) {
+            resync(rx);
+            continue;
+        }
+        if (rx->have >= 2 && rx->buf[1] != BW_FRAME_SYNC1) {
+            resync(rx);
+            continue;
+        }
+        if (rx->have < BW_FRAME_HEADER)
+            return false;
+        uint16_t len = bw_get_u16(rx->buf + 6);
+        if (len > BW_FRAME_MAX_DATA || rx->buf[3] != 0) {
+            resync(rx);
+            continue;
+        }
+        size_t total = BW_FRAME_OVERHEAD + len;
+        if (rx->have < total)
+            return false;
+        uint32_t crc = bw_get_u32(rx->buf + BW_FRAME_HEADER + len);
+        if (bw_crc32(rx->buf + 2, BW_FRAME_HEADER - 2u + len) != crc) {
+            rx->bad_crc++;
+            resync(rx);
+            continue;
+        }
+        out->type = rx->buf[2];
+        out->flags = rx->buf[3];
+        out->seq = bw_get_u16(rx->buf + 4);
+        out->len = len;
+        memcpy(out->data, rx->buf + BW_FRAME_HEADER, len);
+        /* keep any bytes past this frame */
+        memmove(rx->buf, rx->buf + total, rx->have - total);
+        rx->have -= total;
+        return true;
+    }
+}
+
+size_t bw_job_pack(const bw_job_t *j, uint8_t *o)
+{
+    memset(o, 0, BW_JOB_SIZE);
+    o[0] = j->shape;
+    o[1] = j->level_out;
+    o[2] = j->level_in;
+    o[3] = j->mode;
+    o[4] = j->basis;
+    o[5] = j->flags;
+    bw_put_u32(o + 8, j->n_in);
+    bw_put_u32(o + 12, j->bands);
+    bw_put_u32(o + 16, j->max_error);
+    bw_put_u32(o + 20, j->byte_budget);
+    bw_put_u32(o + 24, j->scale_bits);
+    bw_put_u32(o + 28, j->offset_bits);
+    for (size_t i = 0; i + 1 < sizeof j->source && j->source[i]; i++)
+        o[32 + i] = (uint8_t)j->source[i];
+    return BW_JOB_SIZE;
+}
+
+bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
+{
+    if (len != BW_JOB_SIZE || in[6] || in[7])
+        return false;
+    memset(j, 0, sizeof *j);
+    j->shape = in[0];
+    j->level_out = in[1];
+    j->level_in = in[2];
+    j->mode = in[3];
+    j->basis = in[4];
+    j->flags = in[5];
+    j->n_in = bw_get_u32(in + 8);
+    j->bands = bw_get_u32(in + 12);
+    j->max_error = bw_get_u32(in + 16);
+    j->byte_budget = bw_get_u32(in + 20);
+    j->scale_bits = bw_get_u32(in + 24);
+    j->offset_bits = bw_get_u32(in + 28);
+    size_t i = 0;
+    for (; i < sizeof j->source - 1u; i++) {
+        j->source[i] = (char)in[32 + i];
+        if (!in[32 + i])
+            break;
+    }
+    return i < sizeof j->source - 1u; /* NUL-terminated within the field */
+}

@@ -1,0 +1,99 @@
+/*
+ * Frames of the host link (UART or I2C), shared by the device and the host.
+ * Freestanding, no heap. See docs/LINK.md.
+ *
+ *   offset  size  field
+ *   0       2     sync 0xB5 0x57
+ *   2       1     type (bw_frame_type_t)
+ *   3       1     flags (0)
+ *   4       2     seq, little-endian
+ *   6       2     len of data, little-endian, <= BW_FRAME_MAX_DATA
+ *   8       len   data
+ *   8+len   4     CRC-32 of bytes 2 .. 8+len-1 (type to the end of data)
+ *
+ * A receiver that loses sync, or sees a bad CRC, drops bytes up to the next
+ * sync pair and tries again, so a corrupted or truncated frame costs only
+ * itself.
+ */
+#ifndef BW_FRAME_H
+#define BW_FRAME_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define BW_FRAME_SYNC0 0xB5u
+#define BW_FRAME_SYNC1 0x57u
+#define BW_FRAME_HEADER 8u
+#define BW_FRAME_MAX_DATA 1024u
+#define BW_FRAME_OVERHEAD (BW_FRAME_HEADER + 4u)
+#define BW_FRAME_MAX (BW_FRAME_OVERHEAD + BW_FRAME_MAX_DATA)
+
+typedef enum {
+    BW_FT_HELLO = 0x01,   /* device -> host: ready; data = version u8          */
+    BW_FT_JOB = 0x02,     /* host -> device: encode request (bw_job_t)         */
+    BW_FT_QUIT = 0x03,    /* host -> device: stop                              */
+    BW_FT_START = 0x10,   /* device -> host: payload id u32, length u32,
+                           * chunks u16, CRC-32 of the payload u32, then
+                           * instructions spent encoding u64                   */
+    BW_FT_DATA = 0x11,    /* device -> host: chunk `seq` of the payload        */
+    BW_FT_END = 0x12,     /* device -> host: payload id u32                    */
+    BW_FT_ACK = 0x20,     /* host -> device: payload id u32, verified          */
+    BW_FT_RESEND = 0x21,  /* host -> device: payload id u32, then chunk
+                           * numbers u16 (none: everything)                   */
+    BW_FT_ERROR = 0x30    /* device -> host: status i32 (bw_status_t)         */
+} bw_frame_type_t;
+
+typedef struct {
+    uint8_t type;
+    uint8_t flags;
+    uint16_t seq;
+    uint16_t len;
+    uint8_t data[BW_FRAME_MAX_DATA];
+} bw_frame_t;
+
+/* Writes a frame into out (BW_FRAME_OVERHEAD + len bytes); returns its size,
+ * 0 if len is too large. */
+size_t bw_frame_pack(uint8_t *out, uint8_t type, uint16_t seq, const uint8_t *data, uint16_t len);
+
+/* Byte-at-a-time receiver with resynchronisation. */
+typedef struct {
+    uint8_t buf[BW_FRAME_MAX];
+    size_t have;
+    uint32_t dropped; /* bytes skipped while hunting for a frame */
+    uint32_t bad_crc; /* frames rejected by their CRC            */
+} bw_frame_rx_t;
+
+void bw_frame_rx_init(bw_frame_rx_t *rx);
+
+/* Feeds one byte; returns true when a complete, valid frame is in *out. */
+bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out);
+
+/* The encode request of a BW_FT_JOB frame. */
+typedef struct {
+    uint8_t shape, level_out, level_in, mode, basis, flags;
+    uint32_t n_in, bands, max_error, byte_budget, scale_bits, offset_bits;
+    char source[128]; /* the sensor's input (QEMU: a file by semihosting) */
+} bw_job_t;
+
+#define BW_JOB_SIZE 160u
+size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
+bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
+
+static inline void bw_put_u16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+}
+static inline void bw_put_u32(uint8_t *p, uint32_t v)
+{
+    bw_put_u16(p, (uint16_t)v);
+    bw_put_u16(p + 2, (uint16_t)(v >> 16));
+}
+static inline uint16_t bw_get_u16(const uint8_t *p) { return (uint16_t)(p[0] | p[1] << 8); }
+static inline uint32_t bw_get_u32(const uint8_t *p)
+{
+    return (uint32_t)bw_get_u16(p) | (uint32_t)bw_get_u16(p + 2) << 16;
+}
+
+#endif

@@ -1,0 +1,417 @@
+#define _GNU_SOURCE
+#include "link.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bw_crc32.h"
+#include "bw_frame.h"
+#include "bwhost.h"
+
+int bwh_fail(const char *fmt, ...);
+
+int bwh_port_open(const char *path)
+{
+    int fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return bwh_fail("%s: %s", path, strerror(errno));
+    struct termios t;
+    if (tcgetattr(fd, &t) == 0) {
+        cfmakeraw(&t);
+        cfsetispeed(&t, B115200);
+        cfsetospeed(&t, B115200);
+        t.c_cflag |= CLOCAL | CREAD;
+        t.c_cc[VMIN] = 0;
+        t.c_cc[VTIME] = 0;
+        if (tcsetattr(fd, TCSANOW, &t) != 0) {
+            close(fd);
+            return bwh_fail("%s: cannot configure: %s", path, strerror(errno));
+        }
+    } /* not a terminal (a pipe or file in tests): use it as it is */
+    return fd;
+}
+
+static int write_all(int fd, const uint8_t *p, size_t n)
+{
+    while (n) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && (errno == EAGAIN || errno == EINTR)) {
+            struct pollfd pf = {fd, POLLOUT, 0};
+            poll(&pf, 1, 100);
+            continue;
+        }
+        if (w <= 0)
+            return bwh_fail("link write: %s", strerror(errno));
+        p += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+int bwh_send_frame(int fd, uint8_t type, uint16_t seq, const uint8_t *data, uint16_t len)
+{
+    uint8_t buf[BW_FRAME_MAX];
+    size_t n = bw_frame_pack(buf, type, seq, data, len);
+    if (!n)
+        return bwh_fail("frame too large");
+    return write_all(fd, buf, n);
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* Waits for the next valid frame; 1 = frame, 0 = timeout, -1 = error/EOF. */
+static int next_frame(int fd, bw_frame_rx_t *rx, bw_frame_t *f, double timeout_s)
+{
+    double end = now() + timeout_s;
+    int is_tty = isatty(fd);
+    for (;;) {
+        uint8_t b;
+        ssize_t r = read(fd, &b, 1);
+        if (r == 1) {
+            if (bw_frame_rx_byte(rx, b, f))
+                return 1;
+            continue;
+        }
+        /* a raw terminal with VMIN = 0 reads 0 when it has nothing yet */
+        if (r == 0 && !is_tty)
+            return bwh_fail("link closed"), -1;
+        if (r < 0 && errno != EAGAIN && errno != EINTR) {
+            if (errno == EIO) /* pty without a peer any more */
+                return bwh_fail("link closed (device gone)"), -1;
+            return bwh_fail("link read: %s", strerror(errno)), -1;
+        }
+        double left = end - now();
+        if (left <= 0)
+            return 0;
+        struct pollfd pf = {fd, POLLIN, 0};
+        int ms = left > 0.2 ? 200 : (int)(left * 1000) + 1;
+        if (poll(&pf, 1, ms) < 0 && errno != EINTR)
+            return bwh_fail("poll: %s", strerror(errno)), -1;
+    }
+}
+
+int bwh_receive_payload(int fd, const bwh_rx_opts_t *o, bwh_received_t *r)
+{
+    memset(r, 0, sizeof *r);
+    bw_frame_rx_t rx;
+    bw_frame_t f;
+    bw_frame_rx_init(&rx);
+    uint8_t *buf = NULL, *have = NULL;
+    uint32_t id = 0, crc = 0;
+    size_t len = 0;
+    uint16_t chunks = 0;
+    int started = 0, dropped_once = 0;
+    for (;;) {
+        int k = next_frame(fd, &rx, &f, o->timeout_s);
+        if (k < 0)
+            goto fail;
+        if (k == 0) {
+            if (!started) {
+                bwh_fail("no payload from the device within %.0f s", o->timeout_s);
+                goto fail;
+            }
+            /* silence after a start: ask for everything again */
+            uint8_t d[4];
+            bw_put_u32(d, id);
+            if (++r->resends > 16) {
+                bwh_fail("the device stopped answering resend requests");
+                goto fail;
+            }
+            if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, 4) != 0)
+                goto fail;
+            continue;
+        }
+        switch (f.type) {
+        case BW_FT_ERROR: {
+            int32_t st = f.len >= 4 ? (int32_t)bw_get_u32(f.data) : 0;
+            bwh_fail("the device reports: %s", st == -100 ? "sensor input unavailable"
+                                                          : bw_strerror(st));
+            goto fail;
+        }
+        case BW_FT_START:
+            if (f.len < 22)
+                break;
+            if (started && bw_get_u32(f.data) == id)
+                break; /* a resend of the same payload */
+            free(buf);
+            free(have);
+            id = bw_get_u32(f.data);
+            len = bw_get_u32(f.data + 4);
+            chunks = bw_get_u16(f.data + 8);
+            crc = bw_get_u32(f.data + 10);
+            r->instructions = bw_get_u32(f.data + 14) | (uint64_t)bw_get_u32(f.data + 18) << 32;
+            if (len == 0 || len > ((size_t)1 << 31) ||
+                chunks != (len + BW_FRAME_MAX_DATA - 1) / BW_FRAME_MAX_DATA) {
+                bwh_fail("the device announced an inconsistent payload (%zu bytes, %u chunks)",
+                         len, chunks);
+                buf = have = NULL;
+                goto fail;
+            }
+            buf = malloc(len);
+            have = calloc(chunks, 1);
+            if (!buf || !have) {
+                bwh_fail("out of memory");
+                goto fail;
+            }
+            started = 1;
+            break;
+        case BW_FT_DATA: {
+            if (!started || f.seq >= chunks)
+                break;
+            if (o->drop_chunk == (int)f.seq && !dropped_once) {
+                dropped_once = 1; /* simulated loss */
+                break;
+            }
+            size_t off = (size_t)f.seq * BW_FRAME_MAX_DATA;
+            size_t want = len - off < BW_FRAME_MAX_DATA ? len - off : BW_FRAME_MAX_DATA;
+            if (f.len != want)
+                break;
+            memcpy(buf + off, f.data, want);
+            have[f.seq] = 1;
+            break;
+        }
+        case BW_FT_END: {
+            if (!started || f.len < 4 || bw_get_u32(f.data) != id)
+                break;
+            /* list the missing chunks, as many as fit in one frame */
+            uint8_t d[BW_FRAME_MAX_DATA];
+            uint16_t n = 4;
+            bw_put_u32(d, id);
+            for (uint16_t c = 0; c < chunks && n + 2u <= sizeof d; c++)
+                if (!have[c]) {
+                    bw_put_u16(d + n, c);
+                    n += 2;
+                }
+            if (n > 4) {
+                if (++r->resends > 16) {
+                    bwh_fail("payload %u still incomplete after %u resend requests", id,
+                             r->resends - 1);
+                    goto fail;
+                }
+                if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, n) != 0)
+                    goto fail;
+                break;
+            }
+            bw_header_t h;
+            int st = bw_crc32(buf, len) == crc ? bw_header_read(buf, len, &h) : BW_ERR_CRC;
+            if (st != BW_OK) {
+                /* every chunk arrived but the whole does not check: ask again */
+                memset(have, 0, chunks);
+                if (++r->resends > 16) {
+                    bwh_fail("payload %u does not verify: %s", id, bw_strerror(st));
+                    goto fail;
+                }
+                bw_put_u32(d, id);
+                if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, 4) != 0)
+                    goto fail;
+                break;
+            }
+            bw_put_u32(d, id);
+            if (bwh_send_frame(fd, BW_FT_ACK, 0, d, 4) != 0)
+                goto fail;
+            free(have);
+            r->id = id;
+            r->payload = buf;
+            r->len = len;
+            r->bad_frames = rx.bad_crc + (rx.dropped ? 1u : 0u);
+            return 0;
+        }
+        default:
+            break;
+        }
+    }
+fail:
+    free(buf);
+    free(have);
+    return -1;
+}
+
+/* ---- the emulated co-processor ------------------------------------------- */
+
+static char *default_firmware(void)
+{
+    const char *env = getenv("BW_FIRMWARE");
+    if (env && *env)
+        return strdup(env);
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 64);
+    if (n <= 0)
+        return strdup("build/qemu/brdfwave-fw.elf");
+    exe[n] = 0;
+    char *slash = strrchr(exe, '/');
+    if (slash)
+        *slash = 0;
+    char *path = malloc(strlen(exe) + 64);
+    if (path)
+        sprintf(path, "%s/../qemu/brdfwave-fw.elf", exe);
+    return path;
+}
+
+/* Reads QEMU's output until it names the pseudo-terminal of the link. */
+static int find_pty(int out_fd, char *pty, size_t cap, double timeout_s)
+{
+    char acc[4096];
+    size_t have = 0;
+    double end = now() + timeout_s;
+    while (now() < end) {
+        struct pollfd pf = {out_fd, POLLIN, 0};
+        if (poll(&pf, 1, 100) <= 0)
+            continue;
+        ssize_t r = read(out_fd, acc + have, sizeof acc - 1 - have);
+        if (r <= 0)
+            return bwh_fail("the emulator exited before opening the link: %.*s", (int)have, acc);
+        have += (size_t)r;
+        acc[have] = 0;
+        char *p = strstr(acc, "redirected to ");
+        if (p) {
+            p += strlen("redirected to ");
+            char *e = p;
+            while (*e && *e != ' ' && *e != '\n' && *e != '(')
+                e++;
+            if (*e) {
+                size_t l = (size_t)(e - p);
+                if (l + 1 > cap)
+                    return bwh_fail("pty path too long");
+                memcpy(pty, p, l);
+                pty[l] = 0;
+                return 0;
+            }
+        }
+        if (have == sizeof acc - 1)
+            have = 0;
+    }
+    return bwh_fail("the emulator did not open its link within %.0f s", timeout_s);
+}
+
+int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_params_t *p,
+                      const int32_t *samples, const bwh_rx_opts_t *o, bwh_received_t *r)
+{
+    memset(r, 0, sizeof *r);
+    int rc = -1, fd = -1, pipefd[2] = {-1, -1};
+    pid_t pid = -1;
+    char *fw = firmware ? strdup(firmware) : default_firmware();
+    char input[] = "/tmp/brdfwave-sensor-XXXXXX";
+    int in_fd = mkstemp(input);
+    if (!fw || in_fd < 0) {
+        bwh_fail("cannot prepare the device input: %s", strerror(errno));
+        goto out;
+    }
+    struct stat sb;
+    if (stat(fw, &sb) != 0) {
+        bwh_fail("firmware image %s: %s (build it with 'make TARGET=qemu')", fw, strerror(errno));
+        goto out;
+    }
+    size_t n = bw_dims_samples(dims);
+    uint8_t *raw = malloc(n * 4 + 1);
+    if (!raw) {
+        bwh_fail("out of memory");
+        goto out;
+    }
+    for (size_t i = 0; i < n; i++)
+        bw_put_u32(raw + 4 * i, (uint32_t)samples[i]);
+    ssize_t w = write(in_fd, raw, n * 4);
+    free(raw);
+    if (w != (ssize_t)(n * 4)) {
+        bwh_fail("cannot write the device input: %s", strerror(errno));
+        goto out;
+    }
+    close(in_fd);
+    in_fd = -1;
+
+    if (pipe2(pipefd, O_CLOEXEC) != 0) {
+        bwh_fail("pipe: %s", strerror(errno));
+        goto out;
+    }
+    pid = fork();
+    if (pid < 0) {
+        bwh_fail("fork: %s", strerror(errno));
+        goto out;
+    }
+    if (pid == 0) {
+        dup2(pipefd[1], 1);
+        dup2(pipefd[1], 2);
+        execlp("qemu-system-arm", "qemu-system-arm", "-M", "mps2-an386", "-display", "none",
+               "-monitor", "none", "-icount", "shift=0", "-semihosting-config",
+               "enable=on,target=native", "-chardev", "pty,id=link", "-serial", "chardev:link",
+               "-kernel", fw, (char *)NULL);
+        fprintf(stderr, "cannot run qemu-system-arm: %s\n", strerror(errno));
+        _exit(127);
+    }
+    close(pipefd[1]);
+    pipefd[1] = -1;
+    char pty[256];
+    if (find_pty(pipefd[0], pty, sizeof pty, 30) != 0)
+        goto out;
+    fd = bwh_port_open(pty);
+    if (fd < 0)
+        goto out;
+
+    bw_job_t job;
+    memset(&job, 0, sizeof job);
+    job.shape = dims->shape;
+    job.level_out = dims->level_out;
+    job.level_in = dims->level_in;
+    job.n_in = dims->n_in;
+    job.bands = dims->bands;
+    job.mode = p->mode;
+    job.basis = p->basis;
+    job.flags = p->flags;
+    job.max_error = p->max_error;
+    job.byte_budget = p->byte_budget;
+    job.scale_bits = p->scale_bits;
+    job.offset_bits = p->offset_bits;
+    if (strlen(input) >= sizeof job.source) {
+        bwh_fail("input path too long");
+        goto out;
+    }
+    strcpy(job.source, input);
+    uint8_t jb[BW_JOB_SIZE];
+    bw_job_pack(&job, jb);
+    if (bwh_send_frame(fd, BW_FT_JOB, 0, jb, BW_JOB_SIZE) != 0)
+        goto out;
+    if (bwh_receive_payload(fd, o, r) != 0)
+        goto out;
+    bwh_send_frame(fd, BW_FT_QUIT, 0, NULL, 0);
+    rc = 0;
+out:
+    if (pid > 0) {
+        /* the firmware exits on QUIT; do not wait for ever */
+        int status;
+        double end = now() + 10;
+        while (waitpid(pid, &status, WNOHANG) == 0) {
+            if (now() > end) {
+                kill(pid, SIGKILL);
+                waitpid(pid, &status, 0);
+                break;
+            }
+            usleep(20000);
+        }
+    }
+    if (fd >= 0)
+        close(fd);
+    if (pipefd[0] >= 0)
+        close(pipefd[0]);
+    if (pipefd[1] >= 0)
+        close(pipefd[1]);
+    if (in_fd >= 0)
+        close(in_fd);
+    unlink(input);
+    free(fw);
+    return rc;
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# End to end: the firmware in QEMU reads the measurement as its sensor input,
+# encodes it on the emulated Cortex-M4 and sends the payload over its UART
+# (a pseudo-terminal) to the host, which checks the frames, asks for resends,
+# stores the payload, decodes it and compares it with the host encoder's
+# payload and with the input. Also `brdfwave receive` against a scripted
+# device on a pseudo-terminal that corrupts and drops frames.
+set -u
+cd "$(dirname "$0")/../.."
+BW=${BW:-build/host/brdfwave}
+PY=/usr/bin/python3
+DATA=tests/data/field_psr3500
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+make --no-print-directory -s TARGET=qemu all || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
+
+# same_payload NAME ENCODE-ARGS...: device and host payloads are identical,
+# and the device's decodes within the mode's guarantee
+same_payload() {
+    local name=$1
+    shift
+    if ! "$BW" encode --device qemu "$@" -o "$T/dev.bwv" >"$T/dev.out" 2>"$T/dev.err"; then
+        bad "$name: device encode: $(cat "$T/dev.err")"
+        return
+    fi
+    grep -q "instructions (" "$T/dev.out" && ok || bad "$name: no instruction count reported"
+    "$BW" encode "$@" -o "$T/host.bwv" 2>"$T/host.err" || { bad "$name: host encode: $(cat "$T/host.err")"; return; }
+    cmp -s "$T/dev.bwv" "$T/host.bwv" && ok || bad "$name: device payload differs from the host's"
+    "$BW" decode -i "$T/dev.bwv" -o "$T/dev.f32" && ok || bad "$name: decode"
+}
+
+same_payload "field spectra lossless" --input-format sed -i $DATA/*.sed --lossless
+"$BW" decode -i "$T/dev.bwv" -o "$T/dev.i32" --output-format i32
+"$BW" encode --input-format sed -i $DATA/*.sed -o "$T/ref.bwv" --basis haar >/dev/null
+"$BW" decode -i "$T/ref.bwv" -o "$T/ref.i32" --output-format i32
+cmp -s "$T/dev.i32" "$T/ref.i32" && ok || bad "field spectra: device decode not bit-exact"
+
+same_payload "field spectra max-error" --input-format sed -i $DATA/*.sed --max-error 0.001
+"$BW" decode -i "$T/ref.bwv" -o "$T/ref.f32"
+"$BW" compare "$T/ref.f32" "$T/dev.f32" >"$T/cmp"
+$PY -c "import sys; sys.exit(0 if float('$(sed -n 's/^max_abs_error: //p' "$T/cmp")') <= 0.001 else 1)" && ok ||
+    bad "field spectra: max-error bound broken after the device: $(cat "$T/cmp")"
+
+"$BW" synth --model phong --kd 0.75 --ks 0.25 --n 20 --level 4 --incoming 16 -o "$T/p.f32"
+same_payload "phong ratio 64" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64
+same_payload "phong max-error" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --max-error 0.01 --basis 53
+"$BW" synth --model ward --level 2 --level-in 2 -o "$T/w.f32"
+same_payload "ward full brdf bytes" -i "$T/w.f32" --bands 1 --level 2 --level-in 2 --bytes 2000
+head -c $((4 * 256 * 81)) /dev/urandom >"$T/r.i32"
+$PY - "$T/r.i32" <<'PY'
+import struct, sys
+b = open(sys.argv[1], 'rb').read()
+v = [x % 60000 for x in struct.unpack('<%dI' % (len(b) // 4), b)]
+open(sys.argv[1], 'wb').write(struct.pack('<%di' % len(v), *v))
+PY
+same_payload "level-3 x 81 reflectance lossless" -i "$T/r.i32" --input-format i32 --bands 81 --level 3
+
+# resend: the host loses a chunk and asks for it again
+"$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&
+    "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 -o "$T/host.bwv" &&
+    cmp -s "$T/dev.bwv" "$T/host.bwv" && ok || bad "resend of a lost chunk: $(cat "$T/err")"
+
+# too large for the device: one clear line, non-zero exit, no output, no hang
+"$BW" synth --model ward --level 4 --level-in 4 -o "$T/wbig.f32"
+if timeout 120 "$BW" encode --device qemu -i "$T/wbig.f32" --bands 1 --level 4 --level-in 4 --ratio 64 -o "$T/x.bwv" 2>"$T/err"; then
+    bad "oversized job accepted"
+else
+    [ "$(wc -l <"$T/err")" = 1 ] && [ ! -e "$T/x.bwv" ] && ok || bad "oversized job: $(cat "$T/err")"
+fi
+"$BW" encode --device qemu --firmware "$T/none.elf" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 8 -o "$T/x.bwv" 2>"$T/err" &&
+    bad "missing firmware accepted" || { [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "missing firmware: $(cat "$T/err")"; }
+pgrep -f "brdfwave-fw.elf" >/dev/null && bad "an emulator was left running" || ok
+
+# `brdfwave receive` against a scripted device: garbage, a corrupted frame,
+# a lost chunk; the receiver must resynchronise, ask, and store it intact
+"$BW" encode --input-format sed -i $DATA/*.sed -o "$T/src.bwv" --max-error 0.002 >/dev/null
+mkdir -p "$T/rx"
+$PY tests/target/fake_device.py "$T/src.bwv" "$T/pty" "$T/dev.log" &
+fake=$!
+for _ in $(seq 50); do [ -s "$T/pty" ] && break; sleep 0.1; done
+if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 10 >"$T/rx.out" 2>"$T/rx.err"; then
+    cmp -s "$T/src.bwv" "$T/rx/payload-7.bwv" && ok || bad "receive: stored payload differs"
+    grep -q "resend request" "$T/rx.out" && ok || bad "receive: no summary line"
+else
+    bad "receive: $(cat "$T/rx.err")"
+fi
+wait $fake && ok || bad "scripted device: $(cat "$T/dev.log")"
+grep -q "RESEND" "$T/dev.log" && ok || bad "receive never asked for the damaged chunk"
+grep -q "ACK" "$T/dev.log" && ok || bad "receive never acknowledged"
+ls "$T/rx" | grep -q tmp && bad "receive left a temporary file" || ok
+
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" = 0 ]

@@ -1,0 +1,131 @@
+/* Link frames: packing, byte-at-a-time reception with resynchronisation,
+ * and the job record. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "bw_frame.h"
+
+static bw_frame_rx_t rx;
+static bw_frame_t got;
+
+/* Feeds bytes; returns the number of frames completed. */
+static int feed(const uint8_t *p, size_t n, bw_frame_t *last)
+{
+    int frames = 0;
+    for (size_t i = 0; i < n; i++)
+        if (bw_frame_rx_byte(&rx, p[i], &got)) {
+            frames++;
+            if (last)
+                *last = got;
+        }
+    return frames;
+}
+
+static void packed_frames_are_received_intact_at_every_length(void **state)
+{
+    (void)state;
+    static uint8_t buf[BW_FRAME_MAX], data[BW_FRAME_MAX_DATA];
+    for (unsigned i = 0; i < sizeof data; i++)
+        data[i] = (uint8_t)(i * 37u + 11u);
+    for (uint16_t len = 0; len <= BW_FRAME_MAX_DATA; len += (len < 40 ? 1 : 97)) {
+        bw_frame_rx_init(&rx);
+        size_t n = bw_frame_pack(buf, BW_FT_DATA, (uint16_t)(len * 3u), data, len);
+        assert_int_equal(n, BW_FRAME_OVERHEAD + len);
+        bw_frame_t f;
+        assert_int_equal(feed(buf, n, &f), 1);
+        assert_int_equal(f.type, BW_FT_DATA);
+        assert_int_equal(f.seq, (uint16_t)(len * 3u));
+        assert_int_equal(f.len, len);
+        assert_memory_equal(f.data, data, len);
+    }
+    assert_int_equal(bw_frame_pack(buf, BW_FT_DATA, 0, data, BW_FRAME_MAX_DATA + 1), 0);
+}
+
+static void receiver_resynchronises_after_noise_and_corrupted_frames(void **state)
+{
+    (void)state;
+    uint8_t stream[4 * BW_FRAME_MAX];
+    size_t n = 0;
+    const uint8_t noise[] = {0x00, 0xB5, 0x00, 0xB5, 0xB5, 0x57, 0x11, 0x00};
+    memcpy(stream, noise, sizeof noise); /* ends in a false header start */
+    n += sizeof noise;
+    uint8_t d1[5] = {1, 2, 3, 4, 5}, d2[3] = {9, 8, 7};
+    size_t a = bw_frame_pack(stream + n, BW_FT_ACK, 1, d1, 5);
+    stream[n + 10] ^= 0x01; /* corrupt the data of frame 1 */
+    n += a;
+    n += bw_frame_pack(stream + n, BW_FT_RESEND, 2, d2, 3);
+    /* a truncated frame, then a good one */
+    size_t t = bw_frame_pack(stream + n, BW_FT_END, 3, d1, 5);
+    n += t - 3;
+    n += bw_frame_pack(stream + n, BW_FT_END, 4, d2, 3);
+    bw_frame_rx_init(&rx);
+    int frames = 0;
+    uint16_t seqs[4];
+    for (size_t i = 0; i < n; i++)
+        if (bw_frame_rx_byte(&rx, stream[i], &got))
+            seqs[frames++] = got.seq;
+    assert_int_equal(frames, 2);
+    assert_int_equal(seqs[0], 2);
+    assert_int_equal(seqs[1], 4);
+    assert_true(rx.bad_crc >= 1);
+}
+
+static void a_header_with_an_impossible_length_is_skipped(void **state)
+{
+    (void)state;
+    uint8_t bad[8] = {BW_FRAME_SYNC0, BW_FRAME_SYNC1, BW_FT_DATA, 0, 0, 0, 0xFF, 0xFF};
+    uint8_t good[BW_FRAME_OVERHEAD];
+    size_t g = bw_frame_pack(good, BW_FT_QUIT, 9, NULL, 0);
+    bw_frame_rx_init(&rx);
+    bw_frame_t f;
+    assert_int_equal(feed(bad, sizeof bad, NULL), 0);
+    assert_int_equal(feed(good, g, &f), 1);
+    assert_int_equal(f.type, BW_FT_QUIT);
+    assert_int_equal(f.seq, 9);
+}
+
+static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
+{
+    (void)state;
+    bw_job_t j, k;
+    memset(&j, 0, sizeof j);
+    j.shape = 3;
+    j.level_out = 4;
+    j.level_in = 2;
+    j.mode = 2;
+    j.basis = 255;
+    j.flags = 1;
+    j.n_in = 256;
+    j.bands = 2151;
+    j.max_error = 7;
+    j.byte_budget = 123456;
+    j.scale_bits = 0x3727C5ACu;
+    j.offset_bits = 0x80000000u;
+    strcpy(j.source, "/tmp/brdfwave-sensor-abc");
+    uint8_t b[BW_JOB_SIZE];
+    assert_int_equal(bw_job_pack(&j, b), BW_JOB_SIZE);
+    assert_true(bw_job_unpack(b, sizeof b, &k));
+    assert_memory_equal(&j, &k, sizeof j);
+    assert_false(bw_job_unpack(b, sizeof b - 1, &k));
+    b[6] = 1; /* reserved */
+    assert_false(bw_job_unpack(b, sizeof b, &k));
+    b[6] = 0;
+    memset(b + 32, 'x', 128); /* no terminating NUL */
+    assert_false(bw_job_unpack(b, sizeof b, &k));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(packed_frames_are_received_intact_at_every_length),
+        cmocka_unit_test(receiver_resynchronises_after_noise_and_corrupted_frames),
+        cmocka_unit_test(a_header_with_an_impossible_length_is_skipped),
+        cmocka_unit_test(jobs_round_trip_and_bad_jobs_are_refused),
+    };
+    return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
+}
