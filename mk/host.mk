@@ -24,7 +24,7 @@ $(BW_CLI): $(CLI_OBJ) $(LIB)
 	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
-include mk/ref.mk
+-include mk/ref.mk
 -include mk/bench.mk
 
 run: deps-run all
