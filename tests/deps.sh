@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian packages a make goal needs, when they are missing.
-#   tests/deps.sh [check|run|bench|fuzz]   (default: check)
+#   tests/deps.sh [check|run|bench|fuzz|reproduce]   (default: check)
 set -eu
 goal=${1:-check}
 case "$goal" in
 check) pkgs="gcc make libc6-dev libcmocka-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
-             gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf qemu-system-arm python3" ;;
+             gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf qemu-system-arm python3
+             python3-numpy python3-pywt" ;;
 run)   pkgs="gcc make libc6-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
 bench) pkgs="gcc make libc6-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
              python3 python3-numpy python3-matplotlib" ;;
 fuzz)  pkgs="clang libclang-rt-14-dev" ;;
+reproduce) pkgs="gcc make libc6-dev python3 python3-numpy python3-matplotlib" ;;
 *) echo "tests/deps.sh: unknown goal '$goal'" >&2; exit 2 ;;
 esac
 

@@ -1,0 +1,15 @@
+/* bwref: command line of the float reference model. */
+#ifndef BWREF_H
+#define BWREF_H
+
+#include <stddef.h>
+
+int bwref_cmd_wavedec(int argc, char **argv);
+int bwref_cmd_paper(int argc, char **argv);
+
+/* Reads whitespace-separated numbers (text) or raw float32 into *out. */
+int bwref_read_text(const char *path, double **out, size_t *n);
+int bwref_read_f32(const char *path, double **out, size_t *n);
+int bwref_fail(const char *cmd, const char *fmt, ...);
+
+#endif

@@ -1,0 +1,41 @@
+# Float reference model of the paper (host-tools/ref): libbwref, the bwref
+# tool, its tests and `make reproduce` (build/report/paper.md).
+# Shares no code with firmware/codec; uses the host geodesic grid only.
+REF_SRC := $(wildcard host-tools/ref/bwr_*.c)
+REF_CLI_SRC := $(wildcard host-tools/ref/cli/*.c)
+REF_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(REF_SRC)) $(BUILD)/host-tools/src/geodesic.o
+REF_CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(REF_CLI_SRC))
+REF_LIB := $(BUILD)/libbwref.a
+REF_CLI := $(BUILD)/bwref
+REF_INC := -Ihost-tools/ref -Ihost-tools/src
+
+$(patsubst %.c,$(BUILD)/%.o,$(REF_SRC)) $(REF_CLI_OBJ): CFLAGS += $(REF_INC)
+
+all: $(REF_LIB) $(REF_CLI)
+
+$(REF_LIB): $(REF_OBJ)
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+$(REF_CLI): $(REF_CLI_OBJ) $(REF_LIB)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) $(CFLAGS) $(REF_CLI_OBJ) $(REF_LIB) -lm -o $@
+
+REF_TESTS := $(patsubst tests/ref/%.c,$(BUILD)/tests/%,$(wildcard tests/ref/test_ref_*.c))
+
+$(REF_TESTS): $(BUILD)/tests/%: tests/ref/%.c $(REF_LIB)
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  TEST-CC $@")
+	$(Q)$(CC) $(CFLAGS) $(REF_INC) $< $(REF_LIB) -lcmocka -lm -o $@
+
+tests: $(REF_TESTS) $(REF_CLI)
+
+# regenerate the committed filter tables
+ref-filters:
+	$(Q)/usr/bin/python3 host-tools/ref/gen/gen_filters.py > host-tools/ref/bwr_filters.c
+
+# the paper's results, build/report/paper.md
+reproduce: all
+	$(Q)tests/deps.sh reproduce
+	$(Q)BW=$(BW_CLI) BWREF=$(REF_CLI) host-tools/ref/reproduce.sh
+
+.PHONY: ref-filters reproduce
