@@ -74,7 +74,7 @@ else
 fi
 "$BW" encode --device qemu --firmware "$T/none.elf" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 8 -o "$T/x.bwv" 2>"$T/err" &&
     bad "missing firmware accepted" || { [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "missing firmware: $(cat "$T/err")"; }
-pgrep -f "brdfwave-fw.elf" >/dev/null && bad "an emulator was left running" || ok
+pgrep -f "$PWD/build/host/../qemu/brdfwave-fw.elf" >/dev/null && bad "an emulator was left running" || ok
 
 # `brdfwave receive` against a scripted device: garbage, a corrupted frame,
 # a lost chunk; the receiver must resynchronise, ask, and store it intact
