@@ -19,3 +19,5 @@ $(BENCH_JPEGLS): tests/bench/peer_jpegls.c
 .PHONY: bench
 bench: $(BW_CLI) $(BENCH_JPEGLS)
 	BW=$(BW_CLI) PEER_JPEGLS=$(BENCH_JPEGLS) $(BENCH_PYTHON) tests/bench/run_codec_bench.py
+
+include mk/bench-device.mk
