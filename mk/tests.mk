@@ -9,7 +9,7 @@ UNIT_BIN := $(addprefix $(BUILD)/tests/,$(UNIT_TESTS))
 $(BUILD)/tests/%: tests/unit/%.c $(LIB)
 	@mkdir -p $(dir $@)
 	$(if $(Q),@echo "  TEST-CC $@")
-	$(Q)$(CC) $(TEST_CFLAGS) $< $(LIB) $(TEST_LIBS) -o $@
+	$(Q)$(CC) $(TEST_CFLAGS) -MMD -MP $< $(LIB) $(TEST_LIBS) -o $@
 
 tests: $(UNIT_BIN)
 

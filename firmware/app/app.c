@@ -9,8 +9,10 @@
  *                                             for ACK_WAIT instructions
  *   idle --QUIT--> exit
  *
- * RAM is static and sized at compile time (APP_MAX_SAMPLES). This version
- * holds the whole measurement; see docs/LINK.md.
+ * A job in stream order with a fixed basis and an exact or bounded-error
+ * mode is encoded spectrum by spectrum (bw_stream_*): its RAM does not grow
+ * with the number of directions (APP_STREAM_* bound the level and bands).
+ * Other jobs hold the whole measurement (APP_MAX_SAMPLES). See docs/LINK.md.
  */
 #include "app.h"
 
@@ -33,6 +35,16 @@
 #define ACK_WAIT 4000000000ull
 #define MAX_SENDS 8u
 
+#ifndef APP_STREAM_LEVEL
+#define APP_STREAM_LEVEL 6u
+#endif
+#ifndef APP_STREAM_BANDS
+#define APP_STREAM_BANDS 2151u
+#endif
+
+static bw_stream_t stream;
+static int32_t stream_mem[BW_STREAM_MEM_BOUND(APP_STREAM_LEVEL, APP_STREAM_BANDS)];
+static int32_t spectrum[APP_STREAM_BANDS];
 static int32_t samples[APP_MAX_SAMPLES];
 static int32_t work[BW_WORK_BOUND(APP_MAX_SAMPLES, APP_MAX_BANDS)];
 static uint8_t payload[APP_PAYLOAD_CAP];
@@ -93,13 +105,15 @@ static void send_payload(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t 
     send(hal, BW_FT_END, 0, d, 4);
 }
 
+static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent);
+
 /* Runs one job; returns 0 when the host acknowledged the payload. */
 static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
 {
     bw_dims_t d;
     bw_status_t st = bw_dims_make(&d, (bw_shape_t)job->shape, job->level_out, job->level_in,
                                   job->n_in, job->bands);
-    if (st == BW_OK && (bw_dims_samples(&d) > APP_MAX_SAMPLES || d.bands > APP_MAX_BANDS))
+    if (st == BW_OK && d.bands > APP_MAX_BANDS)
         st = BW_ERR_WORK;
     if (st != BW_OK) {
         send_error(hal, st);
@@ -108,6 +122,50 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
     size_t n = bw_dims_samples(&d);
     if (bw_hal_sensor_open(hal, job->source) < 0) {
         send_error(hal, APP_ERR_SENSOR);
+        return -1;
+    }
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = job->mode;
+    p.basis = job->basis;
+    p.flags = job->flags;
+    p.max_error = job->max_error;
+    p.byte_budget = job->byte_budget;
+    p.scale_bits = job->scale_bits;
+    p.offset_bits = job->offset_bits;
+    size_t len = 0;
+    bool streaming = (job->flags & BW_FLAG_STREAM_ORDER) && job->mode != BW_MODE_BYTES &&
+                     job->basis < BW_BASIS_COUNT && d.bands <= APP_STREAM_BANDS &&
+                     d.level_out <= APP_STREAM_LEVEL;
+    if (streaming) {
+        uint64_t t0 = bw_hal_counter(hal);
+        st = bw_stream_init(&stream, &d, &p, stream_mem, sizeof stream_mem / sizeof *stream_mem,
+                            payload, sizeof payload);
+        for (size_t v = 0; st == BW_OK && v < (size_t)d.n_in * d.n_out; v++) {
+            size_t got = 0;
+            while (got < d.bands) {
+                int r = bw_hal_sensor_read(hal, spectrum + got, d.bands - got);
+                if (r <= 0)
+                    break;
+                got += (size_t)r;
+            }
+            if (got != d.bands) {
+                send_error(hal, APP_ERR_SENSOR);
+                return -1;
+            }
+            st = bw_stream_push(&stream, spectrum);
+        }
+        if (st == BW_OK)
+            st = bw_stream_finish(&stream, &len);
+        uint64_t spent = bw_hal_counter(hal) - t0;
+        if (st != BW_OK) {
+            send_error(hal, st);
+            return -1;
+        }
+        return deliver(hal, id, len, spent);
+    }
+    if (n > APP_MAX_SAMPLES) {
+        send_error(hal, BW_ERR_WORK);
         return -1;
     }
     size_t got = 0;
@@ -123,16 +181,6 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         send_error(hal, APP_ERR_SENSOR);
         return -1;
     }
-    bw_params_t p;
-    memset(&p, 0, sizeof p);
-    p.mode = job->mode;
-    p.basis = job->basis;
-    p.flags = job->flags;
-    p.max_error = job->max_error;
-    p.byte_budget = job->byte_budget;
-    p.scale_bits = job->scale_bits;
-    p.offset_bits = job->offset_bits;
-    size_t len = 0;
     uint64_t t0 = bw_hal_counter(hal);
     st = bw_encode(&d, &p, samples, work, NULL, payload, sizeof payload, &len);
     uint64_t spent = bw_hal_counter(hal) - t0;
@@ -140,6 +188,13 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         send_error(hal, st);
         return -1;
     }
+    return deliver(hal, id, len, spent);
+}
+
+/* Sends a payload and keeps it until the host acknowledges it; 0 when it
+ * did, 1 when the host said QUIT instead. */
+static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent)
+{
     send_payload(hal, id, len, spent);
     unsigned sends = 1;
     for (;;) {

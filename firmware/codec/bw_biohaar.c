@@ -15,6 +15,20 @@ static inline int32_t update_term(const uint16_t *w, int32_t d1, int32_t d2, int
     return (int32_t)(uint32_t)(uint64_t)bw_asr64(acc + 32768, 16);
 }
 
+void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
+                      size_t vlen)
+{
+    for (size_t e = 0; e < vlen; e++) {
+        int32_t d1 = bw_wsub(c1[e], c0[e]);
+        int32_t d2 = bw_wsub(c2[e], c0[e]);
+        int32_t d3 = bw_wsub(c3[e], c0[e]);
+        c0[e] = bw_wadd(c0[e], update_term(w, d1, d2, d3));
+        c1[e] = d1;
+        c2[e] = d2;
+        c3[e] = d3;
+    }
+}
+
 void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
 {
     for (unsigned j = level; j-- > 0;) {
@@ -24,15 +38,7 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
             const uint16_t *w = bw_geo_weights(j, p & (per_base - 1u));
             int32_t *c0 = x + (size_t)p * 4u * h * vlen;
             int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
-            for (size_t e = 0; e < vlen; e++) {
-                int32_t d1 = bw_wsub(c1[e], c0[e]);
-                int32_t d2 = bw_wsub(c2[e], c0[e]);
-                int32_t d3 = bw_wsub(c3[e], c0[e]);
-                c0[e] = bw_wadd(c0[e], update_term(w, d1, d2, d3));
-                c1[e] = d1;
-                c2[e] = d2;
-                c3[e] = d3;
-            }
+            bw_biohaar_lift4(c0, c1, c2, c3, w, vlen);
         }
     }
 }

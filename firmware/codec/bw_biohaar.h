@@ -18,6 +18,11 @@
 #include <stdint.h>
 
 void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen);
+
+/* One parent's forward step on its children's vectors (c0 the centre child),
+ * weights {L1, L2, L3} in Q16: c0 becomes s_P and c_m become d_m. */
+void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
+                      size_t vlen);
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
 
 /* Mallat index -> in-place leaf position. Mallat order: the 4 base scaling

@@ -19,8 +19,10 @@
 #include <string.h>
 
 #include "bw_biohaar.h"
+#include "bw_coder.h"
 #include "bw_crc32.h"
 #include "bw_fixed.h"
+#include "bw_geodesic.h"
 #include "bw_rc.h"
 #include "bw_spectral.h"
 
@@ -130,6 +132,7 @@ typedef struct {
     uint32_t prequant;
     uint32_t step_q8;
     uint32_t vec_thresh_q8;
+    bool stream;        /* coding order: streamed (post-order) instead of coarse-to-fine */
     int32_t *spec_cls;  /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain; /* [bands] its inverse gain, Q16                      */
     int32_t *tmp;       /* [bands] lifting scratch                           */
@@ -152,6 +155,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->prequant = 1u;
     pl->step_q8 = STEP_ONE_Q8;
     pl->vec_thresh_q8 = VEC_THRESH_Q8;
+    pl->stream = false;
 }
 
 static void plan_tables(plan_t *pl)
@@ -174,11 +178,13 @@ static uint32_t out_pos(const plan_t *pl, uint32_t o)
 {
     return has_out(&pl->dims) ? bw_biohaar_pos(o, pl->dims.level_out) : 0u;
 }
-static unsigned dir_cls(const plan_t *pl, uint32_t o)
+/* Context class of an outgoing coefficient from its parent level j (-1 for
+ * a scaling coefficient): 0 finest details, 1 next, 2 coarser. */
+static unsigned level_cls(const plan_t *pl, int j)
 {
     if (!has_out(&pl->dims))
         return 2u;
-    int j = bw_biohaar_coef_level(o), fine = (int)pl->dims.level_out - 1;
+    int fine = (int)pl->dims.level_out - 1;
     return j == fine ? 0u : (j == fine - 1 ? 1u : 2u);
 }
 static uint32_t in_gain(const plan_t *pl, uint32_t i)
@@ -308,15 +314,9 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
 
 /* ---- strip coding -------------------------------------------------------- */
 
-#define NCLS 12u
-#define NB_CTX 8u
+#define NB_CTX BW_CODER_NB_CTX
 
-typedef struct {
-    bw_prob_t present[NCLS][2];
-    bw_prob_t valid[NCLS][2][2];
-    bw_prob_t mag[NCLS][NB_CTX][32];
-    bw_prob_t mant[NCLS][32];
-} models_t;
+typedef bw_models_t models_t;
 
 static void models_init(models_t *m)
 {
@@ -326,30 +326,81 @@ static void models_init(models_t *m)
 }
 
 /* Walks the coefficients in coding order: incoming (coarse to fine), then
- * outgoing (coarse to fine), then spectral (Mallat order as stored). */
+ * outgoing, then spectral (Mallat order as stored). The outgoing order is
+ * coarse to fine, or with `stream` the order in which a streaming encoder
+ * completes them (post-order, see stream_leaf). */
+#define STREAM_QUEUE (3u * BW_MAX_LEVEL + 1u)
+
+typedef struct {
+    uint32_t pos[STREAM_QUEUE];
+    int8_t level[STREAM_QUEUE];
+    unsigned n;
+} stream_queue_t;
+
+/* The outgoing vectors completed by leaf t of a level-L hemisphere, in order:
+ * the details of every ancestor whose last leaf t is (lowest first), then
+ * the scaling coefficient of the base triangle when t ends it. */
+static void stream_leaf(unsigned L, uint32_t t, stream_queue_t *q)
+{
+    q->n = 0;
+    for (unsigned k = 1; k <= L && ((t + 1u) & ((1u << (2u * k)) - 1u)) == 0u; k++) {
+        uint32_t p = t >> (2u * k);
+        for (uint32_t m = 1; m <= 3u; m++) {
+            q->pos[q->n] = (4u * p + m) << (2u * (k - 1u));
+            q->level[q->n++] = (int8_t)(L - k);
+        }
+    }
+    if (((t + 1u) & ((1u << (2u * L)) - 1u)) == 0u) {
+        q->pos[q->n] = (t >> (2u * L)) << (2u * L);
+        q->level[q->n++] = -1;
+    }
+}
+
 typedef struct {
     const plan_t *pl;
-    uint32_t i, o, k;
+    int32_t *x;
+    uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
     int32_t *vec;
     unsigned cls_dir;
+    uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
+    unsigned qi;
+    stream_queue_t q;
 } iter_t;
 
-static void iter_vec(iter_t *it, int32_t *x)
+static void iter_vec(iter_t *it)
 {
     const plan_t *pl = it->pl;
-    size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + out_pos(pl, it->o);
-    it->vec = x + pos * pl->dims.bands;
-    it->cls_dir = dir_cls(pl, it->o);
+    uint32_t pos_out = 0;
+    int level = -1;
+    if (has_out(&pl->dims)) {
+        if (pl->stream) {
+            while (it->qi == it->q.n) {
+                stream_leaf(pl->dims.level_out, it->leaf++, &it->q);
+                it->qi = 0;
+            }
+            pos_out = it->q.pos[it->qi];
+            level = it->q.level[it->qi++];
+        } else {
+            pos_out = bw_biohaar_pos(it->o, pl->dims.level_out);
+            level = bw_biohaar_coef_level(it->o);
+        }
+    }
+    size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + pos_out;
+    it->vec = it->x + pos * pl->dims.bands;
+    it->cls_dir = level_cls(pl, level);
 }
 
 static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
 {
     it->pl = pl;
+    it->x = x;
     it->i = it->o = it->k = 0;
-    iter_vec(it, x);
+    it->leaf = 0;
+    it->qi = it->q.n = 0;
+    iter_vec(it);
 }
 
-static inline int32_t *iter_next(iter_t *it, int32_t *x, unsigned *cls)
+static inline int32_t *iter_next(iter_t *it, unsigned *cls)
 {
     int32_t *p = it->vec + it->k;
     *cls = (unsigned)it->pl->spec_cls[it->k] * 3u + it->cls_dir;
@@ -358,9 +409,11 @@ static inline int32_t *iter_next(iter_t *it, int32_t *x, unsigned *cls)
         if (++it->o == it->pl->dims.n_out) {
             it->o = 0;
             it->i++;
+            it->leaf = 0;
+            it->qi = it->q.n = 0;
         }
         if (it->i < it->pl->dims.n_in)
-            iter_vec(it, x);
+            iter_vec(it);
     }
     return p;
 }
@@ -371,62 +424,96 @@ static inline unsigned nb_ctx(unsigned left, unsigned above)
     return c < NB_CTX ? c : NB_CTX - 1u;
 }
 
-static void code_body(const plan_t *pl, int32_t *x, bw_rc_enc_t *rc, models_t *m)
+/* The strip encoder, fed one coefficient at a time: a strip is coded when
+ * its 32nd element arrives (or at the end, shorter). */
+typedef bw_strip_enc_t strip_enc_t;
+
+static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap)
+{
+    bw_rc_enc_init(&se->rc, out, cap);
+    models_init(&se->m);
+    se->cnt = 0;
+    memset(se->e_above, 0, sizeof se->e_above);
+    se->prev_mask = 0;
+    se->e_left = 0;
+}
+
+static void strip_code(strip_enc_t *se)
+{
+    bw_rc_enc_t *rc = &se->rc;
+    models_t *m = &se->m;
+    unsigned cnt = se->cnt;
+    const int32_t *v = se->v;
+    const uint8_t *cls = se->cls;
+    uint32_t mask = 0;
+    se->cnt = 0;
+    for (unsigned b = 0; b < cnt; b++)
+        if (v[b])
+            mask |= 1u << b;
+    bw_rc_enc_bit(rc, &m->present[cls[0]][se->prev_mask != 0], mask != 0);
+    if (!mask) {
+        se->prev_mask = 0;
+        memset(se->e_above, 0, sizeof se->e_above);
+        se->e_left = 0;
+        return;
+    }
+    unsigned prev_bit = 0;
+    for (unsigned b = 0; b < cnt; b++) {
+        unsigned bit = (mask >> b) & 1u;
+        bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][(se->prev_mask >> b) & 1u], bit);
+        prev_bit = bit;
+    }
+    for (unsigned b = 0; b < cnt; b++) {
+        if (!((mask >> b) & 1u)) {
+            se->e_above[b] = 0;
+            se->e_left = 0;
+            continue;
+        }
+        uint32_t a = bw_abs32(v[b]);
+        unsigned e = bw_bitlen(a); /* 1..32 */
+        bw_prob_t *tree = m->mag[cls[b]][nb_ctx(se->e_left, se->e_above[b])];
+        unsigned node = 1, sym = e - 1u;
+        for (int sh = 4; sh >= 0; sh--) {
+            unsigned bit = (sym >> sh) & 1u;
+            bw_rc_enc_bit(rc, &tree[node], bit);
+            node = node * 2u + bit;
+        }
+        if (e >= 2u) {
+            bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
+            if (e >= 3u)
+                bw_rc_enc_direct(rc, a, e - 2u);
+        }
+        bw_rc_enc_direct(rc, v[b] < 0, 1);
+        se->e_above[b] = (uint8_t)e;
+        se->e_left = e;
+    }
+    se->prev_mask = mask;
+}
+
+static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls)
+{
+    se->v[se->cnt] = v;
+    se->cls[se->cnt] = (uint8_t)cls;
+    if (++se->cnt == BW_STRIP)
+        strip_code(se);
+}
+
+/* Codes what is left; returns the body size. */
+static size_t strip_enc_finish(strip_enc_t *se)
+{
+    if (se->cnt)
+        strip_code(se);
+    return bw_rc_enc_finish(&se->rc);
+}
+
+static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
 {
     iter_t it;
     iter_init(&it, pl, x);
-    uint8_t e_above[BW_STRIP] = {0};
-    uint32_t prev_mask = 0;
-    unsigned e_left = 0;
-    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
-        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
-        int32_t v[BW_STRIP];
-        unsigned cls[BW_STRIP];
-        cls[0] = 0;
-        uint32_t mask = 0;
-        for (unsigned b = 0; b < cnt; b++) {
-            v[b] = *iter_next(&it, x, &cls[b]);
-            if (v[b])
-                mask |= 1u << b;
-        }
-        bw_rc_enc_bit(rc, &m->present[cls[0]][prev_mask != 0], mask != 0);
-        if (!mask) {
-            prev_mask = 0;
-            memset(e_above, 0, sizeof e_above);
-            e_left = 0;
-            continue;
-        }
-        unsigned prev_bit = 0;
-        for (unsigned b = 0; b < cnt; b++) {
-            unsigned bit = (mask >> b) & 1u;
-            bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][(prev_mask >> b) & 1u], bit);
-            prev_bit = bit;
-        }
-        for (unsigned b = 0; b < cnt; b++) {
-            if (!((mask >> b) & 1u)) {
-                e_above[b] = 0;
-                e_left = 0;
-                continue;
-            }
-            uint32_t a = bw_abs32(v[b]);
-            unsigned e = bw_bitlen(a); /* 1..32 */
-            bw_prob_t *tree = m->mag[cls[b]][nb_ctx(e_left, e_above[b])];
-            unsigned node = 1, sym = e - 1u;
-            for (int s = 4; s >= 0; s--) {
-                unsigned bit = (sym >> s) & 1u;
-                bw_rc_enc_bit(rc, &tree[node], bit);
-                node = node * 2u + bit;
-            }
-            if (e >= 2u) {
-                bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
-                if (e >= 3u)
-                    bw_rc_enc_direct(rc, a, e - 2u);
-            }
-            bw_rc_enc_direct(rc, v[b] < 0, 1);
-            e_above[b] = (uint8_t)e;
-            e_left = e;
-        }
-        prev_mask = mask;
+    for (size_t i = 0; i < pl->n; i++) {
+        unsigned cls;
+        int32_t v = *iter_next(&it, &cls);
+        strip_put(se, v, cls);
     }
 }
 
@@ -443,7 +530,7 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
         unsigned cls[BW_STRIP];
         cls[0] = 0;
         for (unsigned b = 0; b < cnt; b++)
-            dst[b] = iter_next(&it, x, &cls[b]);
+            dst[b] = iter_next(&it, &cls[b]);
         if (!bw_rc_dec_bit(rc, &m->present[cls[0]][prev_mask != 0])) {
             for (unsigned b = 0; b < cnt; b++)
                 *dst[b] = 0;
@@ -571,6 +658,8 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
     if (h->basis >= BW_BASIS_COUNT || h->spectral_levels != bw_spec_levels(d->bands) ||
         h->mode > BW_MODE_STEP || (h->flags & ~BW_FLAGS_KNOWN) != 0u)
         return BW_ERR_HEADER;
+    if ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL)
+        return BW_ERR_HEADER;
     if (h->prequant < 1u || h->prequant > 2u * (uint32_t)BW_SAMPLE_MAX + 1u ||
         h->step_q8 < STEP_ONE_Q8)
         return BW_ERR_HEADER;
@@ -609,9 +698,7 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
     if (pl->step_q8 > STEP_ONE_Q8)
         quantise(pl, work, true);
 
-    models_t m;
-    models_init(&m);
-    bw_rc_enc_t rc;
+    strip_enc_t se;
     bool counting = out == NULL;
     size_t body_cap = 0;
     if (!counting) {
@@ -619,13 +706,13 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
             return BW_ERR_OUTPUT_FULL;
         body_cap = cap - BW_HEADER_SIZE - BW_TRAILER_SIZE;
     }
-    bw_rc_enc_init(&rc, counting ? NULL : out + BW_HEADER_SIZE, body_cap);
-    code_body(pl, work, &rc, &m);
-    size_t body = bw_rc_enc_finish(&rc);
+    strip_enc_init(&se, counting ? NULL : out + BW_HEADER_SIZE, body_cap);
+    code_body(pl, work, &se);
+    size_t body = strip_enc_finish(&se);
     *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
     if (counting)
         return BW_OK;
-    if (rc.overflow || body > UINT32_MAX)
+    if (se.rc.overflow || body > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
     header_write(out, pl, pa, mode, (uint32_t)body);
     put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
@@ -678,6 +765,7 @@ static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw
         pl->step_q8 = pa->step_q8;
     if (pa->vec_thresh_q8)
         pl->vec_thresh_q8 = pa->vec_thresh_q8;
+    pl->stream = (pa->flags & BW_FLAG_STREAM_ORDER) != 0u;
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
@@ -732,6 +820,8 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     if (pa->mode > BW_MODE_STEP || (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO) ||
         (pa->flags & ~BW_FLAGS_KNOWN) != 0u)
         return BW_ERR_ARG;
+    if ((pa->flags & BW_FLAG_STREAM_ORDER) && dims->shape == BW_SHAPE_BRDF_FULL)
+        return BW_ERR_SHAPE; /* the incoming transform needs every hemisphere at once */
     if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
         return BW_ERR_ARG;
     if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
@@ -803,6 +893,7 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     plan_init(&pl, d, h->basis, work);
     pl.prequant = h->prequant;
     pl.step_q8 = h->step_q8;
+    pl.stream = (h->flags & BW_FLAG_STREAM_ORDER) != 0u;
     plan_tables(&pl);
 
     models_t m;
@@ -853,4 +944,170 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
     if (h.body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
         return BW_ERR_TRUNCATED;
     return decode_checked(payload, &h, samples, samples_cap, work, work_cap);
+}
+
+/* ---- streaming encoder --------------------------------------------------- */
+
+size_t bw_stream_mem_bound(unsigned level, size_t bands) { return BW_STREAM_MEM_BOUND(level, bands); }
+
+static void stream_plan(const bw_stream_t *s, plan_t *pl)
+{
+    memset(pl, 0, sizeof *pl);
+    pl->dims = s->dims;
+    pl->n = bw_dims_samples(&s->dims);
+    pl->basis = s->basis;
+    pl->spec_levels = s->spec_levels;
+    pl->prequant = s->prequant;
+    pl->step_q8 = s->step_q8;
+    pl->vec_thresh_q8 = s->params.vec_thresh_q8 ? s->params.vec_thresh_q8 : VEC_THRESH_Q8;
+    pl->stream = true;
+    pl->spec_cls = s->cls;
+    pl->spec_gain = s->gain;
+    pl->tmp = s->tmp;
+}
+
+bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_params_t *pa,
+                           int32_t *mem, size_t mem_len, uint8_t *out, size_t cap)
+{
+    if (!s || !dims || !pa || !mem || !out)
+        return BW_ERR_ARG;
+    memset(s, 0, sizeof *s);
+    s->err = BW_ERR_ARG;
+    bw_status_t st = bw_dims_check(dims);
+    if (st != BW_OK)
+        return st;
+    if (dims->shape == BW_SHAPE_BRDF_FULL)
+        return BW_ERR_SHAPE;
+    if ((pa->mode != BW_MODE_LOSSLESS && pa->mode != BW_MODE_MAX_ERROR &&
+         pa->mode != BW_MODE_STEP) ||
+        pa->basis >= BW_BASIS_COUNT || (pa->flags & ~BW_FLAGS_KNOWN) != 0u)
+        return BW_ERR_ARG;
+    if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
+        return BW_ERR_ARG;
+    if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
+        return BW_ERR_ARG;
+    if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
+        return BW_ERR_WORK;
+    if (cap < BW_HEADER_SIZE + BW_TRAILER_SIZE)
+        return BW_ERR_OUTPUT_FULL;
+    s->dims = *dims;
+    s->params = *pa;
+    s->params.flags |= BW_FLAG_STREAM_ORDER;
+    s->basis = pa->basis;
+    s->spec_levels = (uint8_t)bw_spec_levels(dims->bands);
+    s->prequant = pa->mode == BW_MODE_MAX_ERROR ? 2u * pa->max_error + 1u : 1u;
+    s->step_q8 = pa->mode == BW_MODE_STEP ? pa->step_q8 : STEP_ONE_Q8;
+    size_t b = dims->bands;
+    s->cls = mem;
+    s->gain = mem + b;
+    s->tmp = mem + 2u * b;
+    s->pend = mem + 3u * b;
+    plan_t pl;
+    stream_plan(s, &pl);
+    plan_tables(&pl);
+    s->out = out;
+    s->cap = cap;
+    strip_enc_init(&s->se, out + BW_HEADER_SIZE, cap - BW_HEADER_SIZE - BW_TRAILER_SIZE);
+    s->err = BW_OK;
+    return BW_OK;
+}
+
+static int32_t *pend_slot(bw_stream_t *s, unsigned level, unsigned slot)
+{
+    return s->pend + ((size_t)level * 4u + slot) * s->dims.bands;
+}
+
+/* Quantises (as quantise() does) and codes one completed vector whose
+ * parent level is j (-1: scaling). */
+static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
+{
+    uint32_t b = s->dims.bands;
+    uint32_t gio = has_out(&s->dims) ? bw_biohaar_inv_gain_q16(s->dims.level_out, j) : 65536u;
+    unsigned cd = level_cls(pl, j);
+    if (s->step_q8 > STEP_ONE_Q8) {
+        uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
+        if (b > 1u && vec_energy(pl, v, gio) < thr) {
+            memset(v, 0, (size_t)b * sizeof *v);
+        } else {
+            for (uint32_t k = 0; k < b; k++)
+                v[k] = quant(v[k], elem_step(s->step_q8, gio, 65536u, (uint32_t)s->gain[k]));
+        }
+    }
+    for (uint32_t k = 0; k < b; k++)
+        strip_put(&s->se, v[k], (unsigned)s->cls[k] * 3u + cd);
+}
+
+bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
+{
+    if (!s || !spectrum)
+        return BW_ERR_ARG;
+    if (s->err != BW_OK)
+        return s->err;
+    const bw_dims_t *d = &s->dims;
+    if (s->pushed >= (size_t)d->n_in * d->n_out)
+        return s->err = BW_ERR_ARG; /* more spectra than the shape holds */
+    uint32_t b = d->bands;
+    unsigned L = d->level_out;
+    plan_t pl;
+    stream_plan(s, &pl);
+    unsigned lv = has_out(d) ? L : 0u;
+    int32_t *v = pend_slot(s, lv, s->pend_n[lv]);
+    for (uint32_t k = 0; k < b; k++) {
+        if (spectrum[k] > BW_SAMPLE_MAX || spectrum[k] < -BW_SAMPLE_MAX)
+            return s->err = BW_ERR_RANGE;
+        v[k] = prequantise(spectrum[k], s->prequant);
+    }
+    if (s->spec_levels)
+        bw_spec_fwd(v, b, s->basis, s->spec_levels, s->tmp);
+    s->pushed++;
+    if (!has_out(d)) {
+        stream_emit(s, &pl, v, -1);
+        return BW_OK;
+    }
+    /* up the tree while four siblings are complete */
+    s->pend_n[L]++;
+    uint32_t t = s->leaf;
+    for (unsigned j = L; j > 0u && s->pend_n[j] == 4u; j--) {
+        unsigned k = L - j + 1u; /* the parent is t >> 2k at level j - 1 */
+        uint32_t p = t >> (2u * k);
+        uint32_t per_base = 1u << (2u * (j - 1u));
+        bw_biohaar_lift4(pend_slot(s, j, 0), pend_slot(s, j, 1), pend_slot(s, j, 2),
+                         pend_slot(s, j, 3), bw_geo_weights(j - 1u, p & (per_base - 1u)), b);
+        for (unsigned m = 1; m <= 3u; m++)
+            stream_emit(s, &pl, pend_slot(s, j, m), (int)j - 1);
+        /* the parent's scaling vector moves up a level */
+        memcpy(pend_slot(s, j - 1u, s->pend_n[j - 1u]), pend_slot(s, j, 0), (size_t)b * sizeof *v);
+        s->pend_n[j - 1u]++;
+        s->pend_n[j] = 0;
+    }
+    if (s->pend_n[0] == 1u) { /* a base triangle is complete */
+        stream_emit(s, &pl, pend_slot(s, 0, 0), -1);
+        s->pend_n[0] = 0;
+    }
+    if (++s->leaf == d->n_out) {
+        s->leaf = 0;
+        s->in++;
+    }
+    return BW_OK;
+}
+
+bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
+{
+    if (!s || !len)
+        return BW_ERR_ARG;
+    *len = 0;
+    if (s->err != BW_OK)
+        return s->err;
+    if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
+        return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
+    size_t body = strip_enc_finish(&s->se);
+    if (s->se.rc.overflow || body > UINT32_MAX)
+        return s->err = BW_ERR_OUTPUT_FULL;
+    plan_t pl;
+    stream_plan(s, &pl);
+    header_write(s->out, &pl, &s->params, s->params.mode, (uint32_t)body);
+    put_u32(s->out + BW_HEADER_SIZE + body, bw_crc32(s->out, BW_HEADER_SIZE + body));
+    *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+    s->err = BW_ERR_ARG; /* finished: no more pushes */
+    return BW_OK;
 }

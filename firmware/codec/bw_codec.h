@@ -29,6 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "bw_coder.h"
 #include "bw_error.h"
 
 #ifdef __cplusplus
@@ -94,10 +95,16 @@ typedef struct {
     uint8_t flags;         /* BW_FLAG_*, recorded for the host            */
 } bw_params_t;
 
-/* Header flags, opaque to the core. DECIMAL_SCALE: the scale is exactly
- * 10^-k; the host divides by 10^k instead of multiplying by the float. */
+/* Header flags.
+ * DECIMAL_SCALE (opaque to the core): the scale is exactly 10^-k; the host
+ *   divides by 10^k instead of multiplying by the float.
+ * STREAM_ORDER: outgoing coefficients are coded in the order a streaming
+ *   encoder completes them (bw_stream_*), not coarse to fine; any encoder
+ *   may choose it, and a streaming encoder's payload is byte-identical to
+ *   bw_encode's with this flag. Not for BRDF_FULL. */
 #define BW_FLAG_DECIMAL_SCALE 0x01u
-#define BW_FLAGS_KNOWN 0x01u
+#define BW_FLAG_STREAM_ORDER 0x02u
+#define BW_FLAGS_KNOWN 0x03u
 
 /* ---- sizes -------------------------------------------------------------- */
 
@@ -171,6 +178,47 @@ bw_status_t bw_header_parse_fields(const uint8_t *payload, bw_header_t *hdr);
  * samples may be the same array as work. */
 bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
                       int32_t *work, size_t work_cap, bw_header_t *hdr_out);
+
+/* ---- streaming encoder ------------------------------------------------ */
+
+/*
+ * Encodes spectra as they arrive, in scan order ([incoming][outgoing], the
+ * grid order of the directions), with RAM that does not grow with the number
+ * of directions: each spectrum is transformed on arrival, and the Bio-Haar
+ * lifting runs up the triangle tree as soon as four siblings are complete,
+ * its coefficients going straight to the strip coder. The payload is
+ * byte-identical to bw_encode's with BW_FLAG_STREAM_ORDER and the same
+ * parameters. Modes LOSSLESS, MAX_ERROR and STEP with an explicit basis;
+ * shapes SPECTRA, REFLECTANCE and BRDF_ISO.
+ *
+ * RAM: the context (sizeof(bw_stream_t), mostly the coder's models) plus
+ * BW_STREAM_MEM_BOUND(level_out, bands) int32 of caller memory (pending
+ * sibling vectors of each level and per-band tables), plus the output.
+ */
+#define BW_STREAM_MEM_BOUND(level, bands) ((size_t)(4u * ((level) + 1u) + 3u) * (size_t)(bands))
+
+typedef struct {
+    bw_dims_t dims;
+    bw_params_t params;
+    uint8_t basis, spec_levels;
+    uint32_t prequant, step_q8;
+    int32_t *cls, *gain, *tmp, *pend; /* in the caller's memory */
+    uint8_t pend_n[BW_MAX_LEVEL + 1u];
+    uint32_t in, leaf; /* the next spectrum's incoming index and leaf */
+    size_t pushed;
+    uint8_t *out;
+    size_t cap;
+    bw_status_t err;
+    bw_strip_enc_t se;
+} bw_stream_t;
+
+size_t bw_stream_mem_bound(unsigned level, size_t bands);
+bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_params_t *params,
+                           int32_t *mem, size_t mem_len, uint8_t *out, size_t out_cap);
+/* One spectrum of dims->bands samples (not kept). */
+bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum);
+/* After the last spectrum: writes header and CRC; *out_len = payload size. */
+bw_status_t bw_stream_finish(bw_stream_t *s, size_t *out_len);
 
 /* As bw_decode, but without the length and CRC checks: for tests that feed the
  * body parser corrupted data which a CRC would otherwise catch. */

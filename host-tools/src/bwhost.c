@@ -459,7 +459,7 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
         }
         q[i] = (int32_t)r;
     }
-    io.flags = flags;
+    io.flags = o->flags | flags;
     int rc = bwh_encode_i32(dims, q, &io, scale_f, 0.0f, out, out_len);
     free(q);
     if (rc != 0)

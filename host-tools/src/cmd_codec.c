@@ -74,7 +74,10 @@ static const char encode_help[] =
     "  --device D        where to encode: host (default) or qemu, the emulated\n"
     "                    Cortex-M4 co-processor (its payload comes back over the\n"
     "                    UART link and is checked on the host)\n"
-    "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n";
+    "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n"
+    "  --stream          code in the order a streaming encoder produces (the device\n"
+    "                    then encodes spectrum by spectrum in bounded RAM; needs\n"
+    "                    --lossless, --max-error or a fixed --basis; not --level-in)\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -87,7 +90,8 @@ int bw_cmd_encode(int argc, char **argv)
         {"ratio", required_argument, 0, 'r'},      {"basis", required_argument, 0, 'w'},
         {"scale", required_argument, 0, 's'},      {"help", no_argument, 0, 'h'},
         {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
-        {"drop-chunk", required_argument, 0, 'K'}, {0, 0, 0, 0}};
+        {"drop-chunk", required_argument, 0, 'K'}, {"stream", no_argument, 0, 'S'},
+        {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
     int nin = 0;
@@ -164,6 +168,7 @@ int bw_cmd_encode(int argc, char **argv)
                 return usage_err(C, "--scale must be a positive number");
             break;
         case 'D': o.device = optarg; break;
+        case 'S': o.flags |= BW_FLAG_STREAM_ORDER; break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
             uint32_t k;
@@ -460,6 +465,7 @@ int bw_cmd_info(int argc, char **argv)
     printf("basis: %s\n", bwh_basis_name(h.basis));
     printf("spectral_levels: %u\n", h.spectral_levels);
     printf("mode: %s\n", bwh_mode_name(h.mode));
+    printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
     printf("prequant: %u\n", h.prequant);
     printf("step: %.4f\n", h.step_q8 / 256.0);

@@ -18,23 +18,32 @@ typedef struct {
     uint32_t n_in, bands;
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
+    uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too */
 } golden_case_t;
 
 static const golden_case_t golden_cases[] = {
-    {"refl3x81_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
-    {"refl3x81_lossless_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53, 0},
-    {"refl3x81_lossless_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_97, 0},
-    {"refl3x81_maxerr4_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 4},
-    {"refl3x81_maxerr4_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_53, 4},
-    {"refl3x81_maxerr4_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_97, 4},
-    {"refl3x81_bytes2000_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_HAAR, 2000},
-    {"refl3x81_bytes2000_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_53, 2000},
-    {"refl3x81_bytes2000_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_97, 2000},
-    {"refl3x81_step2560_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_STEP, BW_BASIS_97, 2560},
-    {"refl3x1_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 1, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0},
-    {"spectra5x2151_lossless_auto", BW_SHAPE_SPECTRA, 0, 0, 5, 2151, BW_MODE_LOSSLESS, BW_BASIS_AUTO, 0},
-    {"iso4x2x17_maxerr1_53", BW_SHAPE_BRDF_ISO, 2, 0, 4, 17, BW_MODE_MAX_ERROR, BW_BASIS_53, 1},
-    {"full1x1x9_bytes600_97", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97, 600},
+    {"refl3x81_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0, 0},
+    {"refl3x81_lossless_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53, 0, 0},
+    {"refl3x81_lossless_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_97, 0, 0},
+    {"refl3x81_maxerr4_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 4, 0},
+    {"refl3x81_maxerr4_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_53, 4, 0},
+    {"refl3x81_maxerr4_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_97, 4, 0},
+    {"refl3x81_bytes2000_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_HAAR, 2000, 0},
+    {"refl3x81_bytes2000_53", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_53, 2000, 0},
+    {"refl3x81_bytes2000_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_BYTES, BW_BASIS_97, 2000, 0},
+    {"refl3x81_step2560_97", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_STEP, BW_BASIS_97, 2560, 0},
+    {"refl3x1_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 1, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0, 0},
+    {"spectra5x2151_lossless_auto", BW_SHAPE_SPECTRA, 0, 0, 5, 2151, BW_MODE_LOSSLESS, BW_BASIS_AUTO, 0, 0},
+    {"iso4x2x17_maxerr1_53", BW_SHAPE_BRDF_ISO, 2, 0, 4, 17, BW_MODE_MAX_ERROR, BW_BASIS_53, 1, 0},
+    {"full1x1x9_bytes600_97", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97, 600, 0},
+    {"refl4x81_stream_lossless_53", BW_SHAPE_REFLECTANCE, 4, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53,
+     0, BW_FLAG_STREAM_ORDER},
+    {"refl4x81_stream_maxerr2_97", BW_SHAPE_REFLECTANCE, 4, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_97,
+     2, BW_FLAG_STREAM_ORDER},
+    {"iso16x4x1_stream_step4000_haar", BW_SHAPE_BRDF_ISO, 4, 0, 16, 1, BW_MODE_STEP, BW_BASIS_HAAR,
+     4000, BW_FLAG_STREAM_ORDER},
+    {"spectra8x1024_stream_lossless_97", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_LOSSLESS,
+     BW_BASIS_97, 0, BW_FLAG_STREAM_ORDER},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)
@@ -62,6 +71,7 @@ static inline bw_params_t golden_params(const golden_case_t *g)
     p.max_error = g->mode == BW_MODE_MAX_ERROR ? g->param : 0u;
     p.byte_budget = g->mode == BW_MODE_BYTES ? g->param : 0u;
     p.step_q8 = g->mode == BW_MODE_STEP ? g->param : 0u;
+    p.flags = g->flags;
     return p;
 }
 

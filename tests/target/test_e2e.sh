@@ -60,6 +60,13 @@ open(sys.argv[1], 'wb').write(struct.pack('<%di' % len(v), *v))
 PY
 same_payload "level-3 x 81 reflectance lossless" -i "$T/r.i32" --input-format i32 --bands 81 --level 3
 
+# streamed: the device encodes spectrum by spectrum in bounded RAM, even a
+# measurement larger than it could hold (256 x 1024 directions)
+same_payload "field spectra streamed" --input-format sed -i $DATA/*.sed --stream --basis 97 --max-error 0.0005
+"$BW" synth --model phong --kd 0.5 --ks 0.5 --n 50 --level 4 --incoming 256 -o "$T/p256.f32"
+same_payload "phong 256 x 1024 streamed" -i "$T/p256.f32" --bands 1 --level 4 --incoming 256 --stream --basis haar --max-error 0.002
+"$BW" info "$T/dev.bwv" | grep -q "^order: streamed" && ok || bad "streamed payload not marked in info"
+
 # resend: the host loses a chunk and asks for it again
 "$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&
     "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 -o "$T/host.bwv" &&

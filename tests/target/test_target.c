@@ -16,7 +16,7 @@
 #include "bw_hal.h"
 #include "golden/golden_cases.h"
 
-#define MAX_SAMPLES 20736u /* the largest golden case: level 3 x 81 bands */
+#define MAX_SAMPLES 82944u /* the largest golden case: level 4 x 81 bands */
 #define MAX_BANDS 2151u
 
 static int32_t x[MAX_SAMPLES];
@@ -25,6 +25,49 @@ static int32_t verify[BW_WORK_BOUND(MAX_SAMPLES, MAX_BANDS)];
 static uint8_t payload[BW_PAYLOAD_BOUND(MAX_SAMPLES)];
 
 static unsigned passed, failed;
+
+/* the streaming encoder's whole state: context, caller memory, one spectrum */
+static bw_stream_t stream;
+static int32_t stream_mem[BW_STREAM_MEM_BOUND(0, 1024)]; /* >= BW_STREAM_MEM_BOUND(4, 81) */
+static int32_t spectrum[1024];
+
+/* Stack high-water mark of fn(): paint below the current stack pointer,
+ * run, and find the deepest word overwritten. */
+#define PAINT_WORDS 3072u
+static size_t stack_used(void (*fn)(void))
+{
+    volatile uint32_t *sp;
+    __asm__ volatile("mov %0, sp" : "=r"(sp));
+    volatile uint32_t *low = sp - PAINT_WORDS;
+    for (volatile uint32_t *p = low; p < sp - 16; p++)
+        *p = 0xC0DEFACEu;
+    fn();
+    volatile uint32_t *p = low;
+    while (p < sp && *p == 0xC0DEFACEu)
+        p++;
+    return (size_t)(sp - p) * 4u;
+}
+
+static const golden_case_t *stream_case;
+static size_t stream_len;
+static bw_status_t stream_status;
+
+static void run_stream(void)
+{
+    const golden_case_t *g = stream_case;
+    bw_dims_t d;
+    bw_dims_make(&d, (bw_shape_t)g->shape, g->level_out, g->level_in, g->n_in, g->bands);
+    bw_params_t p = golden_params(g);
+    stream_status = bw_stream_init(&stream, &d, &p, stream_mem, sizeof stream_mem / 4, payload,
+                                   sizeof payload);
+    for (size_t v = 0; stream_status == BW_OK && v < (size_t)d.n_in * d.n_out; v++) {
+        /* the sensor delivers one spectrum at a time */
+        memcpy(spectrum, x + v * d.bands, d.bands * sizeof *spectrum);
+        stream_status = bw_stream_push(&stream, spectrum);
+    }
+    if (stream_status == BW_OK)
+        stream_status = bw_stream_finish(&stream, &stream_len);
+}
 
 static void check(int ok, const char *what, const char *name)
 {
@@ -83,8 +126,8 @@ int main(void)
         if (st != BW_OK)
             continue;
 
-        uint32_t want_crc;
-        size_t want_len;
+        uint32_t want_crc = 0;
+        size_t want_len = 0;
         uint32_t crc = bw_crc32(payload, len - BW_TRAILER_SIZE);
         if (golden_lookup(g->name, &want_crc, &want_len) != 0)
             check(0, "not in tests/golden/payload_crc.txt", g->name);
@@ -108,9 +151,33 @@ int main(void)
             check(worst == 0, "lossless decode not exact", g->name);
         if (g->mode == BW_MODE_MAX_ERROR)
             check(worst <= g->param, "max error exceeded", g->name);
-        printf("  %-28s %6lu samples %6lu bytes  encode+verify %8.1f instr/sample  decode %6.1f\n",
+        printf("  %-32s %6lu samples %6lu bytes  encode+verify %8.1f instr/sample  decode %6.1f\n",
                g->name, (unsigned long)n, (unsigned long)len, (double)(t1 - t0) / (double)n,
                (double)(t3 - t2) / (double)n);
+
+        if (g->flags & BW_FLAG_STREAM_ORDER) {
+            /* the streaming encoder, spectrum by spectrum, makes the same payload */
+            if (d.bands > sizeof spectrum / sizeof *spectrum ||
+                bw_stream_mem_bound(d.level_out, d.bands) > sizeof stream_mem / sizeof *stream_mem) {
+                check(0, "streaming buffers too small for this case", g->name);
+                continue;
+            }
+            stream_case = g;
+            uint64_t s0 = bw_hal_counter(hal);
+            size_t stack = stack_used(run_stream);
+            uint64_t s1 = bw_hal_counter(hal);
+            check(stream_status == BW_OK, bw_strerror(stream_status), g->name);
+            check(stream_status == BW_OK && stream_len == want_len &&
+                      bw_crc32(payload, stream_len - BW_TRAILER_SIZE) == want_crc,
+                  "streamed payload differs from the host's", g->name);
+            size_t mem = bw_stream_mem_bound(d.level_out, d.bands) * 4u;
+            printf("  %-32s streaming: %8.1f instr/sample, RAM %lu = context %lu + memory %lu + "
+                   "spectrum %lu + stack %lu bytes\n",
+                   "", (double)(s1 - s0) / (double)n,
+                   (unsigned long)(sizeof stream + mem + d.bands * 4u + stack),
+                   (unsigned long)sizeof stream, (unsigned long)mem,
+                   (unsigned long)(d.bands * 4u), (unsigned long)stack);
+        }
     }
     printf("RESULT: %u passed, %u failed\n", passed, failed);
     return failed ? 1 : 0;

@@ -1,0 +1,34 @@
+/*
+ * Types of the strip coder's state, so that callers can own it (the
+ * streaming encoder context embeds one). The functions are in bw_codec.c.
+ */
+#ifndef BW_CODER_H
+#define BW_CODER_H
+
+#include <stdint.h>
+
+#include "bw_rc.h"
+
+#define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
+#define BW_CODER_NB_CTX 8u
+
+typedef struct {
+    bw_prob_t present[BW_CODER_CLASSES][2];
+    bw_prob_t valid[BW_CODER_CLASSES][2][2];
+    bw_prob_t mag[BW_CODER_CLASSES][BW_CODER_NB_CTX][32];
+    bw_prob_t mant[BW_CODER_CLASSES][32];
+} bw_models_t;
+
+/* The strip encoder, fed one coefficient at a time. */
+typedef struct {
+    bw_rc_enc_t rc;
+    bw_models_t m;
+    int32_t v[32];
+    uint8_t cls[32];
+    unsigned cnt;
+    uint8_t e_above[32];
+    uint32_t prev_mask;
+    unsigned e_left;
+} bw_strip_enc_t;
+
+#endif
