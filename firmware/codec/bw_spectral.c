@@ -61,28 +61,55 @@ unsigned bw_spec_subband(uint32_t n, unsigned levels, uint32_t k)
     return 0;
 }
 
-/* Clamped neighbour: whole-sample symmetric extension of a subband. */
-static inline int64_t nb(const int32_t *v, uint32_t len, int64_t i)
+/* Lifting steps with whole-sample symmetric extension: a neighbour index
+ * outside its subband is clamped into it. The interior runs without the
+ * clamp; only the first and last positions need it.
+ *
+ * predict: d[k] +/-= f(s[k] + s[k+1])      k = 0 .. nd-1, s[ns] -> s[ns-1]
+ * update:  s[k] +/-= f(d[k-1] + d[k])      k = 0 .. ns-1, d[-1] -> d[0],
+ *                                                          d[nd] -> d[nd-1]
+ * f is round(c x / 2^16) for the 9/7 constants, floor(x / 2) for the 5/3
+ * predict and floor((x + 2) / 4) for its update. */
+enum { F_Q16, F_HALF, F_QUARTER };
+
+static inline int32_t lift_f(int kind, q16_t c, int64_t sum)
 {
-    if (i < 0)
-        i = 0;
-    if (i >= (int64_t)len)
-        i = (int64_t)len - 1;
-    return v[i];
+    if (kind == F_HALF)
+        return (int32_t)bw_asr64(sum, 1);
+    if (kind == F_QUARTER)
+        return (int32_t)bw_asr64(sum + 2, 2);
+    return bw_mul_q16_round(c, sum);
 }
 
-static void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t ns, q16_t c, int sign)
+static inline void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t ns, int kind,
+                           q16_t c, int sign)
 {
-    for (uint32_t k = 0; k < nd; k++) {
-        int32_t t = bw_mul_q16_round(c, nb(s, ns, k) + nb(s, ns, (int64_t)k + 1));
+    uint32_t inner = nd < ns ? nd : ns - 1u; /* k + 1 < ns */
+    uint32_t k = 0;
+    for (; k < inner; k++) {
+        int32_t t = lift_f(kind, c, (int64_t)s[k] + s[k + 1]);
+        d[k] = sign > 0 ? bw_wadd(d[k], t) : bw_wsub(d[k], t);
+    }
+    for (; k < nd; k++) {
+        int32_t t = lift_f(kind, c, (int64_t)s[k] + s[ns - 1u]);
         d[k] = sign > 0 ? bw_wadd(d[k], t) : bw_wsub(d[k], t);
     }
 }
 
-static void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd, q16_t c, int sign)
+static inline void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd, int kind,
+                          q16_t c, int sign)
 {
-    for (uint32_t k = 0; k < ns; k++) {
-        int32_t t = bw_mul_q16_round(c, nb(d, nd, (int64_t)k - 1) + nb(d, nd, k));
+    /* k = 0 uses d[0] twice; k >= nd uses d[nd-1] for the missing d[k] */
+    uint32_t inner = nd < ns ? nd : ns;
+    int32_t t = lift_f(kind, c, (int64_t)d[0] + d[0]);
+    s[0] = sign > 0 ? bw_wadd(s[0], t) : bw_wsub(s[0], t);
+    uint32_t k = 1;
+    for (; k < inner; k++) {
+        t = lift_f(kind, c, (int64_t)d[k - 1u] + d[k]);
+        s[k] = sign > 0 ? bw_wadd(s[k], t) : bw_wsub(s[k], t);
+    }
+    for (; k < ns; k++) {
+        t = lift_f(kind, c, (int64_t)d[k - 1u] + d[nd - 1u]);
         s[k] = sign > 0 ? bw_wadd(s[k], t) : bw_wsub(s[k], t);
     }
 }
@@ -98,16 +125,14 @@ static void lift_fwd(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned 
         }
         break;
     case BW_BASIS_53:
-        for (uint32_t k = 0; k < nd; k++)
-            d[k] = bw_wsub(d[k], (int32_t)bw_asr64(nb(s, ns, k) + nb(s, ns, (int64_t)k + 1), 1));
-        for (uint32_t k = 0; k < ns; k++)
-            s[k] = bw_wadd(s[k], (int32_t)bw_asr64(nb(d, nd, (int64_t)k - 1) + nb(d, nd, k) + 2, 2));
+        predict(d, nd, s, ns, F_HALF, 0, -1);
+        update(s, ns, d, nd, F_QUARTER, 0, +1);
         break;
     default: /* BW_BASIS_97 */
-        predict(d, nd, s, ns, Q16_A, +1);
-        update(s, ns, d, nd, Q16_B, +1);
-        predict(d, nd, s, ns, Q16_C, +1);
-        update(s, ns, d, nd, Q16_D, +1);
+        predict(d, nd, s, ns, F_Q16, Q16_A, +1);
+        update(s, ns, d, nd, F_Q16, Q16_B, +1);
+        predict(d, nd, s, ns, F_Q16, Q16_C, +1);
+        update(s, ns, d, nd, F_Q16, Q16_D, +1);
         break;
     }
 }
@@ -122,16 +147,14 @@ static void lift_inv(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned 
         }
         break;
     case BW_BASIS_53:
-        for (uint32_t k = 0; k < ns; k++)
-            s[k] = bw_wsub(s[k], (int32_t)bw_asr64(nb(d, nd, (int64_t)k - 1) + nb(d, nd, k) + 2, 2));
-        for (uint32_t k = 0; k < nd; k++)
-            d[k] = bw_wadd(d[k], (int32_t)bw_asr64(nb(s, ns, k) + nb(s, ns, (int64_t)k + 1), 1));
+        update(s, ns, d, nd, F_QUARTER, 0, -1);
+        predict(d, nd, s, ns, F_HALF, 0, +1);
         break;
     default:
-        update(s, ns, d, nd, Q16_D, -1);
-        predict(d, nd, s, ns, Q16_C, -1);
-        update(s, ns, d, nd, Q16_B, -1);
-        predict(d, nd, s, ns, Q16_A, -1);
+        update(s, ns, d, nd, F_Q16, Q16_D, -1);
+        predict(d, nd, s, ns, F_Q16, Q16_C, -1);
+        update(s, ns, d, nd, F_Q16, Q16_B, -1);
+        predict(d, nd, s, ns, F_Q16, Q16_A, -1);
         break;
     }
 }
