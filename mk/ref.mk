@@ -36,6 +36,6 @@ ref-filters:
 # the paper's results, build/report/paper.md
 reproduce: all
 	$(Q)tests/deps.sh reproduce
-	$(Q)BW=$(BW_CLI) BWREF=$(REF_CLI) host-tools/ref/reproduce.sh
+	$(Q)BW=$(BW_CLI) BWREF=$(REF_CLI) /usr/bin/python3 host-tools/ref/report.py
 
 .PHONY: ref-filters reproduce

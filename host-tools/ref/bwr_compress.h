@@ -12,6 +12,8 @@
  *   3. elements: a real coefficient is dropped when its normalised magnitude
  *      is below eps_elem, or, with keep > 0, all but the `keep` largest
  *      survivors are dropped (ties broken by index).
+ * With raw = 1 the magnitudes are compared as they are (the plain threshold
+ * on coefficient values).
  */
 #ifndef BWR_COMPRESS_H
 #define BWR_COMPRESS_H
@@ -19,6 +21,7 @@
 #include <stddef.h>
 
 #include "bwr_model.h"
+#include "bwr_sparse.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -29,6 +32,12 @@ typedef struct {
     double eps_vec;
     double eps_elem;
     size_t keep; /* > 0: number of real coefficients to keep */
+    int raw;     /* 1: compare raw |c| (no normalisation by the basis norms) */
+    int keep_coarse; /* 1: the coefficients that are scaling coefficients in every
+                      * transformed space are never dropped by step 3 */
+    int per_in;      /* 1: keep is shared equally among the incoming objects (each
+                      * of the nci blocks keeps keep / nci): objects compressed
+                      * one by one, e.g. a set of unrelated spectra */
 } bwr_thresholds_t;
 
 typedef struct {
@@ -60,6 +69,22 @@ void bwr_error(const double *ref, const double *test, size_t n, bwr_error_t *e);
  * percent. 0, or -1 (bad shape, out of memory). */
 int bwr_best_basis(const bwr_shape_t *shape, const double *samples, const bwr_thresholds_t *th,
                    const bwr_filter_t *const *cand, size_t ncand, size_t *best, double *err);
+
+/* Memory of a coefficient set stored as sparse strip arrays (bwr_sparse.h),
+ * value_bytes per value:
+ *   flat    one sparse array over all n_coefs coefficients in storage order;
+ *   nested  the paper's objects: a sparse array over the incoming directions
+ *           (when n_in > 1) of sparse spheres over the outgoing directions
+ *           (when there is a sphere) of sparse spectra; an element of an
+ *           outer array is valid when its inner object is not empty, and the
+ *           strips of all arrays are added up. */
+void bwr_coef_memory(const bwr_model_t *m, const double *coef, size_t value_bytes,
+                     bwr_memory_t *flat, bwr_memory_t *nested);
+
+/* The same for the uncompressed samples (every sample a valid value). */
+void bwr_sample_memory(const bwr_model_t *m, size_t value_bytes, bwr_memory_t *flat,
+                       bwr_memory_t *nested);
+
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,9 @@ static bwr_shape_t shape0(bwr_kind_t k)
     s.level_out = -1;
     s.bands = 1;
     s.spec_levels = -1;
+    s.spec_ext = BWR_EXT_PERIODIZATION;
+    s.in_basis = NULL;
+    s.in_levels = -1;
     return s;
 }
 
@@ -106,6 +109,7 @@ int bwr_model_init(bwr_model_t *m, const bwr_shape_t *sh)
     m->n_out = sh->level_out >= 0 ? (size_t)4 << (2u * (unsigned)sh->level_out) : 1;
     m->bands = sh->bands;
     m->have_in = sh->level_in >= 0;
+    m->have_in1d = sh->level_in < 0 && sh->in_basis != NULL;
     m->have_out = sh->level_out >= 0;
     m->have_spec = sh->bands > 1 && sh->basis != NULL;
     if (sh->bands > 1 && sh->basis == NULL)
@@ -116,19 +120,27 @@ int bwr_model_init(bwr_model_t *m, const bwr_shape_t *sh)
         goto fail;
     m->ncoef_spec = m->bands;
     if (m->have_spec) {
-        if (bwr_dwt_plan(&m->dwt, sh->basis, m->bands, sh->spec_levels) != 0)
+        if (bwr_dwt_plan_ext(&m->dwt, sh->basis, m->bands, sh->spec_levels, sh->spec_ext) != 0)
             goto fail;
         m->ncoef_spec = m->dwt.ncoef;
     }
+    m->nci = m->n_in;
+    if (m->have_in1d) {
+        if (bwr_dwt_plan_ext(&m->dwt_in, sh->in_basis, m->n_in, sh->in_levels, sh->spec_ext) != 0)
+            goto fail;
+        m->nci = m->dwt_in.ncoef;
+    }
     m->n_samples = m->n_in * m->n_out * m->bands;
-    m->n_coefs = m->n_in * m->n_out * m->ncoef_spec;
-    m->in_psi2 = malloc(m->n_in * sizeof(double));
+    m->n_coefs = m->nci * m->n_out * m->ncoef_spec;
+    m->in_psi2 = malloc(m->nci * sizeof(double));
     m->out_psi2 = malloc(m->n_out * sizeof(double));
     m->spec_norm2 = malloc(m->ncoef_spec * sizeof(double));
     if (m->in_psi2 == NULL || m->out_psi2 == NULL || m->spec_norm2 == NULL)
         goto fail;
-    for (size_t i = 0; i < m->n_in; i++)
+    for (size_t i = 0; i < m->nci; i++)
         m->in_psi2[i] = m->have_in ? m->sph_in.psi2[i] : 1.0;
+    if (m->have_in1d && bwr_dwt_synthesis_norms2(&m->dwt_in, m->in_psi2) != 0)
+        goto fail;
     for (size_t o = 0; o < m->n_out; o++)
         m->out_psi2[o] = m->have_out ? m->sph_out.psi2[o] : 1.0;
     if (m->have_spec) {
@@ -147,7 +159,8 @@ fail:
 int bwr_model_forward(const bwr_model_t *m, const double *samples, double *coef)
 {
     size_t blk = m->n_out * m->bands; /* one Reflectance / Spectral Reflectance */
-    double *a = malloc(m->n_samples * sizeof *a), *b = malloc(m->n_samples * sizeof *b);
+    size_t nbuf = m->nci * blk;       /* >= n_samples */
+    double *a = malloc(nbuf * sizeof *a), *b = malloc(nbuf * sizeof *b);
     int rc = -1;
     if (a == NULL || b == NULL)
         goto done;
@@ -160,12 +173,19 @@ int bwr_model_forward(const bwr_model_t *m, const double *samples, double *coef)
         double *s = a;
         a = b;
         b = s;
+    } else if (m->have_in1d) {
+        bwr_type_t t = bwr_type_vector(blk);
+        if (bwr_dwt_forward(&m->dwt_in, &t, a, b) != 0)
+            goto done;
+        double *s = a;
+        a = b;
+        b = s;
     }
     /* 2. outgoing sphere of every incoming coefficient: elements are spectra */
     if (m->have_out) {
         bwr_type_t vt = bwr_type_vector(m->bands);
         const bwr_type_t *t = m->bands == 1 ? &bwr_type_real : &vt;
-        for (size_t i = 0; i < m->n_in; i++)
+        for (size_t i = 0; i < m->nci; i++)
             if (bwr_biohaar_forward(&m->sph_out, t, a + i * blk, b + i * blk) != 0)
                 goto done;
         double *s = a;
@@ -173,7 +193,7 @@ int bwr_model_forward(const bwr_model_t *m, const double *samples, double *coef)
         b = s;
     }
     /* 3. spectral axis of every vector coefficient */
-    size_t nv = m->n_in * m->n_out;
+    size_t nv = m->nci * m->n_out;
     for (size_t v = 0; v < nv; v++) {
         if (m->have_spec) {
             if (bwr_dwt_forward(&m->dwt, &bwr_type_real, a + v * m->bands,
@@ -193,11 +213,12 @@ done:
 int bwr_model_inverse(const bwr_model_t *m, const double *coef, double *samples)
 {
     size_t blk = m->n_out * m->bands;
-    double *a = malloc(m->n_samples * sizeof *a), *b = malloc(m->n_samples * sizeof *b);
+    size_t nbuf = m->nci * blk;
+    double *a = malloc(nbuf * sizeof *a), *b = malloc(nbuf * sizeof *b);
     int rc = -1;
     if (a == NULL || b == NULL)
         goto done;
-    size_t nv = m->n_in * m->n_out;
+    size_t nv = m->nci * m->n_out;
     for (size_t v = 0; v < nv; v++) {
         if (m->have_spec) {
             if (bwr_dwt_inverse(&m->dwt, &bwr_type_real, coef + v * m->ncoef_spec,
@@ -210,16 +231,17 @@ int bwr_model_inverse(const bwr_model_t *m, const double *coef, double *samples)
     if (m->have_out) {
         bwr_type_t vt = bwr_type_vector(m->bands);
         const bwr_type_t *t = m->bands == 1 ? &bwr_type_real : &vt;
-        for (size_t i = 0; i < m->n_in; i++)
+        for (size_t i = 0; i < m->nci; i++)
             if (bwr_biohaar_inverse(&m->sph_out, t, a + i * blk, b + i * blk) != 0)
                 goto done;
         double *s = a;
         a = b;
         b = s;
     }
-    if (m->have_in) {
+    if (m->have_in || m->have_in1d) {
         bwr_type_t t = bwr_type_vector(blk);
-        if (bwr_biohaar_inverse(&m->sph_in, &t, a, b) != 0)
+        if ((m->have_in ? bwr_biohaar_inverse(&m->sph_in, &t, a, b)
+                        : bwr_dwt_inverse(&m->dwt_in, &t, a, b)) != 0)
             goto done;
         double *s = a;
         a = b;

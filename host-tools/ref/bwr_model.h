@@ -14,6 +14,9 @@
  *
  * An isotropic BRDF keeps its N incoming directions (the plane phi = 0)
  * untransformed: only the outgoing hemisphere is transformed (sec. 5.2).
+ * Optionally a 1-D transform runs across the n_in objects instead (its
+ * elements are then whole Reflectance or Spectrum objects), for sets sampled
+ * along one angle.
  *
  * Samples are laid out [incoming][outgoing][band] (grid order on each
  * sphere); coefficients [incoming][outgoing][spectral], coarse to fine on
@@ -47,6 +50,11 @@ typedef struct {
     size_t bands;
     const bwr_filter_t *basis; /* spectral basis when bands > 1 */
     int spec_levels;      /* -1: the maximum (PyWavelets' dwt_max_level) */
+    bwr_ext_t spec_ext;   /* extension of the 1-D transforms (spectral and across) */
+    /* optional 1-D transform across the n_in objects when level_in < 0
+     * (e.g. incidence angles of a multi-angle set); NULL: none */
+    const bwr_filter_t *in_basis;
+    int in_levels;        /* -1: the maximum */
 } bwr_shape_t;
 
 /* The objects of sec. 4.2. */
@@ -65,11 +73,12 @@ typedef struct {
     size_t n_in, n_out, bands;
     size_t ncoef_spec;   /* coefficients per spectrum (>= bands, see bwr_dwt.h) */
     size_t n_samples;    /* n_in * n_out * bands */
-    size_t n_coefs;      /* n_in * n_out * ncoef_spec */
-    int have_in, have_out, have_spec;
+    size_t nci;          /* incoming coefficients: n_in, or the 1-D transform's count */
+    size_t n_coefs;      /* nci * n_out * ncoef_spec */
+    int have_in, have_in1d, have_out, have_spec;
     bwr_sphere_t sph_in, sph_out;
-    bwr_dwt_plan_t dwt;
-    double *in_psi2;     /* n_in squared norms of the incoming basis functions (1 if none) */
+    bwr_dwt_plan_t dwt, dwt_in;
+    double *in_psi2;     /* nci squared norms of the incoming basis functions (1 if none) */
     double *out_psi2;    /* n_out (1 if none) */
     double *spec_norm2;  /* ncoef_spec (1 if none) */
 } bwr_model_t;
@@ -78,7 +87,8 @@ typedef struct {
 int bwr_model_init(bwr_model_t *m, const bwr_shape_t *shape);
 void bwr_model_free(bwr_model_t *m);
 
-/* samples (n_samples) -> coef (n_coefs). 0, or -1 (out of memory). */
+/* Coefficient (i, o, k) is coef[(i * n_out + o) * ncoef_spec + k], i < nci.
+ * samples (n_samples) -> coef (n_coefs). 0, or -1 (out of memory). */
 int bwr_model_forward(const bwr_model_t *m, const double *samples, double *coef);
 /* coef (n_coefs) -> samples (n_samples). */
 int bwr_model_inverse(const bwr_model_t *m, const double *coef, double *samples);

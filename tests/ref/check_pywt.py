@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Checks the reference model's 1-D wavelets against PyWavelets.
 
-For every basis bwref ships: the four filters, and the multi-level periodized
-transform (PyWavelets mode 'periodization', wavedec order) of test signals of
-several lengths (even, odd, short), coefficient by coefficient, plus the
-round trip. Prints one line per failure and "RESULT: N passed, M failed".
+For every basis bwref ships: the four filters, and the multi-level transform
+(PyWavelets modes 'periodization' and 'symmetric', wavedec order) of test
+signals of several lengths (even, odd, shorter than the filter) and depths,
+coefficient by coefficient, plus the round trip. Prints one line per failure and "RESULT: N passed, M failed".
 
     check_pywt.py [BWREF]      (default build/host/bwref)
 """
@@ -65,12 +65,16 @@ def main():
             failed += 1
             print('FAIL:', what)
 
+    cases = [('periodization', n, lv) for n, lv in
+             ((256, None), (81, None), (1024, 3), (2151, None), (37, 1), (64, 2), (81, 'deep'),
+              (71, 'deep'))]
+    cases += [('symmetric', n, lv) for n, lv in ((256, None), (81, None), (71, 3), (13, 2), (500, 'deep'))]
     with tempfile.TemporaryDirectory() as tmp:
-        for n, levels in ((256, None), (81, None), (1024, 3), (2151, None), (37, 1), (64, 2)):
+        for mode, n, levels in cases:
             x = signal(n, n)
             path = os.path.join(tmp, 'x.txt')
             np.savetxt(path, x, fmt='%.17g')
-            cmd = [BWREF, 'wavedec', '-i', path]
+            cmd = [BWREF, 'wavedec', '-i', path, '--mode', mode]
             if levels is not None:
                 cmd += ['--levels', str(levels)]
             res = subprocess.run(cmd, capture_output=True, text=True)
@@ -89,30 +93,37 @@ def main():
                       sorted(set(got) ^ want))
             for name, g in sorted(got.items()):
                 w = pywt.Wavelet(name)
-                if n == 256:  # filters once
+                what = '%s %s n=%d' % (name, mode, n)
+                if n == 256 and mode == 'periodization':  # filters once
                     for fld in ('dec_lo', 'dec_hi', 'rec_lo', 'rec_hi'):
                         ref = np.array(getattr(w, fld))
                         mine = g.get(fld)
-                        ok = mine is not None and len(mine) == len(ref) and \
-                            np.max(np.abs(mine - ref)) <= TOL
-                        check(ok, '%s %s differs from PyWavelets (max %.3g)' % (
-                            name, fld, np.max(np.abs(mine - ref)) if ok is False and mine is not None
-                            and len(mine) == len(ref) else float('nan')))
-                lev = levels if levels is not None else pywt.dwt_max_level(n, w.dec_len)
-                check(g['levels'] == lev, '%s n=%d: %d levels, PyWavelets %d' % (name, n, g['levels'], lev))
-                ref = pywt.wavedec(x, w, mode='periodization', level=lev)
+                        same_len = mine is not None and len(mine) == len(ref)
+                        err = np.max(np.abs(mine - ref)) if same_len else float('inf')
+                        check(err <= TOL, '%s %s differs from PyWavelets (max %.3g)' % (name, fld, err))
+                if levels == 'deep':  # as many levels as shorten the signal, down to 2
+                    lev, m = 0, n
+                    while m > 2:
+                        nm = (m + 1) // 2 if mode == 'periodization' else (m + w.dec_len - 1) // 2
+                        if nm >= m:
+                            break
+                        m, lev = nm, lev + 1
+                else:
+                    lev = levels if levels is not None else pywt.dwt_max_level(n, w.dec_len)
+                check(g['levels'] == lev, '%s: %d levels, expected %d' % (what, g['levels'], lev))
+                ref = pywt.wavedec(x, w, mode=mode, level=lev)
                 lens = [len(c) for c in ref]
-                check(g['lens'] == lens, '%s n=%d: subband lengths %s, PyWavelets %s' % (
-                    name, n, g['lens'], lens))
+                check(g['lens'] == lens, '%s: subband lengths %s, PyWavelets %s' % (
+                    what, g['lens'], lens))
                 if g['lens'] != lens:
                     continue
                 refc = np.concatenate(ref)
                 err = np.max(np.abs(g['coef'] - refc)) / max(1.0, np.max(np.abs(refc)))
-                check(err <= TOL, '%s n=%d levels=%d: coefficients differ by %.3g' % (name, n, lev, err))
-                rec = pywt.waverec(ref, w, mode='periodization')[:n]
-                check(np.max(np.abs(rec - x)) <= 1e-9, 'PyWavelets round trip %s n=%d' % (name, n))
+                check(err <= TOL, '%s levels=%d: coefficients differ by %.3g' % (what, lev, err))
+                rec = pywt.waverec(ref, w, mode=mode)[:n]
+                check(np.max(np.abs(rec - x)) <= 1e-9, 'PyWavelets round trip %s' % what)
                 check(g['rt'] <= 1e-12 * max(1.0, np.max(np.abs(x))),
-                      '%s n=%d: round trip error %.3g' % (name, n, g['rt']))
+                      '%s: round trip error %.3g' % (what, g['rt']))
     print('RESULT: %d passed, %d failed' % (passed, failed))
     return 1 if failed else 0
 

@@ -117,23 +117,30 @@ static void exact_inverse_even_and_odd_lengths(void **state)
     static const size_t lens[] = {2, 3, 7, 16, 37, 81, 128, 255, 1024, 2151};
     rt_seed(10);
     double *x = malloc(2151 * sizeof *x), *y = malloc(2151 * sizeof *y);
-    double *c = malloc(4000 * sizeof *c);
+    double *c = malloc(8000 * sizeof *c);
     for (size_t i = 0; i < BWR_NUM_FILTERS; i++) {
         for (size_t q = 0; q < sizeof lens / sizeof lens[0]; q++) {
             size_t n = lens[q];
             bwr_dwt_plan_t p;
-            /* the maximum level, and (when the signal allows) a deeper one */
-            for (int lv = -1; lv <= 3; lv += 4) {
-                if (bwr_dwt_plan(&p, &bwr_filters[i], n, lv) != 0) {
-                    assert_true(lv >= 0);
+            /* the maximum level, a fixed one (when the signal allows) and the
+             * deepest, in both extensions */
+            static const int lvs[] = {-1, 3, BWR_DWT_DEEP};
+            for (size_t li = 0; li < 6; li++) {
+                int lv = lvs[li % 3];
+                bwr_ext_t mode = li < 3 ? BWR_EXT_PERIODIZATION : BWR_EXT_SYMMETRIC;
+                if (bwr_dwt_plan_ext(&p, &bwr_filters[i], n, lv, mode) != 0) {
+                    assert_true(lv == 3 && mode == BWR_EXT_PERIODIZATION);
                     continue;
                 }
-                assert_true(p.ncoef >= n && p.ncoef <= n + p.levels);
+                if (mode == BWR_EXT_PERIODIZATION)
+                    assert_true(p.ncoef >= n && p.ncoef <= n + p.levels);
+                else
+                    assert_true(p.ncoef >= n);
                 rt_fill(x, n, -2.0, 5.0);
                 assert_int_equal(bwr_dwt_forward(&p, &bwr_type_real, x, c), 0);
                 assert_int_equal(bwr_dwt_inverse(&p, &bwr_type_real, c, y), 0);
                 assert_true(rt_max_abs_diff(x, y, n) < 5e-12 * 5.0);
-                if (n % ((size_t)1 << p.levels) == 0)
+                if (mode == BWR_EXT_PERIODIZATION && n % ((size_t)1 << p.levels) == 0)
                     assert_int_equal(p.ncoef, n);
                 /* Parseval for the orthogonal bases when every level is even */
                 if (bwr_filters[i].orthogonal && p.ncoef == n) {
@@ -207,7 +214,7 @@ static void best_basis_prefers_the_basis_that_fits(void **state)
                                    bwr_filter_find("coif2"), bwr_filter_find("bior2.2")};
     bwr_shape_t sh = bwr_shape_spectra(1, n, cand[0]);
     sh.spec_levels = 4;
-    bwr_thresholds_t th = {0.0, 0.0, 0.0, n / 16};
+    bwr_thresholds_t th = {.keep = n / 16};
     size_t best = 99;
     double err[4];
     assert_int_equal(bwr_best_basis(&sh, x, &th, cand, 4, &best, err), 0);

@@ -54,6 +54,37 @@ static void every_object_round_trips_within_1e_12(void **state)
     };
     for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
         round_trip(&s[i], 2e-12);
+    /* a 1-D transform across the set (odd count: 71 incidence angles) */
+    bwr_shape_t a = bwr_shape_spectra(71, 40, db4);
+    a.in_basis = bwr_filter_find("sym4");
+    round_trip(&a, 2e-12);
+    a = bwr_shape_spectral_brdf(-1, 9, 1, 1, NULL);
+    a.bands = 1;
+    a.in_basis = b22;
+    round_trip(&a, 2e-12);
+}
+
+/* the 1-D transform across the set is the same generic code on Spectrum
+ * elements: the coefficients of an angle-independent set have no details
+ * across the set */
+static void transform_across_a_set(void **state)
+{
+    (void)state;
+    bwr_shape_t s = bwr_shape_spectra(32, 16, bwr_filter_find("haar"));
+    s.in_basis = bwr_filter_find("db2");
+    bwr_model_t m;
+    assert_int_equal(bwr_model_init(&m, &s), 0);
+    assert_int_equal(m.nci, 32);
+    double x[32 * 16], c[32 * 16];
+    rt_seed(24);
+    rt_fill(x, 16, 0.0, 1.0);
+    for (size_t i = 1; i < 32; i++)
+        memcpy(x + 16 * i, x, 16 * sizeof *x);
+    assert_int_equal(bwr_model_forward(&m, x, c), 0);
+    size_t na = m.dwt_in.len[m.dwt_in.levels];
+    for (size_t q = na * 16; q < 32 * 16; q++)
+        assert_true(fabs(c[q]) < 1e-13);
+    bwr_model_free(&m);
 }
 
 static void bad_shapes_are_rejected(void **state)
@@ -128,7 +159,7 @@ static void keep_count_is_exact_and_error_shrinks(void **state)
     double prev = INFINITY;
     size_t counts[] = {16, 64, 256, 1024, 4096};
     for (size_t q = 0; q < 5; q++) {
-        bwr_thresholds_t th = {0.0, 0.0, 0.0, counts[q]};
+        bwr_thresholds_t th = {.keep = counts[q]};
         bwr_compress_info_t inf;
         assert_int_equal(bwr_compress(&m, c, &th, k, &inf), 0);
         assert_int_equal(inf.kept, counts[q]);
@@ -150,7 +181,7 @@ static void keep_count_is_exact_and_error_shrinks(void **state)
         assert_true(minkept >= maxdropped);
     }
     /* keeping everything is exact */
-    bwr_thresholds_t all = {0.0, 0.0, 0.0, m.n_coefs};
+    bwr_thresholds_t all = {.keep = m.n_coefs};
     bwr_compress(&m, c, &all, k, NULL);
     bwr_model_inverse(&m, k, y);
     assert_true(rt_max_abs_diff(x, y, m.n_samples) < 1e-12);
@@ -185,7 +216,7 @@ static void thresholds_per_space(void **state)
     size_t below = 0;
     for (size_t o = 0; o < m.n_out; o++)
         below += vn[o] < eps_vec;
-    bwr_thresholds_t th = {0.0, eps_vec, 0.0, 0};
+    bwr_thresholds_t th = {.eps_vec = eps_vec};
     bwr_compress_info_t inf;
     bwr_compress(&m, c, &th, k, &inf);
     assert_int_equal(inf.vec_dropped, below);
@@ -220,13 +251,119 @@ static void thresholds_per_space(void **state)
     k = malloc(m.n_coefs * sizeof *k);
     rt_fill(x, m.n_samples, 0.0, 1.0);
     bwr_model_forward(&m, x, c);
-    th = (bwr_thresholds_t){1e9, 0.0, 0.0, 0};
+    th = (bwr_thresholds_t){.eps_in = 1e9};
     bwr_compress(&m, c, &th, k, &inf);
     assert_int_equal(inf.in_dropped, m.n_in);
     assert_int_equal(inf.kept, 0);
     free(x);
     free(c);
     free(k);
+    bwr_model_free(&m);
+}
+
+/* raw: ranking by |c|; keep_coarse: the base scaling coefficients stay */
+static void raw_magnitudes_and_coarse_coefficients(void **state)
+{
+    (void)state;
+    bwr_shape_t s = bwr_shape_brdf_isotropic(3, 2);
+    bwr_model_t m;
+    assert_int_equal(bwr_model_init(&m, &s), 0);
+    double *x = malloc(m.n_samples * sizeof *x), *c = malloc(m.n_coefs * sizeof *c);
+    double *k = malloc(m.n_coefs * sizeof *k);
+    rt_seed(25);
+    rt_fill(x, m.n_samples, 0.0, 1.0);
+    bwr_model_forward(&m, x, c);
+    bwr_thresholds_t th = {.keep = 20, .raw = 1};
+    bwr_compress_info_t inf;
+    bwr_compress(&m, c, &th, k, &inf);
+    assert_int_equal(inf.kept, 20);
+    double minkept = INFINITY, maxdropped = 0.0;
+    for (size_t q = 0; q < m.n_coefs; q++) {
+        if (k[q] != 0.0)
+            minkept = fmin(minkept, fabs(c[q]));
+        else
+            maxdropped = fmax(maxdropped, fabs(c[q]));
+    }
+    assert_true(minkept >= maxdropped);
+    /* keep 14 with the coarse ones forced: the 12 base scaling coefficients
+     * (4 per incoming direction) and the 2 largest others */
+    th.keep = 14;
+    th.keep_coarse = 1;
+    for (size_t i = 0; i < 3; i++)
+        c[i * m.n_out + 1] *= 1e-9; /* make some scaling coefficients tiny */
+    bwr_compress(&m, c, &th, k, &inf);
+    assert_int_equal(inf.kept, 14);
+    for (size_t i = 0; i < 3; i++)
+        for (size_t o = 0; o < 4; o++)
+            assert_true(k[i * m.n_out + o] == c[i * m.n_out + o]);
+    /* keep fewer than the coarse ones: only coarse ones remain */
+    th.keep = 5;
+    bwr_compress(&m, c, &th, k, &inf);
+    assert_int_equal(inf.kept, 5);
+    for (size_t q = 0; q < m.n_coefs; q++)
+        if (k[q] != 0.0)
+            assert_true(q % m.n_out < 4);
+    free(x);
+    free(c);
+    free(k);
+    bwr_model_free(&m);
+}
+
+static void memory_accounting_flat_and_nested(void **state)
+{
+    (void)state;
+    bwr_shape_t s = bwr_shape_brdf_isotropic(2, 1); /* 2 x 16 */
+    bwr_model_t m;
+    assert_int_equal(bwr_model_init(&m, &s), 0);
+    double c[32] = {0};
+    c[0] = 1.0;
+    c[17] = -2.0;
+    bwr_memory_t fl, ne;
+    bwr_coef_memory(&m, c, 8, &fl, &ne);
+    assert_int_equal(fl.values, 2);
+    assert_int_equal(fl.strips, 1);             /* indices 0..31: one strip */
+    assert_int_equal(ne.strips, 3);             /* incoming array + 2 spheres */
+    assert_int_equal(fl.total_bytes, 2 * 8 + 1 * 8);
+    assert_int_equal(ne.total_bytes, 2 * 8 + 3 * 8);
+    c[17] = 0.0;
+    bwr_coef_memory(&m, c, 4, &fl, &ne);
+    assert_int_equal(ne.strips, 2);             /* the empty sphere has no strip */
+    assert_int_equal(fl.data_bytes, 4);
+    bwr_sample_memory(&m, 8, &fl, &ne);
+    assert_int_equal(fl.values, 32);
+    assert_int_equal(fl.strips, 1);
+    assert_int_equal(ne.strips, 3);
+    bwr_model_free(&m);
+    /* a spectral set: 3 spectra of 40 bands, nested = set + 3 x 2 strips */
+    s = bwr_shape_spectra(3, 40, bwr_filter_find("haar"));
+    assert_int_equal(bwr_model_init(&m, &s), 0);
+    bwr_sample_memory(&m, 8, &fl, &ne);
+    assert_int_equal(fl.strips, 4); /* 120 samples */
+    assert_int_equal(ne.strips, 1 + 3 * 2);
+    bwr_model_free(&m);
+}
+
+static void keep_per_object(void **state)
+{
+    (void)state;
+    bwr_shape_t s = bwr_shape_spectra(4, 32, bwr_filter_find("db2"));
+    bwr_model_t m;
+    assert_int_equal(bwr_model_init(&m, &s), 0);
+    double x[128], c[128], k[128];
+    rt_seed(26);
+    for (size_t i = 0; i < 128; i++) /* very different magnitudes per spectrum */
+        x[i] = (1.0 + rt_uniform()) * pow(10.0, (double)(i / 32));
+    bwr_model_forward(&m, x, c);
+    bwr_thresholds_t th = {.keep = 9, .per_in = 1};
+    bwr_compress_info_t inf;
+    assert_int_equal(bwr_compress(&m, c, &th, k, &inf), 0);
+    assert_int_equal(inf.kept, 9);
+    for (size_t i = 0; i < 4; i++)
+        assert_int_equal(nonzero(k + 32 * i, 32), i == 0 ? 3 : 2);
+    /* one global ranking gives the bright spectrum nearly everything */
+    th.per_in = 0;
+    bwr_compress(&m, c, &th, k, &inf);
+    assert_true(nonzero(k + 96, 32) >= 6);
     bwr_model_free(&m);
 }
 
@@ -249,9 +386,13 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_object_round_trips_within_1e_12),
         cmocka_unit_test(bad_shapes_are_rejected),
+        cmocka_unit_test(transform_across_a_set),
+        cmocka_unit_test(raw_magnitudes_and_coarse_coefficients),
         cmocka_unit_test(brdf_is_a_transform_of_reflectances),
         cmocka_unit_test(keep_count_is_exact_and_error_shrinks),
         cmocka_unit_test(thresholds_per_space),
+        cmocka_unit_test(memory_accounting_flat_and_nested),
+        cmocka_unit_test(keep_per_object),
         cmocka_unit_test(error_metrics_are_eq_7_and_8),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

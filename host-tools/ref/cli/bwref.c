@@ -104,7 +104,7 @@ static void usage(FILE *f)
           "Float reference model of the paper (Claustres, Paulin, Boucher 2003).\n"
           "\n"
           "  wavedec   1-D wavelet coefficients of a signal for every basis\n"
-          "  paper     the paper's experiments (tables as markdown)\n"
+          "  ratios    compress a data set at given ratios or byte budgets (CSV)\n"
           "\n"
           "bwref COMMAND --help for the options of a command.\n",
           f);
@@ -122,8 +122,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "wavedec") == 0)
         return bwref_cmd_wavedec(argc - 1, argv + 1);
-    if (strcmp(argv[1], "paper") == 0)
-        return bwref_cmd_paper(argc - 1, argv + 1);
+    if (strcmp(argv[1], "ratios") == 0)
+        return bwref_cmd_ratios(argc - 1, argv + 1);
     fprintf(stderr, "bwref: unknown command '%s' (see --help)\n", argv[1]);
     return 2;
 }

@@ -1,5 +1,5 @@
 /*
- * bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J]
+ * bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J|deep]
  *
  * For every basis: its four filters, the multi-level periodized transform of
  * the signal (PyWavelets' wavedec order) and the round-trip error, as text
@@ -21,14 +21,14 @@ static void print_row(const char *tag, const double *v, size_t n)
     putchar('\n');
 }
 
-static int one(const bwr_filter_t *f, const double *x, size_t n, int levels)
+static int one(const bwr_filter_t *f, const double *x, size_t n, int levels, bwr_ext_t mode)
 {
     bwr_dwt_plan_t p;
-    if (bwr_dwt_plan(&p, f, n, levels) != 0)
+    if (bwr_dwt_plan_ext(&p, f, n, levels, mode) != 0)
         return bwref_fail("wavedec", "%s: cannot make %d levels on %zu samples", f->name, levels, n);
     double hi[BWR_MAX_FILTER_LEN];
-    printf("basis %s family %s len %zu levels %u ncoef %zu\n", f->name, f->family, f->len,
-           p.levels, p.ncoef);
+    printf("basis %s family %s len %zu levels %u ncoef %zu mode %s\n", f->name, f->family, f->len,
+           p.levels, p.ncoef, mode == BWR_EXT_SYMMETRIC ? "symmetric" : "periodization");
     print_row("dec_lo", f->dec_lo, f->len);
     bwr_filter_dec_hi(f, hi);
     print_row("dec_hi", hi, f->len);
@@ -60,18 +60,33 @@ int bwref_cmd_wavedec(int argc, char **argv)
 {
     const char *in = NULL, *basis = "all";
     int levels = -1;
+    bwr_ext_t mode = BWR_EXT_PERIODIZATION;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            puts("usage: bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J]\n"
+            puts("usage: bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J|deep]\n"
+                 "                    [--mode periodization|symmetric]\n"
                  "SIGNAL: whitespace-separated numbers. Prints, per basis, the\n"
-                 "filters, the periodized multi-level coefficients (PyWavelets\n"
-                 "wavedec order, mode 'periodization') and the round-trip error.\n"
-                 "Without --levels: the maximum level (PyWavelets' dwt_max_level).");
+                 "filters, the multi-level coefficients (PyWavelets wavedec order,\n"
+                 "mode 'periodization' or 'symmetric') and the round-trip error.\n"
+                 "Without --levels: the maximum level (PyWavelets' dwt_max_level);\n"
+                 "deep: halvings down to 2 approximation coefficients.");
             return 0;
         } else if (strcmp(argv[i], "-i") == 0 && i + 1 < argc) {
             in = argv[++i];
+        } else if (strcmp(argv[i], "--mode") == 0 && i + 1 < argc) {
+            const char *v = argv[++i];
+            if (strcmp(v, "periodization") == 0)
+                mode = BWR_EXT_PERIODIZATION;
+            else if (strcmp(v, "symmetric") == 0)
+                mode = BWR_EXT_SYMMETRIC;
+            else
+                return bwref_fail("wavedec", "--mode needs periodization or symmetric");
         } else if (strcmp(argv[i], "--basis") == 0 && i + 1 < argc) {
             basis = argv[++i];
+        } else if (strcmp(argv[i], "--levels") == 0 && i + 1 < argc &&
+                   strcmp(argv[i + 1], "deep") == 0) {
+            levels = BWR_DWT_DEEP;
+            i++;
         } else if (strcmp(argv[i], "--levels") == 0 && i + 1 < argc) {
             char *end;
             long l = strtol(argv[++i], &end, 10);
@@ -91,10 +106,10 @@ int bwref_cmd_wavedec(int argc, char **argv)
     int rc = 0;
     if (strcmp(basis, "all") == 0) {
         for (size_t k = 0; k < BWR_NUM_FILTERS && rc == 0; k++)
-            rc = one(&bwr_filters[k], x, n, levels);
+            rc = one(&bwr_filters[k], x, n, levels, mode);
     } else {
         const bwr_filter_t *f = bwr_filter_find(basis);
-        rc = f ? one(f, x, n, levels) : bwref_fail("wavedec", "unknown basis '%s'", basis);
+        rc = f ? one(f, x, n, levels, mode) : bwref_fail("wavedec", "unknown basis '%s'", basis);
     }
     free(x);
     return rc;
