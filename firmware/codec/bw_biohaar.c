@@ -35,7 +35,8 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
         size_t h = (size_t)1 << (2u * (level - j - 1u)); /* child stride, leaves */
         uint32_t per_base = 1u << (2u * j);
         for (uint32_t p = 0; p < 4u * per_base; p++) {
-            const uint16_t *w = bw_geo_weights(j, p & (per_base - 1u));
+            uint16_t w[3];
+            bw_geo_weights(j, p & (per_base - 1u), w);
             int32_t *c0 = x + (size_t)p * 4u * h * vlen;
             int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
             bw_biohaar_lift4(c0, c1, c2, c3, w, vlen);
@@ -49,7 +50,8 @@ void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen)
         size_t h = (size_t)1 << (2u * (level - j - 1u));
         uint32_t per_base = 1u << (2u * j);
         for (uint32_t p = 0; p < 4u * per_base; p++) {
-            const uint16_t *w = bw_geo_weights(j, p & (per_base - 1u));
+            uint16_t w[3];
+            bw_geo_weights(j, p & (per_base - 1u), w);
             int32_t *c0 = x + (size_t)p * 4u * h * vlen;
             int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
             for (size_t e = 0; e < vlen; e++) {

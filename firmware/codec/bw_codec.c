@@ -1080,8 +1080,10 @@ bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
         unsigned k = L - j + 1u; /* the parent is t >> 2k at level j - 1 */
         uint32_t p = t >> (2u * k);
         uint32_t per_base = 1u << (2u * (j - 1u));
+        uint16_t w[3];
+        bw_geo_weights(j - 1u, p & (per_base - 1u), w);
         bw_biohaar_lift4(pend_slot(s, j, 0), pend_slot(s, j, 1), pend_slot(s, j, 2),
-                         pend_slot(s, j, 3), bw_geo_weights(j - 1u, p & (per_base - 1u)), b);
+                         pend_slot(s, j, 3), w, b);
         for (unsigned m = 1; m <= 3u; m++)
             stream_emit(s, &pl, pend_slot(s, j, m), (int)j - 1);
         /* the parent's scaling vector moves up a level */

@@ -1,7 +1,7 @@
 #define _DEFAULT_SOURCE
 /*
- * Prints firmware/codec/bw_geodesic_tables.c: the Bio-Haar weight table
- * bw_geo_weight_q16 for base triangle 0's subtree (see bw_geodesic.h); with
+ * Prints firmware/codec/bw_geodesic_tables.c: the Bio-Haar weight tables
+ * bw_geo_weight_coarse_q16 / bw_geo_weight_fine for base triangle 0's subtree (see bw_geodesic.h); with
  * --areas, firmware/codec/bw_geodesic_areas.c: the solid angles of that
  * subtree's triangles at levels 0..6 as Q31 fractions of the base triangle.
  *
@@ -24,6 +24,7 @@
 #define TABLE_LEVELS 6u   /* parents at levels 0..5, as BW_GEO_TABLE_LEVELS */
 #define TABLE_PARENTS 1365u /* (4^6 - 1) / 3, as BW_GEO_PARENTS */
 #define PER_LINE 4u
+#define COARSE_LEVELS 3u /* as BW_GEO_COARSE_LEVELS: stored whole below this level */
 
 /* Exact .5 ties would make the rounded value depend on the last bit of the
  * solid angles; refuse anything closer than this to a tie. */
@@ -81,8 +82,16 @@ static int build(void)
                         (unsigned)l[2]);
                 rc = -1;
             }
-            for (unsigned m = 0; m < 3; m++)
+            for (unsigned m = 0; m < 3; m++) {
+                if (j >= COARSE_LEVELS && (l[m] > 16384u || 16384u - l[m] > 255u)) {
+                    fprintf(stderr,
+                            "gen_geodesic_tables: level %u parent %u: weight %u does not fit "
+                            "the 8-bit form\n",
+                            j, (unsigned)p, (unsigned)l[m]);
+                    rc = -1;
+                }
                 table[first + p][m] = (uint16_t)l[m];
+            }
         }
     }
 out:
@@ -96,28 +105,32 @@ static void emit(void)
     printf("/*\n"
            " * GENERATED FILE - DO NOT EDIT.\n"
            " * Written by host-tools/gen/gen_geodesic_tables.c. To regenerate, from the\n"
-           " * repository root:\n"
-           " *   cc -std=c11 -O2 -I host-tools/src -o /tmp/gen_geodesic_tables \\\n"
-           " *      host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c -lm\n"
-           " *   /tmp/gen_geodesic_tables > firmware/codec/bw_geodesic_tables.c\n"
+           " * repository root: make tables\n"
            " *\n"
            " * Bio-Haar weights {L1, L2, L3} in Q16 for base triangle 0's subtree,\n"
            " * L_m = round(65536 * a_m / a_parent) with a the spherical solid angles;\n"
-           " * L0 = 65536 - (L1 + L2 + L3) is the largest.\n"
+           " * L0 = 65536 - (L1 + L2 + L3) is the largest. Levels 0..2 whole, levels\n"
+           " * 3..5 as 16384 - L_m (see bw_geodesic.h).\n"
            " */\n"
            "#include \"bw_geodesic.h\"\n"
            "\n"
-           "const uint16_t bw_geo_weight_q16[BW_GEO_PARENTS][3] = {\n");
+           "const uint16_t bw_geo_weight_coarse_q16[BW_GEO_COARSE][3] = {\n");
     for (unsigned j = 0; j < TABLE_LEVELS; j++) {
         uint32_t first = ((1u << (2u * j)) - 1u) / 3u;
         uint32_t n = 1u << (2u * j);
+        if (j == COARSE_LEVELS)
+            printf("};\n\nconst uint8_t bw_geo_weight_fine[BW_GEO_PARENTS - BW_GEO_COARSE][3] = {\n");
         printf("    /* level %u: entries %u..%u */\n", j, (unsigned)first,
                (unsigned)(first + n - 1));
         for (uint32_t p = 0; p < n; p++) {
             const uint16_t *w = table[first + p];
             int last = (p + 1 == n) || ((p + 1) % PER_LINE == 0);
-            printf("%s{%5u,%5u,%5u},%s", (p % PER_LINE == 0) ? "    " : "",
-                   (unsigned)w[0], (unsigned)w[1], (unsigned)w[2], last ? "\n" : " ");
+            if (j < COARSE_LEVELS)
+                printf("%s{%5u,%5u,%5u},%s", (p % PER_LINE == 0) ? "    " : "", (unsigned)w[0],
+                       (unsigned)w[1], (unsigned)w[2], last ? "\n" : " ");
+            else
+                printf("%s{%3u,%3u,%3u},%s", (p % PER_LINE == 0) ? "    " : "",
+                       16384u - w[0], 16384u - w[1], 16384u - w[2], last ? "\n" : " ");
         }
     }
     printf("};\n");

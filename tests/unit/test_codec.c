@@ -1063,7 +1063,8 @@ static void biohaar_level_one_matches_the_weighted_lifting(void **state)
     int32_t x[16 * 5], ref[16 * 5];
     rng_t r;
     rng_seed(&r, 22);
-    const uint16_t *w = bw_geo_weights(0, 0);
+    uint16_t w[3];
+    bw_geo_weights(0, 0, w);
     /* the children's area fractions: L1..L3 of the centre split, L0 implied */
     assert_true((uint32_t)w[0] + w[1] + w[2] < 65536u);
     assert_true(w[0] > 0 && w[1] > 0 && w[2] > 0);
@@ -1115,7 +1116,8 @@ static void biohaar_update_rounds_every_small_difference_like_the_formula(void *
                     x[(size_t)(b * 4 + 3) * V + e] = c0 + d3;
                 }
             bw_biohaar_fwd(x, 1, V);
-            const uint16_t *w = bw_geo_weights(0, 0);
+            uint16_t w[3];
+            bw_geo_weights(0, 0, w);
             for (unsigned b = 0; b < 4; b++)
                 for (int32_t e = 0; e < V; e++) {
                     int32_t d2 = e / SIDE - R, d3 = e % SIDE - R;

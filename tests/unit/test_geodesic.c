@@ -262,8 +262,8 @@ static void the_firmware_weight_table_equals_what_the_generator_computes(void **
     for (unsigned j = 0; j < BW_GEO_TABLE_LEVELS; j++) {
         uint32_t n = 1u << (2u * j);
         for (uint32_t p = 0; p < n; p++) {
-            const uint16_t *w = bw_geo_weights(j, p);
-            assert_ptr_equal(w, bw_geo_weight_q16[((1u << (2u * j)) - 1u) / 3u + p]);
+            uint16_t w[3];
+            bw_geo_weights(j, p, w);
             double ap = area(&grids[j][p]);
             uint32_t sum = 0;
             for (unsigned m = 1; m <= 3; m++) {
