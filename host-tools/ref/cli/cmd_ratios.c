@@ -153,7 +153,7 @@ static int best_point(const job_t *j, const bwr_filter_t *fixed, size_t keep, bw
                       const bwr_filter_t **used)
 {
     if (fixed != NULL || j->shape.bands == 1) {
-        *used = fixed;
+        *used = j->shape.bands == 1 ? NULL : fixed;
         return run_point(j, fixed, keep, e, flat, nested, kept);
     }
     int found = 0;
