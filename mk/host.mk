@@ -14,7 +14,17 @@ CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 LIB := $(BUILD)/libbrdfwave.a
 BW_CLI := $(BUILD)/brdfwave
 
-all: $(LIB) $(BW_CLI)
+# the device application as a host process (hal/linux), for tests
+FWL_SRC := firmware/app/app.c firmware/app/main.c hal/linux/board.c
+FWL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FWL_SRC))
+FWL := $(BUILD)/brdfwave-fw-linux
+$(FWL_OBJ): CFLAGS += -Ihal -Ifirmware/app
+
+all: $(LIB) $(BW_CLI) $(FWL)
+
+$(FWL): $(FWL_OBJ) $(LIB)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) $(CFLAGS) $(FWL_OBJ) $(LIB) $(LDLIBS) -o $@
 
 $(LIB): $(CORE_OBJ) $(HOST_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^

@@ -338,13 +338,13 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         /* the emulated co-processor encodes; the host checks what came back */
         bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0};
         bwh_received_t r;
-        if (strcmp(o->device, "qemu") != 0) {
+        if (strcmp(o->device, "qemu") != 0 && strcmp(o->device, "linux") != 0) {
             free(work);
             free(ver);
             free(buf);
-            return fail("unknown device '%s' (known: qemu)", o->device);
+            return fail("unknown device '%s' (known: qemu, linux)", o->device);
         }
-        if (bwh_device_encode(o->firmware, dims, &p, x, &ro, &r) != 0) {
+        if (bwh_device_encode(o->device, o->firmware, dims, &p, x, &ro, &r) != 0) {
             free(work);
             free(ver);
             free(buf);

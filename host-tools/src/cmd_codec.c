@@ -71,9 +71,10 @@ static const char encode_help[] =
     "  --ratio R         the payload is at most 4*samples/R bytes (R:1 against float32)\n"
     "  --basis B         spectral wavelet (default auto: the smallest payload)\n"
     "  --scale S         float input: value of one integer step\n"
-    "  --device D        where to encode: host (default) or qemu, the emulated\n"
+    "  --device D        where to encode: host (default); qemu, the emulated\n"
     "                    Cortex-M4 co-processor (its payload comes back over the\n"
-    "                    UART link and is checked on the host)\n"
+    "                    UART link and is checked on the host); or linux, the same\n"
+    "                    device application as a host process\n"
     "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n"
     "  --stream          code in the order a streaming encoder produces (the device\n"
     "                    then encodes spectrum by spectrum in bounded RAM; needs\n"
@@ -181,8 +182,9 @@ int bw_cmd_encode(int argc, char **argv)
         default: return usage_err(C, "unknown option or missing argument");
         }
     }
-    if (o.device && strcmp(o.device, "qemu") && strcmp(o.device, "host"))
-        return usage_err(C, "--device must be qemu or host");
+    if (o.device && strcmp(o.device, "qemu") && strcmp(o.device, "linux") &&
+        strcmp(o.device, "host"))
+        return usage_err(C, "--device must be host, qemu or linux");
     if (o.device && !strcmp(o.device, "host"))
         o.device = NULL;
     while (optind < argc && nin < (int)(sizeof in / sizeof *in))
@@ -352,8 +354,9 @@ int bw_cmd_encode(int argc, char **argv)
         goto out;
     }
     if (o.device)
-        printf("device %s: %zu samples -> %zu bytes, %llu instructions (%.1f per sample)\n",
-               o.device, need, plen, (unsigned long long)device_instructions,
+        printf("device %s: %zu samples -> %zu bytes, %llu %s (%.1f per sample)\n", o.device,
+               need, plen, (unsigned long long)device_instructions,
+               strcmp(o.device, "linux") ? "instructions" : "ns",
                (double)device_instructions / (double)need);
     rc = 0;
 out:

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <termios.h>
@@ -244,10 +245,10 @@ fail:
 
 /* ---- the emulated co-processor ------------------------------------------- */
 
-static char *default_firmware(void)
+static char *default_firmware(int linux_process)
 {
     const char *env = getenv("BW_FIRMWARE");
-    if (env && *env)
+    if (env && *env && !linux_process)
         return strdup(env);
     char exe[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 64);
@@ -259,7 +260,7 @@ static char *default_firmware(void)
         *slash = 0;
     char *path = malloc(strlen(exe) + 64);
     if (path)
-        sprintf(path, "%s/../qemu/brdfwave-fw.elf", exe);
+        sprintf(path, linux_process ? "%s/brdfwave-fw-linux" : "%s/../qemu/brdfwave-fw.elf", exe);
     return path;
 }
 
@@ -299,13 +300,40 @@ static int find_pty(int out_fd, char *pty, size_t cap, double timeout_s)
     return bwh_fail("the emulator did not open its link within %.0f s", timeout_s);
 }
 
-int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_params_t *p,
-                      const int32_t *samples, const bwh_rx_opts_t *o, bwh_received_t *r)
+/* Starts the application as a host process on one end of a socket pair. */
+static pid_t start_linux(const char *fw, int *fd)
+{
+    int sv[2];
+    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
+        return bwh_fail("socketpair: %s", strerror(errno)), -1;
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(sv[0]);
+        close(sv[1]);
+        return bwh_fail("fork: %s", strerror(errno)), -1;
+    }
+    if (pid == 0) {
+        dup2(sv[1], 0);
+        dup2(sv[1], 1);
+        execl(fw, fw, (char *)NULL);
+        fprintf(stderr, "cannot run %s: %s\n", fw, strerror(errno));
+        _exit(127);
+    }
+    close(sv[1]);
+    fcntl(sv[0], F_SETFL, fcntl(sv[0], F_GETFL) | O_NONBLOCK);
+    *fd = sv[0];
+    return pid;
+}
+
+int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
+                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
+                      bwh_received_t *r)
 {
     memset(r, 0, sizeof *r);
     int rc = -1, fd = -1, pipefd[2] = {-1, -1};
     pid_t pid = -1;
-    char *fw = firmware ? strdup(firmware) : default_firmware();
+    int linux_process = !strcmp(device, "linux");
+    char *fw = firmware ? strdup(firmware) : default_firmware(linux_process);
     char input[] = "/tmp/brdfwave-sensor-XXXXXX";
     int in_fd = mkstemp(input);
     if (!fw || in_fd < 0) {
@@ -314,7 +342,8 @@ int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_para
     }
     struct stat sb;
     if (stat(fw, &sb) != 0) {
-        bwh_fail("firmware image %s: %s (build it with 'make TARGET=qemu')", fw, strerror(errno));
+        bwh_fail("firmware image %s: %s (build it with '%s')", fw, strerror(errno),
+                 linux_process ? "make" : "make TARGET=qemu");
         goto out;
     }
     size_t n = bw_dims_samples(dims);
@@ -334,6 +363,12 @@ int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_para
     close(in_fd);
     in_fd = -1;
 
+    if (linux_process) {
+        pid = start_linux(fw, &fd);
+        if (pid < 0)
+            goto out;
+        goto connected;
+    }
     if (pipe2(pipefd, O_CLOEXEC) != 0) {
         bwh_fail("pipe: %s", strerror(errno));
         goto out;
@@ -361,6 +396,7 @@ int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_para
     fd = bwh_port_open(pty);
     if (fd < 0)
         goto out;
+connected:;
 
     bw_job_t job;
     memset(&job, 0, sizeof job);

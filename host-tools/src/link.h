@@ -36,11 +36,15 @@ int bwh_receive_payload(int fd, const bwh_rx_opts_t *o, bwh_received_t *r);
 /* Sends one frame. */
 int bwh_send_frame(int fd, uint8_t type, uint16_t seq, const uint8_t *data, uint16_t len);
 
-/* Encodes on the emulated co-processor: starts QEMU with the firmware image,
- * hands it the samples as its sensor input and the job over the UART (a
- * pseudo-terminal), receives the payload. firmware = NULL: next to this
- * program's build (../qemu/brdfwave-fw.elf) or $BW_FIRMWARE. */
-int bwh_device_encode(const char *firmware, const bw_dims_t *dims, const bw_params_t *p,
-                      const int32_t *samples, const bwh_rx_opts_t *o, bwh_received_t *r);
+/* Encodes on a device: "qemu" starts the emulated co-processor with the
+ * firmware image (firmware = NULL: ../qemu/brdfwave-fw.elf beside this
+ * program, or $BW_FIRMWARE) and talks to it over its UART (a
+ * pseudo-terminal); "linux" runs the same application as a host process
+ * (brdfwave-fw-linux beside this program) on a socket pair. The samples
+ * become the device's sensor input, the job goes over the link, and the
+ * payload comes back through bwh_receive_payload. */
+int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
+                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
+                      bwh_received_t *r);
 
 #endif
