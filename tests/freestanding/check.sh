@@ -23,7 +23,7 @@ CORE_SRC=$(ls "$CORE_DIR"/*.c)
 ALLOWED_HEADERS='stdint.h|stddef.h|stdbool.h|string.h'
 FORBIDDEN='^(malloc|calloc|realloc|free|_malloc_r|_free_r|[a-z]*printf|_[a-z]*printf_r|puts|putchar|abort|exit|sqrtf?|floorf?|ceilf?|powf?|expf?|logf?|fabsf?|roundf?|lroundf?)$'
 FLOAT='^__aeabi_[fd]|^__aeabi_u?[il]2[fd]$|^__.*(sf|df|tf)[0-9]?$|^__(add|sub|mul|div|neg)(s|d|t)f[0-9]$|^__float|^__fix'
-REQUIRED='bw_encode bw_decode bw_decode_unchecked bw_header_read bw_spec_fwd bw_spec_inv bw_biohaar_fwd bw_biohaar_inv bw_crc32_update bw_rc_enc_shift_low'
+REQUIRED='bw_encode bw_decode bw_decode_unchecked bw_header_read bw_spec_fwd bw_spec_inv bw_biohaar_fwd bw_biohaar_inv bw_crc32_update bw_rc_enc_shift_low bw_stream_push'
 
 passed=0
 failed=0
@@ -170,6 +170,17 @@ HDR
 
 check_target arm-cortex-m4 arm-none-eabi- \
     -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -O2 -Wall -Wextra -Werror
+
+# the device build: the codec (encoder, decoder, streaming encoder and the
+# library helpers they pull in) must fit 16 KiB of flash at -Os
+check_target arm-cortex-m4-Os arm-none-eabi- \
+    -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os -Wall -Wextra -Werror
+text=$(arm-none-eabi-size "build/freestanding/arm-cortex-m4-Os/codec-gc.elf" | awk 'NR == 2 {print $1}')
+if [ -n "$text" ] && [ "$text" -le 16384 ]; then
+    ok "arm-cortex-m4-Os: codec image text $text bytes <= 16384"
+else
+    bad "arm-cortex-m4-Os: codec image text ${text:-?} bytes > 16384"
+fi
 
 # RV32 if its libgcc multilib is there, else RV64
 RV_ARCH="-march=rv32imac -mabi=ilp32"

@@ -94,6 +94,21 @@ int bw_entry(void)
             acc += bw_header_read(payload, len, &h) + (int32_t)h.body_len;
         }
     }
+    /* the streaming encoder, spectrum by spectrum */
+    static bw_stream_t stream;
+    static int32_t mem[BW_STREAM_MEM_BOUND(LEVEL, BANDS)];
+    bw_params_t sp;
+    memset(&sp, 0, sizeof sp);
+    sp.mode = BW_MODE_MAX_ERROR;
+    sp.basis = BW_BASIS_97;
+    sp.max_error = 1;
+    size_t slen = 0;
+    int st = bw_stream_init(&stream, &d, &sp, mem, sizeof mem / sizeof *mem, payload, sizeof payload);
+    for (uint32_t v = 0; st == BW_OK && v < d.n_out; v++)
+        st = bw_stream_push(&stream, samples + v * BANDS);
+    if (st == BW_OK)
+        st = bw_stream_finish(&stream, &slen);
+    acc += st + (int32_t)slen;
     return acc + (int32_t)bw_strerror(acc)[0];
 }
 
