@@ -52,6 +52,12 @@ for E in 0.0005 0.002; do
     row "field spectra, max-error $E" "$OUT/field_e.bwv" "$OUT/field_ref.f32" "$OUT/field_e.f32"
 done
 
+# the device's bounded-RAM path: spectrum by spectrum, coded as produced
+enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field_s.bwv" --stream --basis 97 --max-error 0.0005
+"$BW" decode -i "$OUT/field_s.bwv" -o "$OUT/field_s.f32"
+"$BW" info "$OUT/field_s.bwv" >"$OUT/info"
+row "field spectra, streamed, max-error 0.0005" "$OUT/field_s.bwv" "$OUT/field_ref.f32" "$OUT/field_s.f32"
+
 # the paper's Phong (1) set, at the paper's ratios
 "$BW" synth --model phong --kd 0.75 --ks 0.25 --n 20 --level 4 --incoming 16 -o "$OUT/phong1.f32"
 for R in 8 16 64 128 256; do
