@@ -18,7 +18,8 @@ BD_CORE_HDR := $(wildcard firmware/codec/*.h)
 # -O2: linked into the image; -Os: stack frames only (as the MCU build)
 BD_OBJ_O2 := $(patsubst firmware/codec/%.c,$(BD_DIR)/obj-O2/%.o,$(BD_CORE_SRC))
 BD_OBJ_OS := $(patsubst firmware/codec/%.c,$(BD_DIR)/obj-Os/%.o,$(BD_CORE_SRC))
-BD_IMG_SRC := tests/bench/device/bench_device.c hal/cortex-m/startup.c hal/qemu-mps2/board.c
+BD_IMG_SRC := tests/bench/device/bench_device.c hal/cortex-m/startup.c hal/qemu-mps2/board.c \
+              hal/file_sensor.c
 BD_IMG_OBJ := $(patsubst %.c,$(BD_DIR)/obj-img/%.o,$(BD_IMG_SRC))
 BD_ELF := $(BD_DIR)/bench_device.elf
 

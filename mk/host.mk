@@ -15,7 +15,7 @@ LIB := $(BUILD)/libbrdfwave.a
 BW_CLI := $(BUILD)/brdfwave
 
 # the device application as a host process (hal/linux), for tests
-FWL_SRC := firmware/app/app.c firmware/app/main.c hal/linux/board.c
+FWL_SRC := firmware/app/app.c firmware/app/main.c hal/linux/board.c hal/file_sensor.c
 FWL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FWL_SRC))
 FWL := $(BUILD)/brdfwave-fw-linux
 $(FWL_OBJ): CFLAGS += -Ihal -Ifirmware/app

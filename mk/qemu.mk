@@ -8,7 +8,7 @@ CFLAGS := $(WARN) $(OPT) $(CPU) -ffreestanding -ffunction-sections -fdata-sectio
 LINKER_SCRIPT := linker/mps2-an386.ld
 
 FW_SRC := firmware/link/bw_frame.c firmware/app/app.c firmware/app/main.c \
-          hal/cortex-m/startup.c hal/qemu-mps2/board.c
+          hal/cortex-m/startup.c hal/qemu-mps2/board.c hal/file_sensor.c
 FW_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FW_SRC))
 FW_ELF := $(BUILD)/brdfwave-fw.elf
 $(FW_OBJ): CFLAGS += -Ihal -Ifirmware/link -Ifirmware/app
@@ -25,7 +25,7 @@ $(BUILD)/libbwcore.a: $(CORE_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
 # target tests: the core on the emulated board, semihosting for I/O and exit
-TT_SRC := hal/cortex-m/startup.c hal/qemu-mps2/board.c tests/target/test_target.c
+TT_SRC := hal/cortex-m/startup.c hal/qemu-mps2/board.c hal/file_sensor.c tests/target/test_target.c
 TT_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(TT_SRC))
 TT_ELF := $(BUILD)/tests/test_target.elf
 $(TT_OBJ): CFLAGS += -Ihal -Itests

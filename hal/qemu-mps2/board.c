@@ -13,6 +13,7 @@
 #include <stdlib.h>
 
 #include "bw_hal.h"
+#include "file_sensor.h"
 
 #define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
@@ -74,28 +75,6 @@ static int link_read(uint8_t *buf, size_t cap)
     return (int)n;
 }
 
-static FILE *sensor;
-
-static int sensor_open(const char *source)
-{
-    if (sensor)
-        fclose(sensor);
-    sensor = fopen(source, "rb");
-    return sensor ? 0 : -BW_HAL_EIO;
-}
-
-static int sensor_read(int32_t *samples, size_t cap)
-{
-    if (!sensor)
-        return -BW_HAL_EIO;
-    size_t n = 0;
-    uint8_t b[4];
-    while (n < cap && fread(b, 1, 4, sensor) == 4)
-        samples[n++] = (int32_t)((uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
-                                 (uint32_t)b[3] << 24);
-    return (int)n;
-}
-
 static void fault(uint32_t code)
 {
     printf("fault: vector %lu\n", (unsigned long)code);
@@ -108,8 +87,8 @@ static const bw_hal_t board = {
     .counter = counter,
     .link_write = link_write,
     .link_read = link_read,
-    .sensor_open = sensor_open,
-    .sensor_read = sensor_read,
+    .sensor_open = bw_file_sensor_open,
+    .sensor_read = bw_file_sensor_read,
     .fault = fault,
 };
 
