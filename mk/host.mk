@@ -4,8 +4,8 @@ OPT ?= -O2 -g
 CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/src $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
-HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c firmware/link/bw_frame.c \
-            host-tools/src/link.c
+HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c host-tools/src/brdf_models.c \
+            firmware/link/bw_frame.c host-tools/src/link.c
 CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
            host-tools/src/cmd_synth.c host-tools/src/cmd_device.c
 HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))

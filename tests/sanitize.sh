@@ -3,7 +3,7 @@
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
 # trips. Compiles the sources directly (firmware/codec/*.c, host-tools/src/
-# bwhost.c and geodesic.c, each test) into $SANITIZE_BUILD (default
+# bwhost.c, geodesic.c and brdf_models.c, each test) into $SANITIZE_BUILD (default
 # build/sanitize), independent of the Makefile's build.
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
@@ -17,7 +17,7 @@ CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-
         -fsanitize=address,undefined -fno-sanitize-recover=all
         -Ifirmware/codec -Ifirmware/link -Ihost-tools/src -Itests/unit"
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c host-tools/src/bwhost.c host-tools/src/link.c
-         host-tools/src/geodesic.c"
+         host-tools/src/geodesic.c host-tools/src/brdf_models.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

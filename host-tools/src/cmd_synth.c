@@ -7,13 +7,7 @@
  * in the plane phi = 0 (isotropic case, theta_k = (k + 0.5) * 90 / N deg) or
  * the geodesic centres at --level-in (full case).
  *
- * Models (directions point away from the surface, normal = +z):
- *   phong: kd/pi + ks (n+2)/(2 pi) max(0, r.wo)^n, r = mirror of wi about z
- *          (modified Phong, Lafortune & Willems 1994);
- *   ward:  kd/pi + ks exp(-(hx^2/ax^2 + hy^2/ay^2)/hz^2)
- *                 / (4 pi ax ay sqrt(cos_i cos_o)),  h = wi + wo
- *          (Ward 1992, anisotropic); cosines are clamped to a small positive
- *          value so grazing directions stay finite.
+ * Models: modified Phong and Ward, brdf_models.h.
  */
 #include <errno.h>
 #include <float.h>
@@ -25,11 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "brdf_models.h"
 #include "commands.h"
 #include "geodesic.h"
 
 #define SYNTH_PI 3.14159265358979323846
-#define SYNTH_COS_MIN 1e-6         /* clamp for cos_i, cos_o and h_z */
 #define SYNTH_MAX_INCOMING 1048576ul
 
 enum synth_model { MODEL_NONE, MODEL_PHONG, MODEL_WARD };
@@ -48,7 +42,7 @@ enum {
 
 typedef struct {
     enum synth_model model;
-    double kd, ks, n, ax, ay;
+    bwh_brdf_params_t p;
     int have_n, have_ax, have_ay;
     unsigned level;
     unsigned long incoming;  /* 0 = not given */
@@ -137,34 +131,6 @@ static void put_f32le(unsigned char *p, float v)
     p[3] = (unsigned char)((u >> 24) & 0xffu);
 }
 
-static double brdf_phong(const synth_opts_t *o, const double wi[3],
-                         const double wo[3])
-{
-    /* mirror of wi about the normal z */
-    double c = -wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2];
-    double f = o->kd / SYNTH_PI;
-    if (c > 0.0)
-        f += o->ks * (o->n + 2.0) / (2.0 * SYNTH_PI) * pow(c, o->n);
-    return f;
-}
-
-static double brdf_ward(const synth_opts_t *o, const double wi[3],
-                        const double wo[3])
-{
-    double cos_i = wi[2] > SYNTH_COS_MIN ? wi[2] : SYNTH_COS_MIN;
-    double cos_o = wo[2] > SYNTH_COS_MIN ? wo[2] : SYNTH_COS_MIN;
-    double hx = wi[0] + wo[0];
-    double hy = wi[1] + wo[1];
-    double hz = wi[2] + wo[2];
-    double hz2, e, spec;
-    if (hz < SYNTH_COS_MIN)
-        hz = SYNTH_COS_MIN;
-    hz2 = hz * hz;
-    e = (hx * hx / (o->ax * o->ax) + hy * hy / (o->ay * o->ay)) / hz2;
-    spec = exp(-e) / (4.0 * SYNTH_PI * o->ax * o->ay * sqrt(cos_i * cos_o));
-    return o->kd / SYNTH_PI + o->ks * spec;
-}
-
 static int synth_parse(int argc, char **argv, synth_opts_t *o, int *help)
 {
     static const struct option longopts[] = {
@@ -184,11 +150,11 @@ static int synth_parse(int argc, char **argv, synth_opts_t *o, int *help)
     unsigned long ul;
 
     memset(o, 0, sizeof *o);
-    o->kd = 0.75;
-    o->ks = 0.25;
-    o->n = 20.0;
-    o->ax = 0.35;
-    o->ay = 0.05;
+    o->p.kd = 0.75;
+    o->p.ks = 0.25;
+    o->p.n = 20.0;
+    o->p.ax = 0.35;
+    o->p.ay = 0.05;
     o->level = 4;
     *help = 0;
 
@@ -211,25 +177,25 @@ static int synth_parse(int argc, char **argv, synth_opts_t *o, int *help)
                                   optarg);
             break;
         case OPT_KD:
-            if (parse_double(optarg, &o->kd) != 0 || o->kd < 0.0)
+            if (parse_double(optarg, &o->p.kd) != 0 || o->p.kd < 0.0)
                 return synth_fail("--kd needs a finite value >= 0, got '%s'", optarg);
             break;
         case OPT_KS:
-            if (parse_double(optarg, &o->ks) != 0 || o->ks < 0.0)
+            if (parse_double(optarg, &o->p.ks) != 0 || o->p.ks < 0.0)
                 return synth_fail("--ks needs a finite value >= 0, got '%s'", optarg);
             break;
         case OPT_N:
-            if (parse_double(optarg, &o->n) != 0 || o->n < 0.0)
+            if (parse_double(optarg, &o->p.n) != 0 || o->p.n < 0.0)
                 return synth_fail("--n needs a finite value >= 0, got '%s'", optarg);
             o->have_n = 1;
             break;
         case OPT_AX:
-            if (parse_double(optarg, &o->ax) != 0 || !(o->ax > 0.0))
+            if (parse_double(optarg, &o->p.ax) != 0 || !(o->p.ax > 0.0))
                 return synth_fail("--ax needs a finite value > 0, got '%s'", optarg);
             o->have_ax = 1;
             break;
         case OPT_AY:
-            if (parse_double(optarg, &o->ay) != 0 || !(o->ay > 0.0))
+            if (parse_double(optarg, &o->p.ay) != 0 || !(o->p.ay > 0.0))
                 return synth_fail("--ay needs a finite value > 0, got '%s'", optarg);
             o->have_ay = 1;
             break;
@@ -344,8 +310,8 @@ int bw_cmd_synth(int argc, char **argv)
     }
     for (i = 0; i < n_in; i++) {
         for (j = 0; j < n_out; j++) {
-            double v = o.model == MODEL_PHONG ? brdf_phong(&o, in_dirs[i], out_dirs[j])
-                                              : brdf_ward(&o, in_dirs[i], out_dirs[j]);
+            double v = o.model == MODEL_PHONG ? bwh_brdf_phong(&o.p, in_dirs[i], out_dirs[j])
+                                              : bwh_brdf_ward(&o.p, in_dirs[i], out_dirs[j]);
             if (!isfinite(v) || v > FLT_MAX) {
                 rc = synth_fail("BRDF value not representable as float32 "
                                 "(incoming %zu, outgoing %zu)", i, j);
