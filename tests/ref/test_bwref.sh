@@ -22,7 +22,7 @@ expect_error() { # name cmd...: non-zero exit, one line on stderr
     [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "$name: stderr $(cat "$T/err")"
 }
 
-for c in "" wavedec ratios; do
+for c in "" wavedec ratios import-rgl project; do
     if "$BWREF" $c --help >"$T/out" 2>&1 && grep -q "usage: bwref" "$T/out"; then ok; else bad "help $c"; fi
 done
 if "$BWREF" >/dev/null 2>"$T/err"; then bad "no command: exit 0"; else grep -q "usage: bwref" "$T/err" && ok || bad "no command: no usage"; fi
@@ -96,6 +96,65 @@ expect_error "import-rgl bad level" "$BWREF" import-rgl -i "$R" -o "$T/x.f32" --
 # the imported set compresses like any other
 "$BWREF" ratios -i "$T/pw.f32" --level 3 --incoming 7 --ratios 1,8 >"$T/pr.csv" && \
     awk -F, 'NR == 3 && $5 < 1e-9 {ok = 1} END {exit !ok}' "$T/pr.csv" && ok || bad "ratios on an import"
+
+# project: scattered measured directions onto the grid. Phong1 at theta_i = 45
+# deg measured at 474 Fibonacci directions, against `brdfwave synth
+# --incoming 1` (the same BRDF at the level-4 centres, theta_i = 45 deg)
+/usr/bin/python3 - "$T/fib.csv" "$T/const.csv" <<'PY' || bad "project: writing the CSV"
+import math, sys
+n, g = 474, math.pi * (3 - math.sqrt(5))
+wi = (math.sin(math.pi / 4), 0.0, math.cos(math.pi / 4))
+with open(sys.argv[1], 'w') as f, open(sys.argv[2], 'w') as h:
+    f.write('theta_deg,phi_deg,value\n')
+    h.write('# a constant, two bands\n')
+    for i in range(n):
+        z = 1 - (i + 0.5) / n
+        r, phi = math.sqrt(1 - z * z), g * i
+        d = (r * math.cos(phi), r * math.sin(phi), z)
+        c = -wi[0] * d[0] - wi[1] * d[1] + wi[2] * d[2]
+        v = 0.75 / math.pi + (0.25 * 22 / (2 * math.pi) * c ** 20 if c > 0 else 0.0)
+        th, ph = math.degrees(math.acos(z)), math.degrees(math.atan2(d[1], d[0]))
+        f.write('%r,%r,%r\n' % (th, ph, v))
+        h.write('%r, %r, 0.3, 7\n' % (th, ph))
+PY
+"$BW" synth --model phong --kd 0.75 --ks 0.25 --n 20 --level 4 --incoming 1 -o "$T/p45.f32" || bad synth45
+if "$BWREF" project -i "$T/fib.csv" -o "$T/fib.f32" --level 4 >"$T/proj" 2>&1; then
+    grep -q "^measurements: 474$" "$T/proj" && grep -q "^triangles: 1024 (level 4)$" "$T/proj" && ok \
+        || bad "project: summary $(cat "$T/proj")"
+    /usr/bin/python3 - "$T/fib.f32" "$T/p45.f32" <<'PY' && ok || bad "project: Phong1 from 474 directions"
+import math, struct, sys
+a = struct.unpack('<1024f', open(sys.argv[1], 'rb').read())
+b = struct.unpack('<1024f', open(sys.argv[2], 'rb').read())
+e = math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)) / sum(y * y for y in b))
+print('project: relative L2 error %.4f against the level-4 centres' % e)
+assert 0 < e < 0.05, e
+PY
+else
+    bad "project run: $(cat "$T/proj")"
+fi
+"$BWREF" project -i "$T/const.csv" -o "$T/const.f32" --level 2 --k 5 >/dev/null && \
+    /usr/bin/python3 -c '
+import struct, sys
+v = struct.unpack("<128f", open(sys.argv[1], "rb").read())
+assert v[0::2] == (struct.unpack("<f", struct.pack("<f", 0.3))[0],) * 64 and v[1::2] == (7.0,) * 64
+' "$T/const.f32" && ok || bad "project: a constant with two bands"
+printf '10,0,1\n95,0,1\n' >"$T/p_theta.csv"
+printf '10,0,1\n20,0\n' >"$T/p_cols.csv"
+printf '10,0,1\n20,0,1,2\n' >"$T/p_ragged.csv"
+printf 'theta,phi,value\n10,x,1\n' >"$T/p_num.csv"
+printf '# nothing\n\n' >"$T/p_empty.csv"
+printf '10,0,nan\n' >"$T/p_nan.csv"
+expect_error "project missing file" "$BWREF" project -i "$T/none.csv" -o "$T/y.f32"
+expect_error "project without output" "$BWREF" project -i "$T/fib.csv"
+expect_error "project theta beyond 90" "$BWREF" project -i "$T/p_theta.csv" -o "$T/y.f32"
+expect_error "project too few columns" "$BWREF" project -i "$T/p_cols.csv" -o "$T/y.f32"
+expect_error "project ragged columns" "$BWREF" project -i "$T/p_ragged.csv" -o "$T/y.f32"
+expect_error "project bad number" "$BWREF" project -i "$T/p_num.csv" -o "$T/y.f32"
+expect_error "project no measurements" "$BWREF" project -i "$T/p_empty.csv" -o "$T/y.f32"
+expect_error "project NaN value" "$BWREF" project -i "$T/p_nan.csv" -o "$T/y.f32"
+expect_error "project bad level" "$BWREF" project -i "$T/fib.csv" -o "$T/y.f32" --level 7
+expect_error "project bad k" "$BWREF" project -i "$T/fib.csv" -o "$T/y.f32" --k 0
+[ ! -e "$T/y.f32" ] && ok || bad "project wrote a file on error"
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -106,6 +106,7 @@ static void usage(FILE *f)
           "  wavedec   1-D wavelet coefficients of a signal for every basis\n"
           "  ratios    compress a data set at given ratios or byte budgets (CSV)\n"
           "  import-rgl  sample a measured RGL BRDF on the geodesic grid\n"
+          "  project   scattered measured directions onto the geodesic grid\n"
           "\n"
           "bwref COMMAND --help for the options of a command.\n",
           f);
@@ -127,6 +128,8 @@ int main(int argc, char **argv)
         return bwref_cmd_ratios(argc - 1, argv + 1);
     if (strcmp(argv[1], "import-rgl") == 0)
         return bwref_cmd_import_rgl(argc - 1, argv + 1);
+    if (strcmp(argv[1], "project") == 0)
+        return bwref_cmd_project(argc - 1, argv + 1);
     fprintf(stderr, "bwref: unknown command '%s' (see --help)\n", argv[1]);
     return 2;
 }

@@ -7,6 +7,7 @@
 int bwref_cmd_wavedec(int argc, char **argv);
 int bwref_cmd_ratios(int argc, char **argv);
 int bwref_cmd_import_rgl(int argc, char **argv);
+int bwref_cmd_project(int argc, char **argv);
 
 /* Reads whitespace-separated numbers (text) or raw float32 into *out. */
 int bwref_read_text(const char *path, double **out, size_t *n);
