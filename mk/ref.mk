@@ -27,7 +27,16 @@ $(REF_TESTS): $(BUILD)/tests/%: tests/ref/%.c $(REF_LIB)
 	$(if $(Q),@echo "  TEST-CC $@")
 	$(Q)$(CC) $(CFLAGS) $(REF_INC) $< $(REF_LIB) -lcmocka -lm -o $@
 
-tests: $(REF_TESTS) $(REF_CLI)
+# the codec core's integer transforms against the reference: this test links
+# both (the reference library itself does not)
+REF_CORE_TESTS := $(BUILD)/tests/test_fixed_vs_ref
+
+$(REF_CORE_TESTS): $(BUILD)/tests/%: tests/ref/%.c $(REF_LIB) $(LIB)
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  TEST-CC $@")
+	$(Q)$(CC) $(CFLAGS) $(REF_INC) $< $(REF_LIB) $(LIB) -lcmocka -lm -o $@
+
+tests: $(REF_TESTS) $(REF_CORE_TESTS) $(REF_CLI)
 
 # regenerate the committed filter tables
 ref-filters:
