@@ -29,12 +29,16 @@ $(FWL): $(FWL_OBJ) $(LIB)
 $(LIB): $(CORE_OBJ) $(HOST_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
-$(BW_CLI): $(CLI_OBJ) $(LIB)
+# `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
+CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
+$(BUILD)/host-tools/src/brdfwave.o: CFLAGS += -Ihost-tools/ref/cli
+
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(LIB) $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
--include mk/ref.mk
+include mk/ref.mk
 -include mk/bench.mk
 
 run: deps-run all

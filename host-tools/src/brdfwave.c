@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bwref.h"
 #include "commands.h"
 
 static const struct {
@@ -16,13 +17,20 @@ static const struct {
     {"grid", bw_cmd_grid, "print the geodesic triangle grid as CSV"},
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
     {"receive", bw_cmd_receive, "store payloads arriving on a serial port"},
+    {"import-rgl", bw_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
 };
+
+int bw_cmd_import_rgl(int argc, char **argv)
+{
+    bwref_progname = "brdfwave";
+    return bwref_cmd_import_rgl(argc, argv);
+}
 
 static void usage(FILE *f)
 {
     fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n\ncommands:\n", f);
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].what);
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].what);
 }
 
 int main(int argc, char **argv)

@@ -4,6 +4,7 @@
 set -u
 cd "$(dirname "$0")/../.."
 BW=${BW:-build/host/brdfwave}
+BWREF=${BWREF:-build/host/bwref}
 PY=/usr/bin/python3
 DATA=tests/data/field_psr3500
 T=$(mktemp -d)
@@ -39,7 +40,7 @@ expect_error() {
 key() { sed -n "s/^$1: //p" "$2"; }
 
 # ---- help -------------------------------------------------------------------
-for c in encode decode info compare grid synth; do
+for c in encode decode info compare grid synth import-rgl; do
     expect_ok "help $c" "$BW" "$c" --help
     grep -q "usage: brdfwave $c" "$T/out" && ok || bad "help $c: no usage line"
 done
@@ -205,6 +206,37 @@ expect_error "decode missing file" "$BW" decode -i "$T/none.bwv" -o "$T/x.f32"
 [ ! -e "$T/x.f32" ] && ok || bad "a failed decode left an output file"
 expect_error "compare sizes differ" "$BW" compare "$T/a.f32" "$T/p.f32"
 expect_error "compare NaN" "$BW" compare "$T/nan.f32" "$T/nan.f32"
+
+# ---- import-rgl: the reference importer under the main command --------------
+# the same bytes (and the same report) as `bwref import-rgl`
+R=tests/data/rgl
+n=0
+for args in "-i $R/paper_white_rgb.bsdf --level 3 --channel g" \
+            "-i $R/paper_white_rgb.bsdf --level 2 --incoming 5" \
+            "-i $R/paper_white_rgb.bsdf --level 1 --level-in 1 --channel r --times-cos --clamp"; do
+    n=$((n + 1))
+    # shellcheck disable=SC2086
+    if "$BW" import-rgl $args -o "$T/rgl_bw$n.f32" >"$T/rgl_bw$n.txt" 2>"$T/err" &&
+        "$BWREF" import-rgl $args -o "$T/rgl_ref$n.f32" >"$T/rgl_ref$n.txt" 2>>"$T/err"; then
+        [ -s "$T/rgl_bw$n.f32" ] && cmp -s "$T/rgl_bw$n.f32" "$T/rgl_ref$n.f32" && ok \
+            || bad "import-rgl $args: output differs from bwref import-rgl"
+        cmp -s "$T/rgl_bw$n.txt" "$T/rgl_ref$n.txt" && ok || bad "import-rgl $args: report differs"
+    else
+        bad "import-rgl $args: $(cat "$T/err")"
+    fi
+done
+[ "$(stat -c %s "$T/rgl_bw1.f32")" = $((7 * 256 * 4)) ] && ok || bad "import-rgl: output size"
+for f in $R/*.bsdf; do # every stored material, the default options
+    "$BW" import-rgl -i "$f" -o "$T/m_bw.f32" >/dev/null 2>&1 &&
+        "$BWREF" import-rgl -i "$f" -o "$T/m_ref.f32" >/dev/null 2>&1 &&
+        cmp -s "$T/m_bw.f32" "$T/m_ref.f32" && ok || bad "import-rgl $f: differs from bwref"
+done
+expect_error "import-rgl missing file" "$BW" import-rgl -i "$T/none.bsdf" -o "$T/rgl_x.f32"
+grep -q '^brdfwave import-rgl: ' "$T/err" && ok || bad "import-rgl error line: $(cat "$T/err")"
+expect_error "import-rgl not a tensor file" "$BW" import-rgl -i "$DATA/LICENSE" -o "$T/rgl_x.f32"
+expect_error "import-rgl bad channel" "$BW" import-rgl -i $R/paper_white_rgb.bsdf -o "$T/rgl_x.f32" --channel uv
+expect_error "import-rgl without output" "$BW" import-rgl -i $R/paper_white_rgb.bsdf
+[ ! -e "$T/rgl_x.f32" ] && ok || bad "a failed import-rgl left an output file"
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

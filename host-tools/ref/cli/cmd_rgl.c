@@ -18,11 +18,11 @@
 
 static void usage(void)
 {
-    puts("usage: bwref import-rgl -i FILE.bsdf -o OUT.f32 [--level L]\n"
-         "                        [--incoming measured|N | --level-in Li]\n"
-         "                        [--channel rgb|r|g|b] [--times-cos] [--clamp]\n"
-         "\n"
-         "Samples a measured BRDF of the RGL database (RGB tensor file) at the\n"
+    printf("usage: %s import-rgl -i FILE.bsdf -o OUT.f32 [--level L]\n"
+           "          [--incoming measured|N | --level-in Li]\n"
+           "          [--channel rgb|r|g|b] [--times-cos] [--clamp]\n"
+           "\n", bwref_progname);
+    puts("Samples a measured BRDF of the RGL database (RGB tensor file) at the\n"
          "centres of the geodesic triangles of level L (default 4) and writes raw\n"
          "little-endian float32, layout [incoming][outgoing][band] (bands: 3 for\n"
          "rgb, else 1), the layout of `brdfwave synth` and `bwref ratios`.\n"
