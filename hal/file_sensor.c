@@ -6,6 +6,8 @@
 
 #include <stdio.h>
 
+#include "bw_le.h"
+
 static FILE *sensor;
 
 int bw_file_sensor_open(const char *source)
@@ -23,7 +25,6 @@ int bw_file_sensor_read(int32_t *samples, size_t cap)
     size_t n = 0;
     uint8_t b[4];
     while (n < cap && fread(b, 1, 4, sensor) == 4)
-        samples[n++] = (int32_t)((uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
-                                 (uint32_t)b[3] << 24);
+        samples[n++] = (int32_t)bw_get_u32(b);
     return (int)n;
 }

@@ -23,6 +23,7 @@
 #include "bw_crc32.h"
 #include "bw_fixed.h"
 #include "bw_geodesic.h"
+#include "bw_le.h"
 #include "bw_rc.h"
 #include "bw_spectral.h"
 
@@ -33,21 +34,6 @@
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 
 static const uint8_t magic[4] = {'B', 'W', 'A', 'V'};
-
-/* ---- little-endian fields ----------------------------------------------- */
-
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
-}
-
-static uint32_t get_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
 
 /* ---- sizes and dims ------------------------------------------------------ */
 
@@ -599,19 +585,19 @@ static void header_write(uint8_t *h, const plan_t *pl, const bw_params_t *pa, ui
     h[5] = pl->dims.shape;
     h[6] = pl->dims.level_out;
     h[7] = pl->dims.level_in;
-    put_u32(h + 8, pl->dims.n_in);
-    put_u32(h + 12, pl->dims.bands);
+    bw_put_u32(h + 8, pl->dims.n_in);
+    bw_put_u32(h + 12, pl->dims.bands);
     h[16] = (uint8_t)pl->basis;
     h[17] = (uint8_t)pl->spec_levels;
     h[18] = (uint8_t)mode;
     h[19] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
-    put_u32(h + 20, pl->prequant);
-    put_u32(h + 24, pl->step_q8);
-    put_u32(h + 28, mode == BW_MODE_MAX_ERROR ? pa->max_error : 0u);
-    put_u32(h + 32, pa->scale_bits);
-    put_u32(h + 36, pa->offset_bits);
-    put_u32(h + 40, body_len);
-    put_u32(h + 44, 0); /* reserved */
+    bw_put_u32(h + 20, pl->prequant);
+    bw_put_u32(h + 24, pl->step_q8);
+    bw_put_u32(h + 28, mode == BW_MODE_MAX_ERROR ? pa->max_error : 0u);
+    bw_put_u32(h + 32, pa->scale_bits);
+    bw_put_u32(h + 36, pa->offset_bits);
+    bw_put_u32(h + 40, body_len);
+    bw_put_u32(h + 44, 0); /* reserved */
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -628,13 +614,13 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
     h->version = p[4];
     if (h->version != BW_VERSION)
         return BW_ERR_VERSION;
-    h->body_len = get_u32(p + 40);
+    h->body_len = bw_get_u32(p + 40);
     if (h->body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
         return BW_ERR_TRUNCATED;
     h->payload_len = BW_HEADER_SIZE + h->body_len + BW_TRAILER_SIZE;
     if (h->payload_len != len)
         return BW_ERR_TRAILING;
-    h->crc = get_u32(p + BW_HEADER_SIZE + h->body_len);
+    h->crc = bw_get_u32(p + BW_HEADER_SIZE + h->body_len);
     if (bw_crc32(p, BW_HEADER_SIZE + h->body_len) != h->crc)
         return BW_ERR_CRC;
     bw_status_t st = bw_header_parse_fields(p, h);
@@ -647,8 +633,8 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
     d->shape = p[5];
     d->level_out = p[6];
     d->level_in = p[7];
-    d->n_in = get_u32(p + 8);
-    d->bands = get_u32(p + 12);
+    d->n_in = bw_get_u32(p + 8);
+    d->bands = bw_get_u32(p + 12);
     d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
                : d->level_out <= BW_MAX_LEVEL ? tri_count(d->level_out)
                                               : 0u;
@@ -656,12 +642,12 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
     h->spectral_levels = p[17];
     h->mode = p[18];
     h->flags = p[19];
-    h->prequant = get_u32(p + 20);
-    h->step_q8 = get_u32(p + 24);
-    h->max_error = get_u32(p + 28);
-    h->scale_bits = get_u32(p + 32);
-    h->offset_bits = get_u32(p + 36);
-    h->body_len = get_u32(p + 40);
+    h->prequant = bw_get_u32(p + 20);
+    h->step_q8 = bw_get_u32(p + 24);
+    h->max_error = bw_get_u32(p + 28);
+    h->scale_bits = bw_get_u32(p + 32);
+    h->offset_bits = bw_get_u32(p + 36);
+    h->body_len = bw_get_u32(p + 40);
     if (bw_dims_check(d) != BW_OK)
         return BW_ERR_HEADER;
     if (h->basis >= BW_BASIS_COUNT || h->spectral_levels != bw_spec_levels(d->bands) ||
@@ -677,7 +663,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
                h->prequant != 2u * h->max_error + 1u)
             : (h->max_error != 0u || h->prequant != 1u))
         return BW_ERR_HEADER;
-    if (get_u32(p + 44) != 0u)
+    if (bw_get_u32(p + 44) != 0u)
         return BW_ERR_HEADER;
     return BW_OK;
 }
@@ -724,7 +710,7 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
     if (se.rc.overflow || body > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
     header_write(out, pl, pa, mode, (uint32_t)body);
-    put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
+    bw_put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
     return BW_OK;
 }
 
@@ -1117,7 +1103,7 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
     plan_t pl;
     stream_plan(s, &pl);
     header_write(s->out, &pl, &s->params, s->params.mode, (uint32_t)body);
-    put_u32(s->out + BW_HEADER_SIZE + body, bw_crc32(s->out, BW_HEADER_SIZE + body));
+    bw_put_u32(s->out + BW_HEADER_SIZE + body, bw_crc32(s->out, BW_HEADER_SIZE + body));
     *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
     s->err = BW_ERR_ARG; /* finished: no more pushes */
     return BW_OK;

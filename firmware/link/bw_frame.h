@@ -22,6 +22,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "bw_le.h"
+
 #define BW_FRAME_SYNC0 0xB5u
 #define BW_FRAME_SYNC1 0x57u
 #define BW_FRAME_HEADER 8u
@@ -79,21 +81,5 @@ typedef struct {
 #define BW_JOB_SIZE 160u
 size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
-
-static inline void bw_put_u16(uint8_t *p, uint16_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-}
-static inline void bw_put_u32(uint8_t *p, uint32_t v)
-{
-    bw_put_u16(p, (uint16_t)v);
-    bw_put_u16(p + 2, (uint16_t)(v >> 16));
-}
-static inline uint16_t bw_get_u16(const uint8_t *p) { return (uint16_t)(p[0] | p[1] << 8); }
-static inline uint32_t bw_get_u32(const uint8_t *p)
-{
-    return (uint32_t)bw_get_u16(p) | (uint32_t)bw_get_u16(p + 2) << 16;
-}
 
 #endif

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bw_le.h"
 #include "bwhost.h"
 #include "commands.h"
 
@@ -264,18 +265,13 @@ int bw_cmd_encode(int argc, char **argv)
         if (f == BWH_FMT_F32) {
             floats = malloc((count ? count : 1) * sizeof *floats);
             for (size_t i = 0; floats && i < count; i++) {
-                uint32_t b = (uint32_t)raw[4 * i] | (uint32_t)raw[4 * i + 1] << 8 |
-                             (uint32_t)raw[4 * i + 2] << 16 | (uint32_t)raw[4 * i + 3] << 24;
-                floats[i] = bwh_bits_to_float(b);
+                floats[i] = bwh_bits_to_float(bw_get_u32(raw + 4 * i));
             }
         } else {
             ints = malloc((count ? count : 1) * sizeof *ints);
             for (size_t i = 0; ints && i < count; i++)
-                ints[i] = f == BWH_FMT_U16
-                              ? (int32_t)((uint32_t)raw[2 * i] | (uint32_t)raw[2 * i + 1] << 8)
-                              : (int32_t)((uint32_t)raw[4 * i] | (uint32_t)raw[4 * i + 1] << 8 |
-                                          (uint32_t)raw[4 * i + 2] << 16 |
-                                          (uint32_t)raw[4 * i + 3] << 24);
+                ints[i] = f == BWH_FMT_U16 ? (int32_t)bw_get_u16(raw + 2 * i)
+                                           : (int32_t)bw_get_u32(raw + 4 * i);
         }
         free(raw);
         if (!floats && !ints) {
@@ -418,11 +414,7 @@ int bw_cmd_decode(int argc, char **argv)
         return err(C, "out of memory");
     }
     for (size_t i = 0; i < n; i++) {
-        uint32_t b = as_int ? (uint32_t)s[i] : bwh_float_to_bits(v[i]);
-        raw[4 * i] = (uint8_t)b;
-        raw[4 * i + 1] = (uint8_t)(b >> 8);
-        raw[4 * i + 2] = (uint8_t)(b >> 16);
-        raw[4 * i + 3] = (uint8_t)(b >> 24);
+        bw_put_u32(raw + 4 * i, as_int ? (uint32_t)s[i] : bwh_float_to_bits(v[i]));
     }
     int rc = bwh_write_file(outp, raw, n * 4);
     free(raw);
@@ -509,11 +501,10 @@ static int load_as_float(const char *path, const char *fmt, float **out, size_t 
     }
     for (size_t i = 0; i < *n; i++) {
         if (es == 2) {
-            v[i] = (float)((uint32_t)raw[2 * i] | (uint32_t)raw[2 * i + 1] << 8);
+            v[i] = (float)bw_get_u16(raw + 2 * i);
             continue;
         }
-        uint32_t b = (uint32_t)raw[4 * i] | (uint32_t)raw[4 * i + 1] << 8 |
-                     (uint32_t)raw[4 * i + 2] << 16 | (uint32_t)raw[4 * i + 3] << 24;
+        uint32_t b = bw_get_u32(raw + 4 * i);
         v[i] = !strcmp(fmt, "i32") ? (float)(int32_t)b : bwh_bits_to_float(b);
     }
     free(raw);
