@@ -107,6 +107,19 @@ static void send_payload(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t 
 
 static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent);
 
+/* Reads exactly n samples from the sensor; false if it delivers fewer. */
+static bool read_samples(const bw_hal_t *hal, int32_t *dst, size_t n)
+{
+    size_t got = 0;
+    while (got < n) {
+        int r = bw_hal_sensor_read(hal, dst + got, n - got);
+        if (r <= 0)
+            return false;
+        got += (size_t)r;
+    }
+    return true;
+}
+
 /* Runs one job; returns 0 when the host acknowledged the payload. */
 static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
 {
@@ -142,14 +155,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         st = bw_stream_init(&stream, &d, &p, stream_mem, sizeof stream_mem / sizeof *stream_mem,
                             payload, sizeof payload);
         for (size_t v = 0; st == BW_OK && v < (size_t)d.n_in * d.n_out; v++) {
-            size_t got = 0;
-            while (got < d.bands) {
-                int r = bw_hal_sensor_read(hal, spectrum + got, d.bands - got);
-                if (r <= 0)
-                    break;
-                got += (size_t)r;
-            }
-            if (got != d.bands) {
+            if (!read_samples(hal, spectrum, d.bands)) {
                 send_error(hal, APP_ERR_SENSOR);
                 return -1;
             }
@@ -168,16 +174,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         send_error(hal, BW_ERR_WORK);
         return -1;
     }
-    size_t got = 0;
-    for (;;) {
-        int r = bw_hal_sensor_read(hal, samples + got, n - got);
-        if (r <= 0)
-            break;
-        got += (size_t)r;
-        if (got == n)
-            break;
-    }
-    if (got != n) {
+    if (!read_samples(hal, samples, n)) {
         send_error(hal, APP_ERR_SENSOR);
         return -1;
     }
