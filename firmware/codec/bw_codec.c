@@ -25,6 +25,7 @@
 #include "bw_geodesic.h"
 #include "bw_le.h"
 #include "bw_rc.h"
+#include "bw_rice.h"
 #include "bw_spectral.h"
 
 #define BW_VERSION 1u
@@ -231,23 +232,64 @@ static inline uint64_t div_q8(uint32_t a, uint64_t st)
 {
     if (a < (1u << 24) && st <= UINT32_MAX)
         return (a << 8) / (uint32_t)st;
-    return ((uint64_t)a << 8) / st;
+    /* a coefficient beyond 2^24 or a step beyond 2^24: long division
+     * (rare, and it keeps the 64-bit division helper out of the image) */
+    uint64_t num = (uint64_t)a << 8, q = 0, r = 0;
+    for (int bit = 39; bit >= 0; bit--) {
+        r = (r << 1) | ((num >> bit) & 1u);
+        if (r >= st) {
+            r -= st;
+            q |= (uint64_t)1 << bit;
+        }
+    }
+    return q;
+}
+
+/* The spectral subbands of a vector, Mallat order: subband 0 the
+ * approximation, then the details from coarse to fine; band i holds the
+ * elements [lo[i], lo[i + 1]). */
+typedef struct {
+    unsigned count;
+    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
+    uint32_t gain[BW_SPEC_MAX_LEVELS + 1u]; /* inverse gain, Q16 */
+} spec_bands_t;
+
+static void spec_bands(const plan_t *pl, spec_bands_t *sb)
+{
+    uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
+    unsigned L = pl->spec_levels;
+    len[0] = pl->dims.bands;
+    for (unsigned l = 1; l <= L; l++)
+        len[l] = (len[l - 1u] + 1u) / 2u;
+    sb->count = L + 1u;
+    sb->lo[0] = 0;
+    for (unsigned i = 0; i <= L; i++) {
+        sb->lo[i + 1u] = len[L - i];
+        sb->gain[i] = (uint32_t)pl->spec_gain[len[L - i] - 1u];
+    }
+}
+
+/* Per subband, the step of a vector whose incoming x outgoing gain is gio. */
+static void vec_steps(const plan_t *pl, const spec_bands_t *sb, uint32_t gio, uint64_t *st)
+{
+    for (unsigned i = 0; i < sb->count; i++)
+        st[i] = elem_step(pl->step_q8, gio, 65536u, sb->gain[i]);
 }
 
 /* Normalised energy of a vector: sum of (c / step)^2 in Q16, saturating. */
-static uint64_t vec_energy(const plan_t *pl, const int32_t *x, uint32_t gio)
+static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const int32_t *x)
 {
     uint64_t e = 0;
-    for (uint32_t k = 0; k < pl->dims.bands; k++) {
-        uint64_t st = elem_step(pl->step_q8, gio, 65536u, (uint32_t)pl->spec_gain[k]);
-        if (st == 0)
-            st = 1;
-        uint64_t r = div_q8(bw_abs32(x[k]), st);
-        if (r > (1u << 24))
-            r = 1u << 24;
-        e += r * r;
-        if (e > ((uint64_t)1 << 62))
-            return (uint64_t)1 << 62;
+    for (unsigned i = 0; i < sb->count; i++) {
+        uint64_t st = steps[i] ? steps[i] : 1u;
+        for (uint32_t k = sb->lo[i]; k < sb->lo[i + 1u]; k++) {
+            uint64_t r = div_q8(bw_abs32(x[k]), st);
+            if (r > (1u << 24))
+                r = 1u << 24;
+            e += r * r;
+            if (e > ((uint64_t)1 << 62))
+                return (uint64_t)1 << 62;
+        }
     }
     return e;
 }
@@ -272,20 +314,42 @@ static inline int32_t dequant(int32_t q, uint64_t st)
     return q < 0 ? -(int32_t)m : (int32_t)m;
 }
 
+/* Quantises (forward) or reconstructs one vector with its subband steps. */
+static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v, bool forward)
+{
+    for (unsigned i = 0; i < sb->count; i++) {
+        uint64_t st = steps[i];
+        if (st <= STEP_ONE_Q8)
+            continue;
+        uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
+        if (forward) {
+            for (; k < end; k++)
+                v[k] = quant(v[k], st);
+        } else {
+            for (; k < end; k++)
+                v[k] = dequant(v[k], st);
+        }
+    }
+}
+
 static void quantise(const plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
     uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
+    spec_bands_t sb;
+    uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
+    spec_bands(pl, &sb);
     for (uint32_t i = 0; i < d->n_in; i++) {
         uint32_t gi = in_gain(pl, i);
         int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
         if (forward && has_in(d)) {
             /* incoming space: drop a whole [outgoing][band] block */
             uint64_t e = 0;
-            for (uint32_t o = 0; o < d->n_out && e < thr; o++)
-                e += vec_energy(pl, blk + (size_t)out_pos(pl, o) * b,
-                                (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16));
+            for (uint32_t o = 0; o < d->n_out && e < thr; o++) {
+                vec_steps(pl, &sb, (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16), steps);
+                e += vec_energy(&sb, steps, blk + (size_t)out_pos(pl, o) * b);
+            }
             if (e < thr) {
                 memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
                 continue;
@@ -294,15 +358,13 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
         for (uint32_t o = 0; o < d->n_out; o++) {
             uint32_t gio = (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16);
             int32_t *v = blk + (size_t)out_pos(pl, o) * b;
-            if (forward && b > 1u && vec_energy(pl, v, gio) < thr) {
+            vec_steps(pl, &sb, gio, steps);
+            if (forward && b > 1u && vec_energy(&sb, steps, v) < thr) {
                 /* outgoing space: drop the spectral vector */
                 memset(v, 0, (size_t)b * sizeof *v);
                 continue;
             }
-            for (uint32_t k = 0; k < b; k++) {
-                uint64_t st = elem_step(pl->step_q8, gio, 65536u, (uint32_t)pl->spec_gain[k]);
-                v[k] = forward ? quant(v[k], st) : dequant(v[k], st);
-            }
+            vec_quant(&sb, steps, v, forward);
         }
     }
 }
@@ -360,7 +422,37 @@ typedef struct {
     uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
     unsigned qi;
     stream_queue_t q;
+    /* coarse-to-fine order: the next outgoing coefficient is child m of
+     * parent p at level j (j = -1: the scaling coefficient of base p) */
+    int j;
+    uint32_t p, m;
 } iter_t;
+
+/* Steps (j, p, m) to the next outgoing coefficient in coarse-to-fine order
+ * (the order of bw_biohaar_pos) and returns the position of the current one. */
+static uint32_t walk_out(iter_t *it, unsigned L, int *level)
+{
+    uint32_t pos;
+    *level = it->j;
+    if (it->j < 0) {
+        pos = it->p << (2u * L);
+        if (++it->p == 4u) {
+            it->j = 0;
+            it->p = 0;
+            it->m = 1;
+        }
+        return pos;
+    }
+    pos = (4u * it->p + it->m) << (2u * (L - (unsigned)it->j - 1u));
+    if (++it->m == 4u) {
+        it->m = 1;
+        if (++it->p == 4u << (2u * (unsigned)it->j)) {
+            it->p = 0;
+            it->j++;
+        }
+    }
+    return pos;
+}
 
 static void iter_vec(iter_t *it)
 {
@@ -376,8 +468,7 @@ static void iter_vec(iter_t *it)
             pos_out = it->q.pos[it->qi];
             level = it->q.level[it->qi++];
         } else {
-            pos_out = bw_biohaar_pos(it->o, pl->dims.level_out);
-            level = bw_biohaar_coef_level(it->o);
+            pos_out = walk_out(it, pl->dims.level_out, &level);
         }
     }
     size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + pos_out;
@@ -392,24 +483,34 @@ static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
     it->i = it->o = it->k = 0;
     it->leaf = 0;
     it->qi = it->q.n = 0;
+    it->j = -1;
+    it->p = 0;
+    it->m = 1;
     iter_vec(it);
+}
+
+/* Moves to the next vector in coding order. */
+static void iter_next_vec(iter_t *it)
+{
+    it->k = 0;
+    if (++it->o == it->pl->dims.n_out) {
+        it->o = 0;
+        it->i++;
+        it->leaf = 0;
+        it->qi = it->q.n = 0;
+        it->j = -1;
+        it->p = 0;
+    }
+    if (it->i < it->pl->dims.n_in)
+        iter_vec(it);
 }
 
 static inline int32_t *iter_next(iter_t *it, unsigned *cls)
 {
     int32_t *p = it->vec + it->k;
     *cls = (unsigned)it->pl->spec_cls[it->k] * 3u + it->cls_dir;
-    if (++it->k == it->pl->dims.bands) {
-        it->k = 0;
-        if (++it->o == it->pl->dims.n_out) {
-            it->o = 0;
-            it->i++;
-            it->leaf = 0;
-            it->qi = it->q.n = 0;
-        }
-        if (it->i < it->pl->dims.n_in)
-            iter_vec(it);
-    }
+    if (++it->k == it->pl->dims.bands)
+        iter_next_vec(it);
     return p;
 }
 
@@ -423,10 +524,15 @@ static inline unsigned nb_ctx(unsigned left, unsigned above)
  * its 32nd element arrives (or at the end, shorter). */
 typedef bw_strip_enc_t strip_enc_t;
 
-static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap)
+static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
 {
-    bw_rc_enc_init(&se->rc, out, cap);
-    models_init(&se->m);
+    se->rice = rice;
+    if (rice) {
+        bw_rice_enc_init(&se->re, out, cap);
+    } else {
+        bw_rc_enc_init(&se->rc, out, cap);
+        models_init(&se->m);
+    }
     se->cnt = 0;
     memset(se->e_above, 0, sizeof se->e_above);
     se->prev_mask = 0;
@@ -435,6 +541,11 @@ static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap)
 
 static void strip_code(strip_enc_t *se)
 {
+    if (se->rice) {
+        bw_rice_enc_strip(&se->re, se->v, se->cnt);
+        se->cnt = 0;
+        return;
+    }
     bw_rc_enc_t *rc = &se->rc;
     models_t *m = &se->m;
     unsigned cnt = se->cnt;
@@ -498,18 +609,60 @@ static size_t strip_enc_finish(strip_enc_t *se)
 {
     if (se->cnt)
         strip_code(se);
-    return bw_rc_enc_finish(&se->rc);
+    return se->rice ? bw_rice_enc_finish(&se->re) : bw_rc_enc_finish(&se->rc);
+}
+
+static bool strip_enc_overflow(const strip_enc_t *se)
+{
+    return se->rice ? se->re.w.overflow : se->rc.overflow;
 }
 
 static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
 {
     iter_t it;
     iter_init(&it, pl, x);
-    for (size_t i = 0; i < pl->n; i++) {
-        unsigned cls;
-        int32_t v = *iter_next(&it, &cls);
-        strip_put(se, v, cls);
+    size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
+    uint32_t b = pl->dims.bands;
+    for (size_t n = 0; n < vectors; n++) {
+        const int32_t *v = it.vec;
+        if (se->rice) {
+            uint32_t k = 0;
+            /* whole strips straight from the vector, the rest through v[] */
+            if (se->cnt == 0u)
+                for (; k + BW_STRIP <= b; k += BW_STRIP)
+                    bw_rice_enc_strip(&se->re, v + k, BW_STRIP);
+            for (; k < b; k++) {
+                se->v[se->cnt] = v[k];
+                if (++se->cnt == BW_STRIP)
+                    strip_code(se);
+            }
+        } else {
+            unsigned cd = it.cls_dir;
+            for (uint32_t k = 0; k < b; k++)
+                strip_put(se, v[k], (unsigned)pl->spec_cls[k] * 3u + cd);
+        }
+        iter_next_vec(&it);
     }
+}
+
+static bw_status_t decode_body_rice(const plan_t *pl, int32_t *x, const uint8_t *body,
+                                   size_t len)
+{
+    iter_t it;
+    iter_init(&it, pl, x);
+    bw_rice_dec_t rd;
+    bw_rice_dec_init(&rd, body, len);
+    int32_t v[BW_STRIP];
+    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
+        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+        if (!bw_rice_dec_strip(&rd, v, cnt))
+            return BW_ERR_CORRUPT;
+        for (unsigned b = 0; b < cnt; b++) {
+            unsigned cls;
+            *iter_next(&it, &cls) = v[b];
+        }
+    }
+    return BW_OK;
 }
 
 static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, models_t *m)
@@ -673,11 +826,11 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
 /* floor((x + E) / (2E + 1)): the nearest multiple of 2E+1, error <= E */
 static int32_t prequantise(int32_t x, uint32_t q)
 {
+    /* |x| <= 2^24 and q <= 2^25 + 1: every term fits 32 bits */
     if (q == 1u)
         return x;
-    int64_t e = (int64_t)(q - 1u) / 2, v = (int64_t)x + e;
-    int64_t r = v >= 0 ? v / (int64_t)q : -((-v + (int64_t)q - 1) / (int64_t)q);
-    return (int32_t)r;
+    int32_t e = (int32_t)((q - 1u) / 2u), v = x + e;
+    return v >= 0 ? (int32_t)((uint32_t)v / q) : -(int32_t)(((uint32_t)-v + q - 1u) / q);
 }
 
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
@@ -686,8 +839,11 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
-    for (size_t i = 0; i < pl->n; i++)
-        work[i] = prequantise(samples[i], pl->prequant);
+    if (pl->prequant == 1u)
+        memcpy(work, samples, pl->n * sizeof *work);
+    else
+        for (size_t i = 0; i < pl->n; i++)
+            work[i] = prequantise(samples[i], pl->prequant);
     transform_fwd(pl, work);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
@@ -701,13 +857,14 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
             return BW_ERR_OUTPUT_FULL;
         body_cap = cap - BW_HEADER_SIZE - BW_TRAILER_SIZE;
     }
-    strip_enc_init(&se, counting ? NULL : out + BW_HEADER_SIZE, body_cap);
+    strip_enc_init(&se, counting ? NULL : out + BW_HEADER_SIZE, body_cap,
+                   (pa->flags & BW_FLAG_RICE) != 0u);
     code_body(pl, work, &se);
     size_t body = strip_enc_finish(&se);
     *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
     if (counting)
         return BW_OK;
-    if (se.rc.overflow || body > UINT32_MAX)
+    if (strip_enc_overflow(&se) || body > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
     header_write(out, pl, pa, mode, (uint32_t)body);
     bw_put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
@@ -822,9 +979,11 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
         return BW_ERR_ARG;
     size_t n = bw_dims_samples(dims);
-    for (size_t i = 0; i < n; i++)
-        if (samples[i] > BW_SAMPLE_MAX || samples[i] < -BW_SAMPLE_MAX)
-            return BW_ERR_RANGE;
+    uint32_t out_of_range = 0;
+    for (size_t i = 0; i < n; i++) /* |x| <= MAX as one unsigned compare */
+        out_of_range |= (uint32_t)samples[i] + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+    if (out_of_range)
+        return BW_ERR_RANGE;
 
     plan_t pl;
     bw_status_t fit = BW_OK;
@@ -891,11 +1050,16 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     pl.stream = (h->flags & BW_FLAG_STREAM_ORDER) != 0u;
     plan_tables(&pl);
 
-    models_t m;
-    models_init(&m);
-    bw_rc_dec_t rc;
-    bw_rc_dec_init(&rc, p + BW_HEADER_SIZE, h->body_len);
-    bw_status_t st = decode_body(&pl, work, &rc, &m);
+    bw_status_t st;
+    if (h->flags & BW_FLAG_RICE) {
+        st = decode_body_rice(&pl, work, p + BW_HEADER_SIZE, h->body_len);
+    } else {
+        models_t m;
+        models_init(&m);
+        bw_rc_dec_t rc;
+        bw_rc_dec_init(&rc, p + BW_HEADER_SIZE, h->body_len);
+        st = decode_body(&pl, work, &rc, &m);
+    }
     if (st != BW_OK)
         return st;
     if (pl.step_q8 > STEP_ONE_Q8)
@@ -1002,7 +1166,8 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     plan_tables(&pl);
     s->out = out;
     s->cap = cap;
-    strip_enc_init(&s->se, out + BW_HEADER_SIZE, cap - BW_HEADER_SIZE - BW_TRAILER_SIZE);
+    strip_enc_init(&s->se, out + BW_HEADER_SIZE, cap - BW_HEADER_SIZE - BW_TRAILER_SIZE,
+                   (pa->flags & BW_FLAG_RICE) != 0u);
     s->err = BW_OK;
     return BW_OK;
 }
@@ -1021,12 +1186,14 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
     unsigned cd = level_cls(pl, j);
     if (s->step_q8 > STEP_ONE_Q8) {
         uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
-        if (b > 1u && vec_energy(pl, v, gio) < thr) {
+        spec_bands_t sb;
+        uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
+        spec_bands(pl, &sb);
+        vec_steps(pl, &sb, gio, steps);
+        if (b > 1u && vec_energy(&sb, steps, v) < thr)
             memset(v, 0, (size_t)b * sizeof *v);
-        } else {
-            for (uint32_t k = 0; k < b; k++)
-                v[k] = quant(v[k], elem_step(s->step_q8, gio, 65536u, (uint32_t)s->gain[k]));
-        }
+        else
+            vec_quant(&sb, steps, v, true);
     }
     for (uint32_t k = 0; k < b; k++)
         strip_put(&s->se, v[k], (unsigned)s->cls[k] * 3u + cd);
@@ -1098,7 +1265,7 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
     if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
         return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
     size_t body = strip_enc_finish(&s->se);
-    if (s->se.rc.overflow || body > UINT32_MAX)
+    if (strip_enc_overflow(&s->se) || body > UINT32_MAX)
         return s->err = BW_ERR_OUTPUT_FULL;
     plan_t pl;
     stream_plan(s, &pl);

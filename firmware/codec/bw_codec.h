@@ -101,10 +101,14 @@ typedef struct {
  * STREAM_ORDER: outgoing coefficients are coded in the order a streaming
  *   encoder completes them (bw_stream_*), not coarse to fine; any encoder
  *   may choose it, and a streaming encoder's payload is byte-identical to
- *   bw_encode's with this flag. Not for BRDF_FULL. */
+ *   bw_encode's with this flag. Not for BRDF_FULL.
+ * RICE: the body is coded with the adaptive Rice strip coder (bw_rice.h)
+ *   instead of the range coder: a few times fewer instructions per sample
+ *   on a small core, a few percent more bytes. */
 #define BW_FLAG_DECIMAL_SCALE 0x01u
 #define BW_FLAG_STREAM_ORDER 0x02u
-#define BW_FLAGS_KNOWN 0x03u
+#define BW_FLAG_RICE 0x04u
+#define BW_FLAGS_KNOWN 0x07u
 
 /* ---- sizes -------------------------------------------------------------- */
 

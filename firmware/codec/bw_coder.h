@@ -5,9 +5,11 @@
 #ifndef BW_CODER_H
 #define BW_CODER_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "bw_rc.h"
+#include "bw_rice.h"
 
 #define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
 #define BW_CODER_NB_CTX 8u
@@ -21,6 +23,8 @@ typedef struct {
 
 /* The strip encoder, fed one coefficient at a time. */
 typedef struct {
+    bool rice; /* the Rice strip coder (BW_FLAG_RICE) instead of rc + m */
+    bw_rice_enc_t re;
     bw_rc_enc_t rc;
     bw_models_t m;
     int32_t v[32];

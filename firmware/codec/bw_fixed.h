@@ -18,18 +18,19 @@ typedef int32_t q16_t;
 static inline int32_t bw_wadd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (uint32_t)b); }
 static inline int32_t bw_wsub(int32_t a, int32_t b) { return (int32_t)((uint32_t)a - (uint32_t)b); }
 
-/* Arithmetic shift right with flooring, defined for negative values. */
-static inline int64_t bw_asr64(int64_t v, unsigned s)
-{
-    return v >= 0 ? (int64_t)((uint64_t)v >> s) : -(int64_t)(((uint64_t)(-(v + 1)) >> s) + 1u);
-}
-static inline int32_t bw_asr32(int32_t v, unsigned s) { return (int32_t)bw_asr64(v, s); }
+/* Arithmetic shift right with flooring (floor(v / 2^s)). The compilers the
+ * core supports (GCC, Clang) shift signed values arithmetically, one
+ * instruction; the assertion stops a build where that does not hold. */
+_Static_assert((-1 >> 1) == -1 && (-5 >> 1) == -3, "signed >> must be arithmetic");
+static inline int64_t bw_asr64(int64_t v, unsigned s) { return v >> s; }
+static inline int32_t bw_asr32(int32_t v, unsigned s) { return v >> s; }
 
 /* round(c * v / 2^16) for a Q16 constant: floor(c*v + 1/2), the rounding the
- * inverse repeats. The result is truncated to 32 bits (see above). */
-static inline int32_t bw_mul_q16_round(q16_t c, int64_t v)
+ * inverse repeats; a 32x32->64 multiply. The result is truncated to 32 bits
+ * (see above). */
+static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 {
-    return (int32_t)(uint32_t)(uint64_t)bw_asr64(c * v + 32768, 16);
+    return (int32_t)(uint32_t)(uint64_t)(((int64_t)c * v + 32768) >> 16);
 }
 
 /* Number of significant bits of v (0 for 0). */

@@ -5,9 +5,10 @@
  * at most 1 bit a level, approximations stay within the input range; the
  * unnormalised 9/7 grows by at most 3 bits a level in the detail band
  * (1 + 2|alpha| < 4.2) and stays within a factor 1.2 in the approximation.
- * All lifting sums are formed in 64 bits; the stored coefficients wrap
- * modulo 2^32 only for inputs beyond the documented range, which keeps the
- * transform reversible (bw_fixed.h).
+ * Lifting sums are formed modulo 2^32 and the 9/7 products in 64 bits: for
+ * |x| <= 2^24 no sum exceeds 2^31 (the largest, a sum of two 9/7 details
+ * after 12 levels, stays below 2^30.4), and beyond the documented range the
+ * coefficients wrap, which keeps the transform reversible (bw_fixed.h).
  *
  *   basis  predict (d += ...)               update (s += ...)
  *   Haar   -s[k]                             floor(d[k] / 2)
@@ -72,12 +73,12 @@ unsigned bw_spec_subband(uint32_t n, unsigned levels, uint32_t k)
  * predict and floor((x + 2) / 4) for its update. */
 enum { F_Q16, F_HALF, F_QUARTER };
 
-static inline int32_t lift_f(int kind, q16_t c, int64_t sum)
+static inline int32_t lift_f(int kind, q16_t c, int32_t sum)
 {
     if (kind == F_HALF)
-        return (int32_t)bw_asr64(sum, 1);
+        return bw_asr32(sum, 1);
     if (kind == F_QUARTER)
-        return (int32_t)bw_asr64(sum + 2, 2);
+        return bw_asr32(bw_wadd(sum, 2), 2);
     return bw_mul_q16_round(c, sum);
 }
 
@@ -87,11 +88,11 @@ static inline void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t n
     uint32_t inner = nd < ns ? nd : ns - 1u; /* k + 1 < ns */
     uint32_t k = 0;
     for (; k < inner; k++) {
-        int32_t t = lift_f(kind, c, (int64_t)s[k] + s[k + 1]);
+        int32_t t = lift_f(kind, c, bw_wadd(s[k], s[k + 1]));
         d[k] = sign > 0 ? bw_wadd(d[k], t) : bw_wsub(d[k], t);
     }
     for (; k < nd; k++) {
-        int32_t t = lift_f(kind, c, (int64_t)s[k] + s[ns - 1u]);
+        int32_t t = lift_f(kind, c, bw_wadd(s[k], s[ns - 1u]));
         d[k] = sign > 0 ? bw_wadd(d[k], t) : bw_wsub(d[k], t);
     }
 }
@@ -101,15 +102,15 @@ static inline void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd
 {
     /* k = 0 uses d[0] twice; k >= nd uses d[nd-1] for the missing d[k] */
     uint32_t inner = nd < ns ? nd : ns;
-    int32_t t = lift_f(kind, c, (int64_t)d[0] + d[0]);
+    int32_t t = lift_f(kind, c, bw_wadd(d[0], d[0]));
     s[0] = sign > 0 ? bw_wadd(s[0], t) : bw_wsub(s[0], t);
     uint32_t k = 1;
     for (; k < inner; k++) {
-        t = lift_f(kind, c, (int64_t)d[k - 1u] + d[k]);
+        t = lift_f(kind, c, bw_wadd(d[k - 1u], d[k]));
         s[k] = sign > 0 ? bw_wadd(s[k], t) : bw_wsub(s[k], t);
     }
     for (; k < ns; k++) {
-        t = lift_f(kind, c, (int64_t)d[k - 1u] + d[nd - 1u]);
+        t = lift_f(kind, c, bw_wadd(d[k - 1u], d[nd - 1u]));
         s[k] = sign > 0 ? bw_wadd(s[k], t) : bw_wsub(s[k], t);
     }
 }
@@ -159,11 +160,106 @@ static void lift_inv(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned 
     }
 }
 
+/* Haar and 5/3 in one pass over the interleaved samples (the same values
+ * as lift_fwd / lift_inv on the split halves): the approximation is written
+ * in place at x[k] (every sample it overwrites has been read), the details
+ * go through tmp. */
+static void fwd_haar(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    for (uint32_t k = 0; k < nd; k++) {
+        int32_t e = x[2u * k], d = bw_wsub(x[2u * k + 1u], e);
+        x[k] = bw_wadd(e, bw_asr32(d, 1));
+        tmp[k] = d;
+    }
+    if (ns > nd)
+        x[nd] = x[2u * nd];
+    memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
+}
+
+static void inv_haar(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    memcpy(tmp, x + ns, (size_t)nd * sizeof *x);
+    if (ns > nd)
+        x[2u * nd] = x[nd];
+    for (uint32_t k = nd; k-- > 0;) {
+        int32_t d = tmp[k], e = bw_wsub(x[k], bw_asr32(d, 1));
+        x[2u * k + 1u] = bw_wadd(d, e);
+        x[2u * k] = e;
+    }
+}
+
+static inline int32_t p53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(a, b), 1); }
+static inline int32_t u53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(bw_wadd(a, b), 2), 2); }
+
+/* n >= 3, so ns >= 2 and nd >= 1 */
+static void fwd_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    uint32_t inner = nd < ns - 1u ? nd : ns - 1u; /* k with k + 1 < ns and k < nd */
+    int32_t dprev = bw_wsub(x[1], p53(x[0], x[2]));
+    int32_t e = x[0];
+    x[0] = bw_wadd(e, u53(dprev, dprev));
+    tmp[0] = dprev;
+    uint32_t k = 1;
+    for (; k < inner; k++) {
+        e = x[2u * k];
+        int32_t d = bw_wsub(x[2u * k + 1u], p53(e, x[2u * k + 2u]));
+        x[k] = bw_wadd(e, u53(dprev, d));
+        tmp[k] = d;
+        dprev = d;
+    }
+    if (k < nd) { /* n even: the last detail's right neighbour is itself */
+        e = x[2u * k];
+        int32_t d = bw_wsub(x[2u * k + 1u], p53(e, e));
+        x[k] = bw_wadd(e, u53(dprev, d));
+        tmp[k] = d;
+        dprev = d;
+        k++;
+    }
+    if (k < ns) /* n odd: the last approximation sample, d[nd] -> d[nd - 1] */
+        x[k] = bw_wadd(x[2u * k], u53(dprev, dprev));
+    memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
+}
+
+static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    memcpy(tmp, x + ns, (size_t)nd * sizeof *x);
+    int32_t snext;
+    uint32_t k = ns - 1u;
+    if (ns > nd) { /* n odd */
+        snext = bw_wsub(x[k], u53(tmp[nd - 1u], tmp[nd - 1u]));
+        x[2u * k] = snext;
+    } else {
+        int32_t d = tmp[k];
+        snext = bw_wsub(x[k], u53(k ? tmp[k - 1u] : d, d));
+        x[2u * k + 1u] = bw_wadd(d, p53(snext, snext));
+        x[2u * k] = snext;
+    }
+    while (k-- > 1u) {
+        int32_t d = tmp[k];
+        int32_t e = bw_wsub(x[k], u53(tmp[k - 1u], d));
+        x[2u * k + 1u] = bw_wadd(d, p53(e, snext));
+        x[2u * k] = e;
+        snext = e;
+    }
+    int32_t d = tmp[0];
+    int32_t e = bw_wsub(x[0], u53(d, d));
+    x[1] = bw_wadd(d, p53(e, snext));
+    x[0] = e;
+}
+
 void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
 {
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
+    if (basis == BW_BASIS_HAAR) {
+        fwd_haar(x, ns, nd, tmp);
+        return;
+    }
+    if (basis == BW_BASIS_53 && n >= 3u) {
+        fwd_53(x, ns, nd, tmp);
+        return;
+    }
     for (uint32_t k = 0; k < ns; k++)
         tmp[k] = x[2u * k];
     for (uint32_t k = 0; k < nd; k++)
@@ -177,6 +273,14 @@ void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
+    if (basis == BW_BASIS_HAAR) {
+        inv_haar(x, ns, nd, tmp);
+        return;
+    }
+    if (basis == BW_BASIS_53 && n >= 3u) {
+        inv_53(x, ns, nd, tmp);
+        return;
+    }
     lift_inv(x, ns, x + ns, nd, basis);
     for (uint32_t k = 0; k < ns; k++)
         tmp[2u * k] = x[k];

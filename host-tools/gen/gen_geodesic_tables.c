@@ -100,7 +100,7 @@ out:
     return rc;
 }
 
-static void emit(void)
+static int emit(void)
 {
     printf("/*\n"
            " * GENERATED FILE - DO NOT EDIT.\n"
@@ -110,7 +110,8 @@ static void emit(void)
            " * Bio-Haar weights {L1, L2, L3} in Q16 for base triangle 0's subtree,\n"
            " * L_m = round(65536 * a_m / a_parent) with a the spherical solid angles;\n"
            " * L0 = 65536 - (L1 + L2 + L3) is the largest. Levels 0..2 whole, levels\n"
-           " * 3..5 as 16384 - L_m (see bw_geodesic.h).\n"
+           " * 3..4 as 16384 - L_m in a byte, level 5 as 16384 - L_m in a nibble (see\n"
+           " * bw_geodesic.h).\n"
            " */\n"
            "#include \"bw_geodesic.h\"\n"
            "\n"
@@ -119,7 +120,25 @@ static void emit(void)
         uint32_t first = ((1u << (2u * j)) - 1u) / 3u;
         uint32_t n = 1u << (2u * j);
         if (j == COARSE_LEVELS)
-            printf("};\n\nconst uint8_t bw_geo_weight_fine[BW_GEO_PARENTS - BW_GEO_COARSE][3] = {\n");
+            printf("};\n\nconst uint8_t bw_geo_weight_fine[BW_GEO_FINE][3] = {\n");
+        if (j == TABLE_LEVELS - 1u) {
+            /* the finest level: two differences a byte, low nibble first */
+            printf("};\n\nconst uint8_t bw_geo_weight_finest[BW_GEO_FINEST_BYTES] = {\n");
+            printf("    /* level %u: entries %u..%u, 3 nibbles each */\n", j, (unsigned)first,
+                   (unsigned)(first + n - 1));
+            for (uint32_t i = 0; i < 3u * n; i += 2u) {
+                unsigned lo = 16384u - table[first + i / 3u][i % 3u];
+                unsigned hi = 16384u - table[first + (i + 1u) / 3u][(i + 1u) % 3u];
+                if (lo > 15u || hi > 15u) {
+                    fprintf(stderr, "gen_geodesic_tables: level %u weight differs from 16384 by "
+                                    "more than 15\n", j);
+                    return 1;
+                }
+                printf("%s0x%02x,%s", i % 24u == 0 ? "    " : "", lo | (hi << 4),
+                       (i + 2u) % 24u == 0 || i + 2u >= 3u * n ? "\n" : " ");
+            }
+            continue;
+        }
         printf("    /* level %u: entries %u..%u */\n", j, (unsigned)first,
                (unsigned)(first + n - 1));
         for (uint32_t p = 0; p < n; p++) {
@@ -134,6 +153,7 @@ static void emit(void)
         }
     }
     printf("};\n");
+    return 0;
 }
 
 #define AREA_LEVELS 7u  /* levels 0..6, as BW_GEO_AREA_LEVELS */
@@ -184,9 +204,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: gen_geodesic_tables [--areas]\n");
         return 2;
     }
-    if (build() != 0)
+    if (build() != 0 || emit() != 0)
         return 1;
-    emit();
     if (fflush(stdout) != 0 || ferror(stdout)) {
         fprintf(stderr, "gen_geodesic_tables: write error\n");
         return 1;

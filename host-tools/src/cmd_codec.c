@@ -54,7 +54,7 @@ static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
-    "                       [--basis haar|53|97|auto] [--scale S]\n"
+    "                       [--basis haar|53|97|auto] [--scale S] [--coder range|rice]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
     "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
@@ -79,7 +79,10 @@ static const char encode_help[] =
     "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n"
     "  --stream          code in the order a streaming encoder produces (the device\n"
     "                    then encodes spectrum by spectrum in bounded RAM; needs\n"
-    "                    --lossless, --max-error or a fixed --basis; not --level-in)\n";
+    "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
+    "  --coder C         entropy coder: range (default, the smallest payload) or rice\n"
+    "                    (adaptive Rice strips: a few times fewer instructions per\n"
+    "                    sample on the device, a few percent more bytes)\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -93,7 +96,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"scale", required_argument, 0, 's'},      {"help", no_argument, 0, 'h'},
         {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
         {"drop-chunk", required_argument, 0, 'K'}, {"stream", no_argument, 0, 'S'},
-        {0, 0, 0, 0}};
+        {"coder", required_argument, 0, 'C'},      {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
     int nin = 0;
@@ -171,6 +174,11 @@ int bw_cmd_encode(int argc, char **argv)
             break;
         case 'D': o.device = optarg; break;
         case 'S': o.flags |= BW_FLAG_STREAM_ORDER; break;
+        case 'C':
+            if (!strcmp(optarg, "rice")) o.flags |= BW_FLAG_RICE;
+            else if (!strcmp(optarg, "range")) o.flags &= ~BW_FLAG_RICE;
+            else return usage_err(C, "--coder must be range or rice");
+            break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
             uint32_t k;
@@ -461,6 +469,7 @@ int bw_cmd_info(int argc, char **argv)
     printf("spectral_levels: %u\n", h.spectral_levels);
     printf("mode: %s\n", bwh_mode_name(h.mode));
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    printf("coder: %s\n", h.flags & BW_FLAG_RICE ? "rice" : "range");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
     printf("prequant: %u\n", h.prequant);
     printf("step: %.4f\n", h.step_q8 / 256.0);

@@ -44,6 +44,18 @@ static const golden_case_t golden_cases[] = {
      4000, BW_FLAG_STREAM_ORDER},
     {"spectra8x1024_stream_lossless_97", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_LOSSLESS,
      BW_BASIS_97, 0, BW_FLAG_STREAM_ORDER},
+    {"refl3x81_lossless_53_rice", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53,
+     0, BW_FLAG_RICE},
+    {"refl3x81_maxerr4_haar_rice", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR,
+     BW_BASIS_HAAR, 4, BW_FLAG_RICE},
+    {"refl3x81_step2560_97_rice", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_STEP, BW_BASIS_97, 2560,
+     BW_FLAG_RICE},
+    {"full1x1x9_bytes600_97_rice", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97, 600,
+     BW_FLAG_RICE},
+    {"refl4x81_stream_lossless_53_rice", BW_SHAPE_REFLECTANCE, 4, 0, 1, 81, BW_MODE_LOSSLESS,
+     BW_BASIS_53, 0, BW_FLAG_STREAM_ORDER | BW_FLAG_RICE},
+    {"spectra8x1024_stream_maxerr2_53_rice", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_MAX_ERROR,
+     BW_BASIS_53, 2, BW_FLAG_STREAM_ORDER | BW_FLAG_RICE},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

@@ -1740,6 +1740,8 @@ static void unchecked_decoding_of_garbage_bodies_returns_a_status(void **state)
                                                      : (pl.buf[BW_HEADER_SIZE + i % body0] ^
                                                         (uint8_t)(rng_below(&r, 16) ? 0 : rng_u32(&r)));
             put_le32(g + 40, (uint32_t)body);
+            if (it % 2 == 1) /* half of the bodies go to the other entropy decoder */
+                g[19] ^= BW_FLAG_RICE;
             /* other valid header values: basis, and large steps or bounds */
             if (it % 3 == 1) {
                 g[16] = (uint8_t)rng_below(&r, BW_BASIS_COUNT);
@@ -2249,11 +2251,12 @@ static void streaming_encoder_matches_the_stream_order_payload_byte_for_byte(voi
                              (int32_t)(((i / sc->bands) * 7919u) % 3001u) +
                              (int32_t)rng_between(&r, 0, 40));
         for (size_t m = 0; m < ARRAY_LEN(modes); m++) {
-            for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+            for (unsigned bc = 0; bc < 2u * BW_BASIS_COUNT; bc++) {
+                unsigned basis = bc % BW_BASIS_COUNT; /* then again with the Rice coder */
                 bw_params_t p = params_of(modes[m].mode, basis);
                 p.max_error = modes[m].mode == BW_MODE_MAX_ERROR ? modes[m].param : 0u;
                 p.step_q8 = modes[m].mode == BW_MODE_STEP ? modes[m].param : 0u;
-                p.flags = BW_FLAG_STREAM_ORDER;
+                p.flags = BW_FLAG_STREAM_ORDER | (bc >= BW_BASIS_COUNT ? BW_FLAG_RICE : 0u);
                 uint8_t *a, *b;
                 size_t la, lb;
                 assert_int_equal(encode_new(&d, &p, x, true, &a, &la), BW_OK);
@@ -2268,6 +2271,7 @@ static void streaming_encoder_matches_the_stream_order_payload_byte_for_byte(voi
                 bw_header_t h;
                 assert_int_equal(decode_new(b, lb, &y, &h), BW_OK);
                 assert_true((h.flags & BW_FLAG_STREAM_ORDER) != 0);
+                assert_int_equal(h.flags & BW_FLAG_RICE, p.flags & BW_FLAG_RICE);
                 for (size_t i = 0; i < n; i++) {
                     int64_t e = (int64_t)y[i] - x[i];
                     if (modes[m].mode == BW_MODE_LOSSLESS)

@@ -381,6 +381,78 @@ static void run_mode(set_t *s, const bench_mode_t *m)
     }
 }
 
+/* ---- the Rice strip coder ------------------------------------------------
+ * The device configuration for speed: BW_FLAG_RICE with a fixed basis, one
+ * pass per encode. Modes: lossless, max-error 1/4/16 and a fixed quantiser
+ * step (BW_MODE_STEP, step in sample units). Each row is checked: decoded
+ * within its bound (lossless exact, max-error within E), and the payload
+ * decodes to what the encoder with its verify buffer accepts. */
+typedef struct {
+    const char *name;
+    uint8_t mode;
+    uint32_t max_error;
+    uint32_t step; /* STEP: sample units */
+} fast_mode_t;
+
+static const fast_mode_t fast_modes[] = {
+    {"lossless", BW_MODE_LOSSLESS, 0, 0}, {"maxerr1", BW_MODE_MAX_ERROR, 1, 0},
+    {"maxerr4", BW_MODE_MAX_ERROR, 4, 0}, {"maxerr16", BW_MODE_MAX_ERROR, 16, 0},
+    {"step8", BW_MODE_STEP, 0, 8},        {"step64", BW_MODE_STEP, 0, 64},
+};
+
+static void run_fast(set_t *s)
+{
+    unsigned levels = bw_spec_levels(s->d.bands);
+    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+        if (!levels && basis != BW_BASIS_53)
+            continue; /* no spectral axis: one row per mode */
+        for (size_t i = 0; i < sizeof fast_modes / sizeof *fast_modes; i++) {
+            const fast_mode_t *m = &fast_modes[i];
+            bw_params_t p;
+            memset(&p, 0, sizeof p);
+            p.mode = m->mode;
+            p.basis = (uint8_t)basis;
+            p.max_error = m->max_error;
+            p.step_q8 = m->step * 256u;
+            p.flags = BW_FLAG_RICE;
+            p.scale_bits = 0x3F800000u;
+            size_t len = 0;
+            bw_status_t st, st_d;
+            uint32_t stk;
+            uint64_t t_enc = timed_encode(s, &p, NULL, &len, &st, &stk);
+            max_stack(&stack_enc_max, stk);
+            if (st != BW_OK) {
+                printf("ERROR what=fast mode=%s basis=%u status=%d\n", m->name, basis, (int)st);
+                failures++;
+                continue;
+            }
+            bw_header_t h;
+            uint64_t t_dec = timed_decode(s, len, &h, &st_d, &stk);
+            max_stack(&stack_dec_max, stk);
+            uint32_t worst = 0;
+            uint64_t sse = 0;
+            for (size_t k = 0; st_d == BW_OK && k < s->n; k++) {
+                int64_t e = (int64_t)s->verify[k] - s->x[k];
+                uint64_t a = (uint64_t)(e < 0 ? -e : e);
+                if (a > worst)
+                    worst = (uint32_t)a;
+                sse += a * a;
+            }
+            int ok = st_d == BW_OK && (h.flags & BW_FLAG_RICE);
+            if (m->mode == BW_MODE_LOSSLESS && worst != 0)
+                ok = 0;
+            if (m->mode == BW_MODE_MAX_ERROR && worst > m->max_error)
+                ok = 0;
+            printf("FAST coder=rice basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
+                   " worst=%lu sse=%llu status=%s\n",
+                   basis, m->name, (unsigned long)s->n, (unsigned long)len, t_enc, t_dec,
+                   (unsigned long)worst, sse, ok ? "ok" : "FAIL");
+            if (!ok)
+                failures++;
+        }
+    }
+}
+
 /* ---- the transforms alone ------------------------------------------------ */
 
 static void phases(set_t *s)
@@ -569,6 +641,14 @@ static void profile(set_t *s)
         st = bw_encode(&s->d, &pb, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop("encode_ratio8");
     }
+    /* the Rice coder, 5/3: lossless and max-error 4 */
+    for (unsigned i = 0; i < 2u && st == BW_OK; i++) {
+        bw_params_t pr = params_of(&modes[i ? 2 : 0], s, BW_BASIS_53);
+        pr.flags = BW_FLAG_RICE;
+        prof_start();
+        st = bw_encode(&s->d, &pr, s->x, s->work, NULL, s->out, s->out_cap, &len);
+        prof_stop(i ? "encode_rice_maxerr4" : "encode_rice_lossless");
+    }
     if (st != BW_OK) {
         printf("ERROR what=profile status=%d\n", (int)st);
         failures++;
@@ -616,6 +696,7 @@ int main(void)
         s.x[i] = s.raw[i];
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
         run_mode(&s, &modes[m]);
+    run_fast(&s);
     phases(&s);
     profile(&s);
 
