@@ -509,9 +509,10 @@ static void render_usage(FILE *f)
         "                     payload:FILE.bwv    a decoded BRDF payload (isotropic or full,\n"
         "                                         1 band or 3 bands read as R, G, B), e.g.\n"
         "                                         from brdfwave import-rgl + encode\n"
-        "  --sampling S       next direction at the material's hits: uniform hemisphere,\n"
+        "  --sampling S[,S]   next direction at the material's hits: uniform hemisphere,\n"
         "                     cosine, the analytic lobe (Phong, Ward; cosine for\n"
-        "                     payloads) or the wavelet hierarchy (default wavelet)\n"
+        "                     payloads) or the wavelet hierarchy (default wavelet); a\n"
+        "                     comma list renders each in turn, side by side in one PNG\n"
         "  --level J          level of accuracy of the hierarchy, 0..6 (default 4)\n"
         "  --tables N         incoming tables for analytic models (default 32)\n"
         "  --supersample S    leaf integrals from 4^S points per leaf, 0..3 (default 1)\n"
@@ -526,9 +527,11 @@ static void render_usage(FILE *f)
         "  --exposure E       scale before display (default 1)\n"
         "  -o, --output FILE  the PNG\n"
         "\n"
-        "Prints key: value lines: spp, cpu_seconds, wall_seconds, build_seconds (the\n"
-        "sampling structures), samples (directions drawn by the strategy),\n"
-        "samples_per_second (per CPU second), mean (displayed intensity), and\n"
+        "Prints key: value lines: build_seconds (the sampling structures), then per\n"
+        "strategy: sampling, spp, cpu_seconds, wall_seconds, samples (directions drawn),\n"
+        "samples_per_second (per CPU second), radiance (mean over the image and the\n"
+        "channels, unclamped: the same for every strategy up to noise), mean (displayed\n"
+        "intensity), and\n"
         "variance: the image variance of sec. 6.2 (per pixel the variance over its\n"
         "3 x 3 block of displayed intensities, mean of R, G, B clamped to [0, 1];\n"
         "averaged over the interior pixels). A progress line goes to a terminal.\n",
@@ -665,7 +668,8 @@ int bw_cmd_render(int argc, char **argv)
     const char *scene_name = "sphereflake", *out = NULL;
     const char *mat_spec[MAX_MATERIALS];
     int n_spec = 0;
-    enum strategy strat = S_WAVELET;
+    enum strategy strats[4] = {S_WAVELET};
+    int n_strat = 1;
     sampler_opts_t so = {4, 1, 32, 0.05};
     long spp = 16;
     double time_budget = 0.0, exposure = 1.0, v;
@@ -693,12 +697,22 @@ int bw_cmd_render(int argc, char **argv)
                 return rfail("at most %d --material options", MAX_MATERIALS);
             mat_spec[n_spec++] = val;
         } else if (!strcmp(a, "--sampling")) {
-            int k;
-            for (k = 0; k < 4 && strcmp(val, strategy_names[k]); k++)
-                ;
-            if (k == 4)
+            char buf[128];
+            if (strlen(val) >= sizeof buf)
+                return rfail("--sampling: list too long");
+            strcpy(buf, val);
+            n_strat = 0;
+            for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+                int k;
+                for (k = 0; k < 4 && strcmp(tok, strategy_names[k]); k++)
+                    ;
+                if (k == 4 || n_strat == 4)
+                    return rfail("--sampling needs uniform, cosine, analytic or wavelet "
+                                 "(or up to 4 of them, comma-separated)");
+                strats[n_strat++] = (enum strategy)k;
+            }
+            if (n_strat == 0)
                 return rfail("--sampling needs uniform, cosine, analytic or wavelet");
-            strat = (enum strategy)k;
         } else if (!strcmp(a, "--level")) {
             if (parse_num(val, 0, BWH_SAMPLER_MAX_LEVEL, &v) != 0 || v != floor(v))
                 return rfail("--level needs an integer 0..%u", BWH_SAMPLER_MAX_LEVEL);
@@ -763,7 +777,9 @@ int bw_cmd_render(int argc, char **argv)
     sc.mat[MAT_WALL_RED] = (material_t){.kind = MAT_DIFFUSE, .albedo = {0.7, 0.25, 0.2}};
     sc.mat[MAT_LIGHT_ID] = (material_t){.kind = MAT_LIGHT, .albedo = {1.5, 1.5, 1.5}};
     double t_build = wall_seconds();
-    int want = strat == S_WAVELET;
+    int want = 0;
+    for (int k = 0; k < n_strat; k++)
+        want |= strats[k] == S_WAVELET;
     for (int k = 0; k < n_spec; k++) {
         int rc = material_parse(&sc.mat[MAT_SLOT0 + k], mat_spec[k], &so, want);
         if (rc != 0) {
@@ -800,72 +816,80 @@ int bw_cmd_render(int argc, char **argv)
         sc.look = vec(0, 0.3, 0.45);
     }
 
-    size_t npx = (size_t)w * h;
+    size_t npx = (size_t)w * h, W = (size_t)w * n_strat;
     double *sum = calloc(npx * 3, sizeof *sum);
-    uint8_t *rgb = malloc(npx * 3);
+    uint8_t *rgb = malloc(npx * 3 * n_strat);
     pthread_t *tid = malloc((size_t)threads * sizeof *tid);
     int rc = 0;
     if (!sum || !rgb || !tid) {
         rc = rfail("out of memory");
         goto done;
     }
-    job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .w = w, .h = h,
-                 .seed = splitmix(seed), .sum = sum};
-    pthread_mutex_init(&job.lock, NULL);
-    int tty = isatty(2);
-    double c0 = cpu_seconds(), w0 = wall_seconds();
-    long pass = 0;
-    for (;;) {
-        if (time_budget > 0.0 ? (pass > 0 && cpu_seconds() - c0 >= time_budget) : pass >= spp)
-            break;
-        job.pass = pass;
-        job.next_row = 0;
-        long started = 0;
-        for (long t = 0; t < threads; t++) {
-            if (pthread_create(&tid[t], NULL, worker, &job) != 0)
-                break;
-            started++;
-        }
-        if (started == 0) {
-            worker(&job);
-        }
-        for (long t = 0; t < started; t++)
-            pthread_join(tid[t], NULL);
-        pass++;
-        if (tty) {
-            if (time_budget > 0.0)
-                fprintf(stderr, "\rrender: %ld spp, %.1f / %.1f s CPU ", pass,
-                        cpu_seconds() - c0, time_budget);
-            else
-                fprintf(stderr, "\rrender: %ld / %ld spp (%3.0f%%) ", pass, spp,
-                        100.0 * pass / spp);
-        }
-    }
-    if (tty)
-        fputc('\n', stderr);
-    double cpu = cpu_seconds() - c0, wall = wall_seconds() - w0;
-    pthread_mutex_destroy(&job.lock);
-    double mean = 0.0;
-    for (size_t i = 0; i < npx * 3; i++)
-        sum[i] /= (double)pass;
-    for (size_t i = 0; i < npx; i++) {
-        for (int c = 0; c < 3; c++)
-            rgb[3 * i + c] = srgb8(exposure * sum[3 * i + c]);
-        mean += displayed(sum + 3 * i, exposure);
-    }
-    if (bw_png_write(out, rgb, w, h) != 0) {
-        rc = rfail("%s", bwh_last_error());
-        goto done;
-    }
-    printf("scene: %s\nsampling: %s\n", scene_name, strategy_names[strat]);
-    if (strat == S_WAVELET)
-        printf("level: %u\n", so.level);
+    printf("scene: %s\n", scene_name);
     for (int k = 0; k < n_spec; k++)
         printf("material: %s\n", sc.mat[MAT_SLOT0 + k].spec);
-    printf("size: %ux%u\nspp: %ld\ncpu_seconds: %.3f\nwall_seconds: %.3f\nbuild_seconds: %.3f\n"
-           "samples: %llu\nsamples_per_second: %.0f\nmean: %.6f\nvariance: %.6g\n",
-           w, h, pass, cpu, wall, t_build, job.samples, cpu > 0 ? job.samples / cpu : 0.0,
-           mean / (double)npx, image_variance(sum, w, h, exposure));
+    printf("size: %ux%u\nbuild_seconds: %.3f\n", w, h, t_build);
+    int tty = isatty(2);
+    for (int si = 0; si < n_strat; si++) {
+        enum strategy strat = strats[si];
+        memset(sum, 0, npx * 3 * sizeof *sum);
+        job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .w = w, .h = h,
+                     .seed = splitmix(seed), .sum = sum};
+        pthread_mutex_init(&job.lock, NULL);
+        double c0 = cpu_seconds(), w0 = wall_seconds();
+        long pass = 0;
+        for (;;) {
+            if (time_budget > 0.0 ? (pass > 0 && cpu_seconds() - c0 >= time_budget)
+                                  : pass >= spp)
+                break;
+            job.pass = pass;
+            job.next_row = 0;
+            long started = 0;
+            for (long t = 0; t < threads; t++) {
+                if (pthread_create(&tid[t], NULL, worker, &job) != 0)
+                    break;
+                started++;
+            }
+            if (started == 0)
+                worker(&job);
+            for (long t = 0; t < started; t++)
+                pthread_join(tid[t], NULL);
+            pass++;
+            if (tty) {
+                if (time_budget > 0.0)
+                    fprintf(stderr, "\rrender %s: %ld spp, %.1f / %.1f s CPU ",
+                            strategy_names[strat], pass, cpu_seconds() - c0, time_budget);
+                else
+                    fprintf(stderr, "\rrender %s: %ld / %ld spp (%3.0f%%) ",
+                            strategy_names[strat], pass, spp, 100.0 * pass / spp);
+            }
+        }
+        if (tty)
+            fputc('\n', stderr);
+        double cpu = cpu_seconds() - c0, wall = wall_seconds() - w0;
+        pthread_mutex_destroy(&job.lock);
+        double mean = 0.0, radiance = 0.0;
+        for (size_t i = 0; i < npx * 3; i++) {
+            sum[i] /= (double)pass;
+            radiance += sum[i];
+        }
+        for (size_t i = 0; i < npx; i++) {
+            size_t y = i / w, x = i % w, o = 3 * (y * W + (size_t)si * w + x);
+            for (int c = 0; c < 3; c++)
+                rgb[o + c] = srgb8(exposure * sum[3 * i + c]);
+            mean += displayed(sum + 3 * i, exposure);
+        }
+        /* one block of lines per strategy */
+        printf("sampling: %s\n", strategy_names[strat]);
+        if (strat == S_WAVELET)
+            printf("level: %u\n", so.level);
+        printf("spp: %ld\ncpu_seconds: %.3f\nwall_seconds: %.3f\nsamples: %llu\n"
+               "samples_per_second: %.0f\nradiance: %.6f\nmean: %.6f\nvariance: %.6g\n",
+               pass, cpu, wall, job.samples, cpu > 0 ? job.samples / cpu : 0.0,
+               radiance / (3.0 * (double)npx), mean / (double)npx, image_variance(sum, w, h, exposure));
+    }
+    if (bw_png_write(out, rgb, (unsigned)W, h) != 0)
+        rc = rfail("%s", bwh_last_error());
 done:
     if (sc.flake)
         flake_free(sc.flake);
