@@ -5,9 +5,11 @@ CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/src $(EXTRA_CF
 LDLIBS := -lm
 
 HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c host-tools/src/brdf_models.c \
-            firmware/link/bw_frame.c host-tools/src/link.c
+            firmware/link/bw_frame.c host-tools/src/link.c \
+            host-tools/src/bw_sample.c host-tools/src/brdf_eval.c
 CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
-           host-tools/src/cmd_synth.c host-tools/src/cmd_device.c
+           host-tools/src/cmd_synth.c host-tools/src/cmd_device.c \
+           host-tools/src/cmd_render.c host-tools/src/render_png.c
 HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 
@@ -40,6 +42,7 @@ $(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB)
 include mk/tests.mk
 include mk/ref.mk
 -include mk/bench.mk
+include mk/render.mk
 
 run: deps-run all
 	$(Q)$(MAKE) --no-print-directory TARGET=qemu all

@@ -4,14 +4,14 @@
 set -eu
 goal=${1:-check}
 case "$goal" in
-check) pkgs="gcc make libc6-dev libcmocka-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
+check) pkgs="gcc make libc6-dev libcmocka-dev zlib1g-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
              gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf qemu-system-arm python3
              python3-numpy python3-pywt" ;;
-run)   pkgs="gcc make libc6-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
-bench) pkgs="gcc make libc6-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
+run)   pkgs="gcc make libc6-dev zlib1g-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
+bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
              python3 python3-numpy python3-matplotlib" ;;
 fuzz)  pkgs="clang libclang-rt-14-dev" ;;
-reproduce) pkgs="gcc make libc6-dev python3 python3-numpy python3-matplotlib" ;;
+reproduce) pkgs="gcc make libc6-dev zlib1g-dev python3 python3-numpy python3-matplotlib" ;;
 *) echo "tests/deps.sh: unknown goal '$goal'" >&2; exit 2 ;;
 esac
 

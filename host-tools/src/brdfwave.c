@@ -18,6 +18,7 @@ static const struct {
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
     {"receive", bw_cmd_receive, "store payloads arriving on a serial port"},
     {"import-rgl", bw_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
+    {"render", bw_cmd_render, "path-trace a scene, comparing sampling strategies"},
 };
 
 int bw_cmd_import_rgl(int argc, char **argv)

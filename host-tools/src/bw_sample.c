@@ -1,0 +1,564 @@
+/* Importance sampling of a BRDF from the triangle hierarchy (bw_sample.h). */
+#include "bw_sample.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bwhost.h"
+#include "geodesic.h"
+
+#define S_PI 3.14159265358979323846
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    double r0 = a[1] * b[2] - a[2] * b[1];
+    double r1 = a[2] * b[0] - a[0] * b[2];
+    double r2 = a[0] * b[1] - a[1] * b[0];
+    out[0] = r0;
+    out[1] = r1;
+    out[2] = r2;
+}
+
+static void normalize3(double v[3])
+{
+    double n = sqrt(dot3(v, v));
+    if (n > 0.0) {
+        v[0] /= n;
+        v[1] /= n;
+        v[2] /= n;
+    }
+}
+
+/* first node of level l: 4 (4^l - 1) / 3 */
+static size_t level_offset(unsigned l)
+{
+    return (((size_t)1 << (2u * l)) - 1u) / 3u * 4u;
+}
+
+double bwh_projected_solid_angle(const double a[3], const double b[3], const double c[3])
+{
+    const double *v[3] = {a, b, c};
+    double sum = 0.0;
+    for (int k = 0; k < 3; k++) {
+        const double *p = v[k], *q = v[(k + 1) % 3];
+        double n[3];
+        cross3(p, q, n);
+        double sn = sqrt(dot3(n, n));
+        if (sn == 0.0)
+            continue;
+        double gamma = atan2(sn, dot3(p, q));
+        sum += gamma * n[2] / sn;
+    }
+    return 0.5 * fabs(sum);
+}
+
+void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const double c[3])
+{
+    memcpy(t->a, a, sizeof t->a);
+    memcpy(t->b, b, sizeof t->b);
+    memcpy(t->c, c, sizeof t->c);
+    double tb[3], tc[3], ab = dot3(a, b), ac = dot3(a, c);
+    for (int k = 0; k < 3; k++) {
+        tb[k] = b[k] - ab * a[k];
+        tc[k] = c[k] - ac * a[k];
+    }
+    normalize3(tb);
+    normalize3(tc);
+    double ca = dot3(tb, tc);
+    ca = ca > 1.0 ? 1.0 : ca < -1.0 ? -1.0 : ca;
+    t->alpha = acos(ca);
+    t->cos_alpha = ca;
+    t->sin_alpha = sin(t->alpha);
+    t->cos_c = ab;
+    t->area = bwh_solid_angle(a, b, c);
+    t->proj = bwh_projected_solid_angle(a, b, c);
+}
+
+/* Arvo, "Stratified sampling of spherical triangles" (SIGGRAPH 1995): u1
+ * picks the sub-triangle (a, b, c') of area u1 * area, u2 a point on the
+ * arc from b to c'. */
+void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
+{
+    double ahat = u1 * t->area;
+    double s = sin(ahat - t->alpha), c = cos(ahat - t->alpha);
+    double uu = c - t->cos_alpha;
+    double vv = s + t->sin_alpha * t->cos_c;
+    double q = ((vv * c - uu * s) * t->cos_alpha - vv) / ((vv * s + uu * c) * t->sin_alpha);
+    q = q > 1.0 ? 1.0 : q < -1.0 ? -1.0 : q;
+    double e[3], ca = dot3(t->c, t->a);
+    for (int k = 0; k < 3; k++)
+        e[k] = t->c[k] - ca * t->a[k];
+    normalize3(e);
+    double sq = sqrt(1.0 - q * q), cp[3];
+    for (int k = 0; k < 3; k++)
+        cp[k] = q * t->a[k] + sq * e[k];
+    double cb = dot3(cp, t->b);
+    double z = 1.0 - u2 * (1.0 - cb);
+    double f[3];
+    for (int k = 0; k < 3; k++)
+        f[k] = cp[k] - cb * t->b[k];
+    normalize3(f);
+    double sz = sqrt(fmax(0.0, 1.0 - z * z));
+    for (int k = 0; k < 3; k++)
+        out[k] = z * t->b[k] + sz * f[k];
+    normalize3(out);
+}
+
+void bwh_sample_cosine(double u1, double u2, double out[3])
+{
+    double r = sqrt(u1), phi = 2.0 * S_PI * u2;
+    out[0] = r * cos(phi);
+    out[1] = r * sin(phi);
+    out[2] = sqrt(fmax(0.0, 1.0 - u1));
+}
+
+void bwh_sampler_free(bwh_sampler_t *s)
+{
+    free(s->theta);
+    free(s->node);
+    free(s->leaf);
+    memset(s, 0, sizeof *s);
+}
+
+/* sub-triangle centres and projected solid angles of every leaf */
+typedef struct {
+    double (*dir)[3];
+    double *proj;
+    size_t per_leaf;
+} subgrid_t;
+
+static void subdivide(const bwh_tri_t *t, unsigned depth, double (*dir)[3], double *proj,
+                      size_t *k)
+{
+    if (depth == 0) {
+        bwh_tri_centre(t, dir[*k]);
+        proj[*k] = bwh_projected_solid_angle(t->v[0], t->v[1], t->v[2]);
+        (*k)++;
+        return;
+    }
+    for (unsigned m = 0; m < 4; m++) {
+        bwh_tri_t c;
+        bwh_tri_child(t, m, &c);
+        subdivide(&c, depth - 1, dir, proj, k);
+    }
+}
+
+int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_tables,
+                      const double *theta, unsigned level_in, bwh_brdf_fn f, void *ctx,
+                      unsigned supersample, double mix)
+{
+    memset(s, 0, sizeof *s);
+    if (level > BWH_SAMPLER_MAX_LEVEL)
+        return bwh_fail("sampler: level %u above %u", level, BWH_SAMPLER_MAX_LEVEL);
+    if (supersample > BWH_SAMPLER_MAX_SUPERSAMPLE)
+        return bwh_fail("sampler: supersample %u above %u", supersample,
+                        BWH_SAMPLER_MAX_SUPERSAMPLE);
+    if (!(mix >= 0.0 && mix <= 1.0))
+        return bwh_fail("sampler: cosine weight must be in [0, 1]");
+    if (f == NULL || n_tables == 0)
+        return bwh_fail("sampler: no BRDF or no incoming directions");
+    if (kind == BWH_SAMPLER_ISO) {
+        if (theta == NULL)
+            return bwh_fail("sampler: isotropic tables need their zenith angles");
+        for (size_t i = 0; i < n_tables; i++)
+            if (!(theta[i] >= 0.0 && theta[i] <= 0.5 * S_PI) || (i && !(theta[i] > theta[i - 1])))
+                return bwh_fail("sampler: zenith angles must ascend within [0, pi/2]");
+    } else if (kind == BWH_SAMPLER_FULL) {
+        if (level_in > BWH_GRID_MAX_LEVEL || n_tables != bwh_grid_count(level_in))
+            return bwh_fail("sampler: a full BRDF needs 4*4^level_in tables");
+    } else {
+        return bwh_fail("sampler: unknown kind %d", kind);
+    }
+
+    s->kind = kind;
+    s->level = level;
+    s->level_in = level_in;
+    s->n_tables = n_tables;
+    s->n_leaves = bwh_grid_count(level);
+    s->n_nodes = level_offset(level + 1);
+    s->mix = mix;
+
+    subgrid_t g = {NULL, NULL, (size_t)1 << (2u * supersample)};
+    bwh_tri_t *tri = malloc(s->n_leaves * sizeof *tri);
+    double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
+    double *v = malloc(g.per_leaf * sizeof *v);
+    s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
+    s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
+    g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
+    g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
+    if (kind == BWH_SAMPLER_ISO)
+        s->theta = malloc(n_tables * sizeof *s->theta);
+    if (!tri || !in_dir || !v || !s->leaf || !s->node || !g.dir || !g.proj ||
+        (kind == BWH_SAMPLER_ISO && !s->theta)) {
+        free(tri);
+        free(in_dir);
+        free(v);
+        free(g.dir);
+        free(g.proj);
+        bwh_sampler_free(s);
+        return bwh_fail("sampler: out of memory");
+    }
+    bwh_grid_triangles(level, tri);
+    for (size_t k = 0; k < s->n_leaves; k++) {
+        bwh_leaf_init(&s->leaf[k], tri[k].v[0], tri[k].v[1], tri[k].v[2]);
+        size_t j = k * g.per_leaf;
+        subdivide(&tri[k], supersample, g.dir, g.proj, &j);
+    }
+    free(tri);
+    if (kind == BWH_SAMPLER_ISO) {
+        for (size_t i = 0; i < n_tables; i++) {
+            s->theta[i] = theta[i];
+            in_dir[i][0] = sin(theta[i]);
+            in_dir[i][1] = 0.0;
+            in_dir[i][2] = cos(theta[i]);
+        }
+    } else {
+        bwh_grid_centres(level_in, in_dir, NULL);
+    }
+
+    size_t off_leaf = level_offset(level);
+    for (size_t i = 0; i < n_tables; i++) {
+        double *node = s->node + i * s->n_nodes;
+        double *lv = node + off_leaf;
+        for (size_t k = 0; k < s->n_leaves; k++) {
+            double sum = 0.0;
+            for (size_t j = 0; j < g.per_leaf; j++) {
+                size_t q = k * g.per_leaf + j;
+                double fv = f(ctx, in_dir[i], g.dir[q]);
+                if (fv > 0.0 && isfinite(fv)) /* the one clamp */
+                    sum += fv * g.proj[q];
+            }
+            lv[k] = sum;
+        }
+        /* sums of children, finest to coarsest */
+        double total = 0.0;
+        for (unsigned l = level; l-- > 0;) {
+            double *p = node + level_offset(l), *c = node + level_offset(l + 1);
+            size_t n = bwh_grid_count(l);
+            for (size_t k = 0; k < n; k++)
+                p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
+        }
+        total = node[0] + node[1] + node[2] + node[3];
+        if (!(total > 0.0) || !isfinite(total)) {
+            /* nothing to follow: the projected solid angle (the cosine lobe) */
+            for (size_t k = 0; k < s->n_leaves; k++)
+                lv[k] = s->leaf[k].proj;
+            for (unsigned l = level; l-- > 0;) {
+                double *p = node + level_offset(l), *c = node + level_offset(l + 1);
+                size_t n = bwh_grid_count(l);
+                for (size_t k = 0; k < n; k++)
+                    p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
+            }
+        }
+    }
+    free(in_dir);
+    free(v);
+    free(g.dir);
+    free(g.proj);
+    return 0;
+}
+
+/* The tables for wi and their weights, and the rotation taking wi to
+ * phi = 0 (ISO). Returns the number of tables (1 or 2), 0 for a bad wi. */
+typedef struct {
+    size_t t[2];
+    double w[2];
+    int n;
+    double c, s; /* cos, sin of phi_i (ISO); 1, 0 otherwise */
+} select_t;
+
+static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *sel)
+{
+    if (!(wi[2] > 0.0) || !isfinite(wi[0]) || !isfinite(wi[1]) || !isfinite(wi[2]))
+        return 0;
+    sel->c = 1.0;
+    sel->s = 0.0;
+    if (s->kind == BWH_SAMPLER_FULL) {
+        long k = bwh_grid_locate(s->level_in, wi);
+        if (k < 0)
+            return 0;
+        sel->t[0] = (size_t)k;
+        sel->w[0] = 1.0;
+        return sel->n = 1;
+    }
+    double r = hypot(wi[0], wi[1]);
+    if (r > 1e-300) {
+        sel->c = wi[0] / r;
+        sel->s = wi[1] / r;
+    }
+    double th = atan2(r, wi[2]);
+    size_t n = s->n_tables;
+    if (n == 1 || th <= s->theta[0]) {
+        sel->t[0] = 0;
+        sel->w[0] = 1.0;
+        return sel->n = 1;
+    }
+    if (th >= s->theta[n - 1]) {
+        sel->t[0] = n - 1;
+        sel->w[0] = 1.0;
+        return sel->n = 1;
+    }
+    size_t lo = 0, hi = n - 1; /* theta[lo] < th < theta[hi] */
+    while (hi - lo > 1) {
+        size_t mid = (lo + hi) / 2;
+        if (s->theta[mid] <= th)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double t = (th - s->theta[lo]) / (s->theta[hi] - s->theta[lo]);
+    sel->t[0] = lo;
+    sel->w[0] = 1.0 - t;
+    sel->t[1] = hi;
+    sel->w[1] = t;
+    return sel->n = 2;
+}
+
+/* world -> local (phi_i = 0) and back */
+static void to_local(const select_t *sel, const double w[3], double out[3])
+{
+    double x = sel->c * w[0] + sel->s * w[1];
+    double y = -sel->s * w[0] + sel->c * w[1];
+    out[0] = x;
+    out[1] = y;
+    out[2] = w[2];
+}
+
+static void to_world(const select_t *sel, const double w[3], double out[3])
+{
+    double x = sel->c * w[0] - sel->s * w[1];
+    double y = sel->s * w[0] + sel->c * w[1];
+    out[0] = x;
+    out[1] = y;
+    out[2] = w[2];
+}
+
+static double tree_total(const double *node)
+{
+    return node[0] + node[1] + node[2] + node[3];
+}
+
+/* tree pdf of leaf k (local frame) */
+static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
+{
+    size_t off = level_offset(s->level);
+    double p = 0.0;
+    for (int i = 0; i < sel->n; i++) {
+        const double *node = s->node + sel->t[i] * s->n_nodes;
+        p += sel->w[i] * node[off + k] / tree_total(node);
+    }
+    return p / s->leaf[k].area;
+}
+
+/* Picks one of 4 children in proportion to v; *u is rescaled into the
+ * chosen child's interval so that it can pick again below. */
+static unsigned pick4(const double *v, double *u)
+{
+    double sum = v[0] + v[1] + v[2] + v[3], t = *u * sum, acc = 0.0;
+    unsigned last = 0;
+    for (unsigned m = 0; m < 4; m++)
+        if (v[m] > 0.0)
+            last = m;
+    for (unsigned m = 0; m < 4; m++) {
+        if (!(v[m] > 0.0))
+            continue;
+        if (t < acc + v[m] || m == last) {
+            double r = (t - acc) / v[m];
+            *u = r < 0.0 ? 0.0 : r < 1.0 ? r : nextafter(1.0, 0.0);
+            return m;
+        }
+        acc += v[m];
+    }
+    return last; /* not reached: the parent's sum is positive */
+}
+
+static size_t descend(const bwh_sampler_t *s, const double *node, double u)
+{
+    size_t idx = pick4(node, &u);
+    for (unsigned l = 1; l <= s->level; l++)
+        idx = 4 * idx + pick4(node + level_offset(l) + 4 * idx, &u);
+    return idx;
+}
+
+static size_t scan(const bwh_sampler_t *s, const double *node, double u)
+{
+    const double *lv = node + level_offset(s->level);
+    double y = u * tree_total(node), acc = 0.0;
+    size_t last = 0;
+    for (size_t k = 0; k < s->n_leaves; k++) {
+        if (!(lv[k] > 0.0))
+            continue;
+        acc += lv[k];
+        last = k;
+        if (y < acc)
+            return k;
+    }
+    return last;
+}
+
+static int sample_with(const bwh_sampler_t *s, const double wi[3], const double u[3],
+                       double wo[3], double *pdf, int linear)
+{
+    select_t sel;
+    if (!select_tables(s, wi, &sel))
+        return -1;
+    double u0 = u[0];
+    if (u0 < s->mix) {
+        double d[3];
+        bwh_sample_cosine(u[1], u[2], d);
+        memcpy(wo, d, sizeof d);
+        *pdf = bwh_sampler_pdf(s, wi, wo);
+        return 0;
+    }
+    if (s->mix > 0.0)
+        u0 = (u0 - s->mix) / (1.0 - s->mix);
+    size_t t = sel.t[0];
+    if (sel.n == 2) {
+        if (u0 < sel.w[1]) {
+            t = sel.t[1];
+            u0 /= sel.w[1];
+        } else {
+            u0 = (u0 - sel.w[1]) / sel.w[0];
+        }
+    }
+    if (u0 >= 1.0)
+        u0 = nextafter(1.0, 0.0);
+    const double *node = s->node + t * s->n_nodes;
+    size_t k = linear ? scan(s, node, u0) : descend(s, node, u0);
+    double local[3];
+    bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
+    to_world(&sel, local, wo);
+    *pdf = s->mix * fmax(0.0, wo[2]) / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, k);
+    return 0;
+}
+
+int bwh_sampler_sample(const bwh_sampler_t *s, const double wi[3], const double u[3],
+                       double wo[3], double *pdf)
+{
+    return sample_with(s, wi, u, wo, pdf, 0);
+}
+
+int bwh_sampler_sample_linear(const bwh_sampler_t *s, const double wi[3], const double u[3],
+                              double wo[3], double *pdf)
+{
+    return sample_with(s, wi, u, wo, pdf, 1);
+}
+
+double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double wo[3])
+{
+    select_t sel;
+    if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0))
+        return 0.0;
+    double local[3];
+    to_local(&sel, wo, local);
+    if (local[2] < 0.0)
+        local[2] = 0.0;
+    long k = bwh_grid_locate(s->level, local);
+    if (k < 0)
+        return 0.0;
+    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, (size_t)k);
+}
+
+double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)
+{
+    select_t sel;
+    if (leaf >= s->n_leaves || !select_tables(s, wi, &sel))
+        return 0.0;
+    return s->mix * s->leaf[leaf].proj / S_PI +
+           (1.0 - s->mix) * tree_pdf(s, &sel, leaf) * s->leaf[leaf].area;
+}
+
+/* ---- analytic lobes --------------------------------------------------- */
+
+/* an orthonormal frame (t, b, n) about the unit vector n */
+static void frame(const double n[3], double t[3], double b[3])
+{
+    if (fabs(n[2]) < 0.9) {
+        double z[3] = {0.0, 0.0, 1.0};
+        cross3(z, n, t);
+    } else {
+        double x[3] = {1.0, 0.0, 0.0};
+        cross3(x, n, t);
+    }
+    normalize3(t);
+    cross3(n, t, b);
+}
+
+static double diffuse_prob(const bwh_brdf_params_t *p)
+{
+    double s = p->kd + p->ks;
+    return s > 0.0 ? p->kd / s : 1.0;
+}
+
+void bwh_phong_sample(const bwh_brdf_params_t *p, const double wi[3], const double u[3],
+                      double wo[3])
+{
+    double pd = diffuse_prob(p);
+    if (u[0] < pd) {
+        bwh_sample_cosine(u[1], u[2], wo);
+        return;
+    }
+    double r[3] = {-wi[0], -wi[1], wi[2]}, t[3], b[3];
+    frame(r, t, b);
+    double ca = pow(u[1], 1.0 / (p->n + 1.0)), sa = sqrt(fmax(0.0, 1.0 - ca * ca));
+    double phi = 2.0 * S_PI * u[2], x = sa * cos(phi), y = sa * sin(phi);
+    for (int k = 0; k < 3; k++)
+        wo[k] = x * t[k] + y * b[k] + ca * r[k];
+}
+
+double bwh_phong_pdf(const bwh_brdf_params_t *p, const double wi[3], const double wo[3])
+{
+    if (!(wo[2] > 0.0))
+        return 0.0;
+    double pd = diffuse_prob(p);
+    double c = -wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2];
+    double lobe = c > 0.0 ? (p->n + 1.0) / (2.0 * S_PI) * pow(c, p->n) : 0.0;
+    return pd * wo[2] / S_PI + (1.0 - pd) * lobe;
+}
+
+void bwh_ward_sample(const bwh_brdf_params_t *p, const double wi[3], const double u[3],
+                     double wo[3])
+{
+    double pd = diffuse_prob(p);
+    if (u[0] < pd) {
+        bwh_sample_cosine(u[1], u[2], wo);
+        return;
+    }
+    /* phi_h = atan(ay/ax tan(2 pi u2)) in the quadrant of 2 pi u2 */
+    double a = 2.0 * S_PI * u[2];
+    double phi = atan2(p->ay * sin(a), p->ax * cos(a));
+    double cp = cos(phi), sp = sin(phi);
+    double q = cp * cp / (p->ax * p->ax) + sp * sp / (p->ay * p->ay);
+    double u1 = u[1] > 0.0 ? u[1] : 1e-300;
+    double th = atan(sqrt(-log(u1) / q));
+    double st = sin(th), h[3] = {st * cp, st * sp, cos(th)};
+    double d = dot3(wi, h);
+    for (int k = 0; k < 3; k++)
+        wo[k] = 2.0 * d * h[k] - wi[k];
+}
+
+double bwh_ward_pdf(const bwh_brdf_params_t *p, const double wi[3], const double wo[3])
+{
+    if (!(wo[2] > 0.0))
+        return 0.0;
+    double pd = diffuse_prob(p);
+    double h[3] = {wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]};
+    normalize3(h);
+    double spec = 0.0;
+    if (h[2] > 0.0) {
+        double c2 = h[2] * h[2], t2 = (1.0 - c2) / c2;
+        double r2 = h[0] * h[0] + h[1] * h[1];
+        double q = r2 > 0.0 ? (h[0] * h[0] / (p->ax * p->ax) + h[1] * h[1] / (p->ay * p->ay)) / r2
+                            : 0.0;
+        double ph = exp(-t2 * q) / (S_PI * p->ax * p->ay * c2 * h[2]);
+        double oh = dot3(wo, h);
+        spec = oh > 0.0 ? ph / (4.0 * oh) : 0.0;
+    }
+    return pd * wo[2] / S_PI + (1.0 - pd) * spec;
+}

@@ -1,0 +1,82 @@
+/*
+ * Sampling throughput of the triangle hierarchy (bwh_sampler_sample: a
+ * descent of O(level) steps) against a linear scan of the same leaves
+ * (bwh_sampler_sample_linear: the O(n) running sum), same sampler, same
+ * random numbers, one thread, CPU time. Used by `make bench-render`.
+ *
+ *   bench_sampling LEVEL     prints key: value lines
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "brdf_models.h"
+#include "bw_sample.h"
+
+static double cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static uint64_t st = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    st ^= st >> 12;
+    st ^= st << 25;
+    st ^= st >> 27;
+    return (double)((st * 0x2545f4914f6cdd1dull) >> 11) * 0x1.0p-53;
+}
+
+static double phong(void *ctx, const double wi[3], const double wo[3])
+{
+    return bwh_brdf_phong(ctx, wi, wo);
+}
+
+/* samples per CPU second over at least `min_seconds` */
+static double rate(const bwh_sampler_t *s, int linear, double min_seconds, double *check)
+{
+    long n = 0, batch = 1000;
+    double t0 = cpu(), t, acc = 0.0;
+    do {
+        for (long i = 0; i < batch; i++) {
+            double th = 1.4 * rnd(), ph = 6.283185307179586 * rnd();
+            double wi[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
+            double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
+            int rc = linear ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
+                            : bwh_sampler_sample(s, wi, u, wo, &pdf);
+            if (rc == 0)
+                acc += wo[2] / pdf;
+        }
+        n += batch;
+        t = cpu() - t0;
+    } while (t < min_seconds);
+    *check = acc / (double)n;
+    return (double)n / t;
+}
+
+int main(int argc, char **argv)
+{
+    unsigned level = argc > 1 ? (unsigned)atoi(argv[1]) : 6;
+    bwh_brdf_params_t p = {.kd = 0.05, .ks = 0.9, .n = 60.0};
+    double th[32];
+    for (int k = 0; k < 32; k++)
+        th[k] = (k + 0.5) * 0.5 * 3.141592653589793 / 32.0;
+    bwh_sampler_t s;
+    if (bwh_sampler_build(&s, BWH_SAMPLER_ISO, level, 32, th, 0, phong, &p, 1, 0.05) != 0) {
+        fprintf(stderr, "bench_sampling: cannot build the sampler at level %u\n", level);
+        return 1;
+    }
+    double c1, c2;
+    double tree = rate(&s, 0, 1.0, &c1);
+    double scan = rate(&s, 1, 1.0, &c2);
+    printf("level: %u\nleaves: %zu\ntree_samples_per_second: %.0f\n"
+           "linear_samples_per_second: %.0f\nratio: %.2f\n", level, s.n_leaves, tree, scan,
+           tree / scan);
+    bwh_sampler_free(&s);
+    return 0;
+}

@@ -1,0 +1,666 @@
+/*
+ * Importance sampling from the triangle hierarchy (host-tools/src/bw_sample.c)
+ * tested as renderers test their BSDF samplers:
+ *
+ *  - chi-square goodness of fit of sample() against the sampler's own
+ *    density, 1M samples per incoming direction, bins = the leaf triangles:
+ *    the density is constant on a leaf apart from the cosine lobe, whose
+ *    integral over a spherical triangle is exact (Lambert's edge formula), so
+ *    every expected count is exact; cells expected below 5 are pooled; level
+ *    0.01 with a Sidak correction over the incoming directions of a BRDF;
+ *    for Phong, Ward and a measured RGL BRDF encoded and decoded by the codec;
+ *  - the same test rejects samples of a different BRDF (it has power);
+ *  - Arvo's method is uniform inside a triangle (chi-square on 64 parts);
+ *  - pdf() agrees with the pdf sample() returns, integrates to 1, and its
+ *    integral over each leaf is that leaf's mass;
+ *  - the albedo estimator f cos / pdf is unbiased (within 4 standard errors
+ *    plus the error of the reference quadrature);
+ *  - negative values are clamped the same way for sample and pdf; the tree
+ *    and the linear scan pick the same leaves; bad input is refused.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "brdf_eval.h"
+#include "brdf_models.h"
+#include "bw_sample.h"
+#include "bwhost.h"
+#include "bwr_rgl.h"
+#include "geodesic.h"
+
+#define PI BWH_BRDF_PI
+/* samples per incoming direction: 1M, or 100k with BW_TEST_QUICK=1 (the
+ * sanitizer build) */
+static long N_SAMPLES = 1000000L;
+
+/* ---- random numbers ---------------------------------------------------- */
+
+static uint64_t rng_state = 0x853c49e6748fea9bull;
+
+static double rnd(void)
+{
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (double)((rng_state * 0x2545f4914f6cdd1dull) >> 11) * 0x1.0p-53;
+}
+
+/* ---- chi-square ----------------------------------------------------------- */
+
+/* regularised upper incomplete gamma Q(a, x) (series / continued fraction) */
+static double gamma_q(double a, double x)
+{
+    if (x <= 0.0)
+        return 1.0;
+    double gln = lgamma(a);
+    if (x < a + 1.0) {
+        double ap = a, sum = 1.0 / a, del = sum;
+        for (int n = 0; n < 100000; n++) {
+            ap += 1.0;
+            del *= x / ap;
+            sum += del;
+            if (fabs(del) < fabs(sum) * 1e-15)
+                break;
+        }
+        return 1.0 - sum * exp(-x + a * log(x) - gln);
+    }
+    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
+    for (int i = 1; i < 100000; i++) {
+        double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        if (fabs(d) < 1e-300)
+            d = 1e-300;
+        c = b + an / c;
+        if (fabs(c) < 1e-300)
+            c = 1e-300;
+        d = 1.0 / d;
+        double del = d * c;
+        h *= del;
+        if (fabs(del - 1.0) < 1e-15)
+            break;
+    }
+    return exp(-x + a * log(x) - gln) * h;
+}
+
+/* p-value of observed counts against expected counts (cells below 5
+ * pooled into one) */
+static double chi2_pvalue(const long *obs, const double *expct, size_t n, double *chi2_out,
+                          size_t *dof_out)
+{
+    double chi2 = 0.0, pool_e = 0.0;
+    long pool_o = 0;
+    size_t cells = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (expct[i] < 5.0) {
+            pool_e += expct[i];
+            pool_o += obs[i];
+            continue;
+        }
+        double d = obs[i] - expct[i];
+        chi2 += d * d / expct[i];
+        cells++;
+    }
+    if (pool_e > 0.0) {
+        double d = pool_o - pool_e;
+        if (pool_e >= 5.0) {
+            chi2 += d * d / pool_e;
+            cells++;
+        } else if (pool_o > 5.0 + 10.0 * pool_e) {
+            chi2 = INFINITY; /* too many samples where almost none belong */
+        }
+    }
+    size_t dof = cells > 1 ? cells - 1 : 1;
+    if (chi2_out)
+        *chi2_out = chi2;
+    if (dof_out)
+        *dof_out = dof;
+    return isinf(chi2) ? 0.0 : gamma_q(0.5 * (double)dof, 0.5 * chi2);
+}
+
+/* ---- test BRDFs ------------------------------------------------------------- */
+
+static const bwh_brdf_params_t phong = {.kd = 0.2, .ks = 0.7, .n = 40.0};
+static const bwh_brdf_params_t ward = {.kd = 0.3, .ks = 0.6, .ax = 0.25, .ay = 0.08};
+
+static double phong_cb(void *ctx, const double wi[3], const double wo[3])
+{
+    return bwh_brdf_phong(ctx, wi, wo);
+}
+
+static double ward_cb(void *ctx, const double wi[3], const double wo[3])
+{
+    return bwh_brdf_ward(ctx, wi, wo);
+}
+
+static void dir(double theta_deg, double phi_deg, double out[3])
+{
+    double t = theta_deg * PI / 180.0, p = phi_deg * PI / 180.0;
+    out[0] = sin(t) * cos(p);
+    out[1] = sin(t) * sin(p);
+    out[2] = cos(t);
+}
+
+static int build_phong(bwh_sampler_t *s, const bwh_brdf_params_t *p, unsigned level, double mix)
+{
+    double th[32];
+    for (int k = 0; k < 32; k++)
+        th[k] = (k + 0.5) * 0.5 * PI / 32.0;
+    return bwh_sampler_build(s, BWH_SAMPLER_ISO, level, 32, th, 0, phong_cb, (void *)p, 1, mix);
+}
+
+/* measured: satin_rosaline (RGL) at level 4, 16 incidences, 3 bands, through
+ * the codec at 20:1, as brdfwave import-rgl + encode --ratio 20 + decode */
+static bwh_brdf_data_t measured;
+static int have_measured;
+
+static int load_measured(void)
+{
+    bwr_rgl_t rgl;
+    char err[256];
+    if (bwr_rgl_load(&rgl, "tests/data/rgl/satin_rosaline_rgb.bsdf", err, sizeof err) != 0) {
+        fprintf(stderr, "rgl: %s\n", err);
+        return -1;
+    }
+    const unsigned level = 4;
+    const size_t n_in = 16, n_out = bwh_grid_count(level), bands = 3;
+    double(*c)[3] = malloc(n_out * sizeof *c);
+    float *x = malloc(n_in * n_out * bands * sizeof *x);
+    if (!c || !x)
+        return -1;
+    bwh_grid_centres(level, c, NULL);
+    for (size_t i = 0; i < n_in; i++) {
+        double wi[3];
+        dir((i + 0.5) * 90.0 / (double)n_in, 0.0, wi);
+        for (size_t o = 0; o < n_out; o++) {
+            double rgb[3];
+            bwr_rgl_eval(&rgl, wi, c[o], rgb);
+            for (size_t k = 0; k < bands; k++)
+                x[(i * n_out + o) * bands + k] = (float)rgb[k];
+        }
+    }
+    bwr_rgl_free(&rgl);
+    free(c);
+    bw_dims_t dims = {.shape = BW_SHAPE_BRDF_ISO, .level_out = level, .n_in = (uint32_t)n_in,
+                      .n_out = (uint32_t)n_out, .bands = (uint32_t)bands};
+    bwh_encode_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.mode = BW_MODE_BYTES;
+    o.basis = BW_BASIS_AUTO;
+    o.byte_budget = 4 * n_in * n_out * bands / 20;
+    o.drop_chunk = -1;
+    uint8_t *payload;
+    size_t len;
+    int rc = bwh_encode_f32(&dims, x, &o, &payload, &len);
+    free(x);
+    if (rc != 0) {
+        fprintf(stderr, "encode: %s\n", bwh_last_error());
+        return -1;
+    }
+    bw_header_t h;
+    int32_t *samples;
+    float *values;
+    rc = bwh_decode(payload, len, &h, &samples, &values);
+    free(payload);
+    if (rc != 0)
+        return -1;
+    free(samples);
+    rc = bwh_brdf_data_init(&measured, &h.dims, values, NULL, 0.0, 0.0);
+    free(values);
+    return rc;
+}
+
+static int build_measured(bwh_sampler_t *s, unsigned level, double mix)
+{
+    return bwh_sampler_build(s, BWH_SAMPLER_ISO, level, measured.n_in, measured.theta_in, 0,
+                             bwh_brdf_data_mean_cb, &measured, 1, mix);
+}
+
+static double measured_cb(void *ctx, const double wi[3], const double wo[3])
+{
+    return bwh_brdf_data_mean(ctx, wi, wo);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    const char *q = getenv("BW_TEST_QUICK");
+    if (q && *q && strcmp(q, "0") != 0)
+        N_SAMPLES = 100000L;
+    have_measured = load_measured() == 0;
+    return have_measured ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    bwh_brdf_data_free(&measured);
+    return 0;
+}
+
+/* the leaf a sample falls in, in the sampler's frame (ISO: turned so that
+ * phi_i = 0) */
+static long leaf_of(const bwh_sampler_t *s, const double wi[3], const double wo[3])
+{
+    double l[3] = {wo[0], wo[1], wo[2]};
+    if (s->kind == BWH_SAMPLER_ISO) {
+        double r = hypot(wi[0], wi[1]), c = 1.0, sn = 0.0;
+        if (r > 0.0) {
+            c = wi[0] / r;
+            sn = wi[1] / r;
+        }
+        l[0] = c * wo[0] + sn * wo[1];
+        l[1] = -sn * wo[0] + c * wo[1];
+    }
+    if (l[2] < 0.0)
+        l[2] = 0.0;
+    return bwh_grid_locate(s->level, l);
+}
+
+/* chi-square of `drawn`'s samples against `model`'s leaf masses at wi;
+ * also counts pdf disagreements between sample() and pdf(). */
+static double chi2_test(const bwh_sampler_t *drawn, const bwh_sampler_t *model,
+                        const double wi[3], long n, long *pdf_mismatch)
+{
+    size_t nl = model->n_leaves;
+    long *obs = calloc(nl, sizeof *obs);
+    double *ex = malloc(nl * sizeof *ex);
+    assert_non_null(obs);
+    assert_non_null(ex);
+    long mism = 0;
+    for (long i = 0; i < n; i++) {
+        double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
+        assert_int_equal(bwh_sampler_sample(drawn, wi, u, wo, &pdf), 0);
+        long k = leaf_of(model, wi, wo);
+        assert_true(k >= 0);
+        obs[k]++;
+        double p2 = bwh_sampler_pdf(drawn, wi, wo);
+        if (!(fabs(p2 - pdf) <= 1e-9 * pdf))
+            mism++;
+    }
+    double total = 0.0;
+    for (size_t k = 0; k < nl; k++) {
+        ex[k] = (double)n * bwh_sampler_leaf_mass(model, wi, k);
+        total += ex[k];
+    }
+    assert_true(fabs(total - (double)n) < 1e-6 * (double)n);
+    double chi2;
+    size_t dof;
+    double p = chi2_pvalue(obs, ex, nl, &chi2, &dof);
+    printf("    wi (%.3f %.3f %.3f): chi2 %.1f, dof %zu, p %.4f\n", wi[0], wi[1], wi[2], chi2, dof,
+           p);
+    free(obs);
+    free(ex);
+    if (pdf_mismatch)
+        *pdf_mismatch = mism;
+    return p;
+}
+
+/* 1M samples at each of the incoming directions; Sidak over them */
+static void chi2_brdf(const bwh_sampler_t *s, const double (*wi)[3], int n_wi)
+{
+    double alpha = 1.0 - pow(1.0 - 0.01, 1.0 / n_wi);
+    for (int i = 0; i < n_wi; i++) {
+        long mism;
+        double p = chi2_test(s, s, wi[i], N_SAMPLES, &mism);
+        if (p < alpha)
+            fail_msg("chi-square rejects the sampler: p = %g < %g", p, alpha);
+        /* a sample on a leaf edge may be located in the neighbour by rounding */
+        assert_true(mism <= N_SAMPLES / 100000);
+    }
+}
+
+static void sampler_phong_passes_chi_square(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(build_phong(&s, &phong, 4, 0.05), 0);
+    double wi[3][3];
+    dir(0.0, 0.0, wi[0]);
+    dir(37.0, 0.0, wi[1]);
+    dir(71.0, 123.0, wi[2]); /* between two tables, turned about the normal */
+    chi2_brdf(&s, (const double(*)[3])wi, 3);
+    bwh_sampler_free(&s);
+}
+
+static void sampler_ward_passes_chi_square(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
+                                       (void *)&ward, 1, 0.05),
+                     0);
+    double wi[3][3];
+    dir(10.0, 20.0, wi[0]);
+    dir(45.0, 200.0, wi[1]);
+    dir(75.0, 300.0, wi[2]);
+    chi2_brdf(&s, (const double(*)[3])wi, 3);
+    bwh_sampler_free(&s);
+}
+
+static void sampler_decoded_measured_passes_chi_square(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(build_measured(&s, 4, 0.05), 0);
+    double wi[3][3];
+    dir(5.0, 0.0, wi[0]);
+    dir(40.0, 70.0, wi[1]);
+    dir(80.0, 250.0, wi[2]);
+    chi2_brdf(&s, (const double(*)[3])wi, 3);
+    bwh_sampler_free(&s);
+}
+
+static void chi_square_rejects_a_different_brdf(void **state)
+{
+    (void)state;
+    bwh_sampler_t s20, s25;
+    bwh_brdf_params_t p2 = phong;
+    p2.n = 50.0; /* a lobe 10 % narrower in exponent */
+    assert_int_equal(build_phong(&s20, &phong, 4, 0.05), 0);
+    assert_int_equal(build_phong(&s25, &p2, 4, 0.05), 0);
+    double wi[3];
+    dir(30.0, 0.0, wi);
+    double p = chi2_test(&s20, &s25, wi, N_SAMPLES / 4, NULL);
+    assert_true(p < 1e-6);
+    bwh_sampler_free(&s20);
+    bwh_sampler_free(&s25);
+}
+
+static void arvo_samples_are_uniform_in_a_triangle(void **state)
+{
+    (void)state;
+    bwh_tri_t t[16], sub[64];
+    bwh_grid_triangles(1, t);
+    bwh_leaf_t leaf;
+    const bwh_tri_t *T = &t[6]; /* a corner child of base 1 */
+    bwh_leaf_init(&leaf, T->v[0], T->v[1], T->v[2]);
+    /* its 64 descendants three levels down, in quadtree order */
+    sub[0] = *T;
+    size_t n = 1;
+    for (int l = 0; l < 3; l++) {
+        bwh_tri_t tmp[64];
+        for (size_t i = 0; i < n; i++)
+            for (unsigned m = 0; m < 4; m++)
+                bwh_tri_child(&sub[i], m, &tmp[4 * i + m]);
+        n *= 4;
+        memcpy(sub, tmp, n * sizeof *sub);
+    }
+    long obs[64] = {0};
+    double ex[64];
+    const long N = 400000;
+    for (long i = 0; i < N; i++) {
+        double d[3];
+        bwh_leaf_sample(&leaf, rnd(), rnd(), d);
+        long k = bwh_grid_locate(4, d);
+        assert_true(k >= 6 * 64 && k < 7 * 64); /* inside the triangle */
+        obs[k - 6 * 64]++;
+    }
+    for (int i = 0; i < 64; i++)
+        ex[i] = N * bwh_solid_angle(sub[i].v[0], sub[i].v[1], sub[i].v[2]) / leaf.area;
+    double p = chi2_pvalue(obs, ex, 64, NULL, NULL);
+    assert_true(p > 0.01);
+}
+
+static void projected_solid_angles_add_up_to_pi(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(build_phong(&s, &phong, 5, 0.0), 0);
+    double proj = 0.0, area = 0.0;
+    for (size_t k = 0; k < s.n_leaves; k++) {
+        proj += s.leaf[k].proj;
+        area += s.leaf[k].area;
+    }
+    assert_true(fabs(proj - PI) < 1e-12);
+    assert_true(fabs(area - 2.0 * PI) < 1e-12);
+    bwh_sampler_free(&s);
+}
+
+/* integral of pdf over the hemisphere and over each leaf: midpoint sums
+ * over the sub-triangles two levels below the leaves (the tree part is
+ * constant there; only the cosine part carries quadrature error) */
+static void pdf_integrates_to_one(void **state)
+{
+    (void)state;
+    bwh_sampler_t s[3];
+    assert_int_equal(build_phong(&s[0], &phong, 4, 0.1), 0);
+    assert_int_equal(bwh_sampler_build(&s[1], BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
+                                       (void *)&ward, 1, 0.1),
+                     0);
+    assert_int_equal(build_measured(&s[2], 4, 0.1), 0);
+    size_t n6 = bwh_grid_count(6);
+    double(*c)[3] = malloc(n6 * sizeof *c), *a = malloc(n6 * sizeof *a);
+    assert_non_null(c);
+    assert_non_null(a);
+    bwh_grid_centres(6, c, a);
+    double wis[2][3];
+    dir(20.0, 0.0, wis[0]);
+    dir(63.0, 140.0, wis[1]);
+    for (int b = 0; b < 3; b++)
+        for (int w = 0; w < 2; w++) {
+            const double *wi = wis[w];
+            double total = 0.0, mass_total = 0.0, worst = 0.0;
+            /* ISO samplers are binned in the turned frame: integrate there */
+            double r = hypot(wi[0], wi[1]), cs = wi[0] / r, sn = wi[1] / r;
+            if (s[b].kind != BWH_SAMPLER_ISO) {
+                cs = 1.0;
+                sn = 0.0;
+            }
+            for (size_t leaf = 0; leaf < s[b].n_leaves; leaf++) {
+                double in_leaf = 0.0;
+                for (size_t q = 16 * leaf; q < 16 * leaf + 16; q++) {
+                    double wo[3] = {cs * c[q][0] - sn * c[q][1], sn * c[q][0] + cs * c[q][1],
+                                    c[q][2]};
+                    in_leaf += bwh_sampler_pdf(&s[b], wi, wo) * a[q];
+                }
+                double m = bwh_sampler_leaf_mass(&s[b], wi, leaf);
+                worst = fmax(worst, fabs(in_leaf - m) / m);
+                total += in_leaf;
+                mass_total += m;
+            }
+            printf("    brdf %d: int pdf = %.8f, sum of leaf masses = %.15f, worst leaf %.2e\n",
+                   b, total, mass_total, worst);
+            assert_true(fabs(total - 1.0) < 2e-4);
+            assert_true(fabs(mass_total - 1.0) < 1e-12);
+            assert_true(worst < 2e-3);
+        }
+    free(c);
+    free(a);
+    for (int b = 0; b < 3; b++)
+        bwh_sampler_free(&s[b]);
+}
+
+/* reference albedo: midpoint sum at level 6, 4^2 points per triangle; its
+ * error estimated against the level-5 sum (second order: difference / 3) */
+static double albedo_ref(bwh_brdf_fn f, void *ctx, const double wi[3], double *err)
+{
+    double q[2];
+    for (int pass = 0; pass < 2; pass++) {
+        unsigned level = pass ? 6 : 5;
+        size_t n = bwh_grid_count(level);
+        bwh_tri_t *t = malloc(n * sizeof *t);
+        assert_non_null(t);
+        bwh_grid_triangles(level, t);
+        double sum = 0.0;
+        for (size_t k = 0; k < n; k++)
+            for (unsigned m = 0; m < 4; m++) {
+                bwh_tri_t c1;
+                bwh_tri_child(&t[k], m, &c1);
+                for (unsigned m2 = 0; m2 < 4; m2++) {
+                    bwh_tri_t c2;
+                    bwh_tri_child(&c1, m2, &c2);
+                    double d[3];
+                    bwh_tri_centre(&c2, d);
+                    sum += f(ctx, wi, d) *
+                           bwh_projected_solid_angle(c2.v[0], c2.v[1], c2.v[2]);
+                }
+            }
+        q[pass] = sum;
+        free(t);
+    }
+    *err = fabs(q[1] - q[0]) / 3.0;
+    return q[1];
+}
+
+static void albedo_estimator_is_unbiased(void **state)
+{
+    (void)state;
+    struct {
+        bwh_brdf_fn f;
+        void *ctx;
+        double theta, phi;
+    } cases[] = {
+        {phong_cb, (void *)&phong, 0.0, 0.0},
+        {phong_cb, (void *)&phong, 55.0, 30.0},
+        {ward_cb, (void *)&ward, 35.0, 60.0},
+        {measured_cb, &measured, 50.0, 200.0},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        bwh_sampler_t s;
+        if (c < 2)
+            assert_int_equal(build_phong(&s, &phong, 4, 0.05), 0);
+        else if (c == 2)
+            assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
+                                               (void *)&ward, 1, 0.05),
+                             0);
+        else
+            assert_int_equal(build_measured(&s, 4, 0.05), 0);
+        double wi[3];
+        dir(cases[c].theta, cases[c].phi, wi);
+        double qerr, ref = albedo_ref(cases[c].f, cases[c].ctx, wi, &qerr);
+        if (c == 0)
+            ref = phong.kd + phong.ks, qerr = 0.0; /* exact at normal incidence */
+        double sum = 0.0, sum2 = 0.0;
+        for (long i = 0; i < N_SAMPLES; i++) {
+            double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
+            assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf), 0);
+            double v = cases[c].f(cases[c].ctx, wi, wo);
+            double est = wo[2] > 0.0 && pdf > 0.0 ? v * wo[2] / pdf : 0.0;
+            sum += est;
+            sum2 += est * est;
+        }
+        double mean = sum / N_SAMPLES, var = sum2 / N_SAMPLES - mean * mean;
+        double se = sqrt(var / N_SAMPLES);
+        printf("    case %zu: estimate %.6f, reference %.6f (+- %.1e), standard error %.1e\n", c,
+               mean, ref, qerr, se);
+        assert_true(fabs(mean - ref) <= 4.0 * se + qerr);
+        bwh_sampler_free(&s);
+    }
+}
+
+static double with_negative(void *ctx, const double wi[3], const double wo[3])
+{
+    (void)ctx;
+    (void)wi;
+    return wo[0] > 0.0 ? 1.0 : -0.5; /* half the hemisphere negative */
+}
+
+static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    double th[1] = {0.0};
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 3, 1, th, 0, with_negative, NULL, 0,
+                                       0.0),
+                     0);
+    double wi[3] = {0.0, 0.0, 1.0};
+    double c[3];
+    size_t zero = 0;
+    for (size_t k = 0; k < s.n_leaves; k++) {
+        bwh_tri_centre(&(bwh_tri_t){{{s.leaf[k].a[0], s.leaf[k].a[1], s.leaf[k].a[2]},
+                                     {s.leaf[k].b[0], s.leaf[k].b[1], s.leaf[k].b[2]},
+                                     {s.leaf[k].c[0], s.leaf[k].c[1], s.leaf[k].c[2]}}},
+                       c);
+        if (c[0] <= 0.0) {
+            assert_true(bwh_sampler_leaf_mass(&s, wi, k) == 0.0);
+            assert_true(bwh_sampler_pdf(&s, wi, c) == 0.0);
+            zero++;
+        }
+    }
+    assert_true(zero > s.n_leaves / 3);
+    for (int i = 0; i < 100000; i++) {
+        double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
+        assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf), 0);
+        long k = bwh_grid_locate(3, wo);
+        assert_true(bwh_sampler_leaf_mass(&s, wi, (size_t)k) > 0.0);
+        assert_true(pdf > 0.0);
+    }
+    bwh_sampler_free(&s);
+}
+
+static void tree_and_linear_scan_pick_the_same_leaf(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(build_phong(&s, &phong, 6, 0.0), 0);
+    double wi[3];
+    dir(33.0, 10.0, wi);
+    int same = 0;
+    for (int i = 0; i < 20000; i++) {
+        double u[3] = {rnd(), rnd(), rnd()}, a[3], b[3], pa, pb;
+        assert_int_equal(bwh_sampler_sample(&s, wi, u, a, &pa), 0);
+        assert_int_equal(bwh_sampler_sample_linear(&s, wi, u, b, &pb), 0);
+        same += a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && pa == pb;
+    }
+    /* the two sums round differently only at leaf boundaries */
+    assert_true(same >= 19990);
+    bwh_sampler_free(&s);
+}
+
+static void bad_input_is_refused(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    double th[2] = {0.5, 0.2};
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 7, 1, th, 0, phong_cb,
+                                       (void *)&phong, 0, 0.0),
+                     -1);
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 3, 2, th, 0, phong_cb,
+                                       (void *)&phong, 0, 0.0),
+                     -1); /* not ascending */
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 3, 5, NULL, 1, phong_cb,
+                                       (void *)&phong, 0, 0.0),
+                     -1);
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 3, 1, th, 0, phong_cb,
+                                       (void *)&phong, 0, 1.5),
+                     -1);
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 3, 1, th, 0, phong_cb,
+                                       (void *)&phong, 4, 0.0),
+                     -1);
+    assert_int_equal(build_phong(&s, &phong, 3, 0.1), 0);
+    double below[3] = {0.6, 0.0, -0.8}, nan[3] = {NAN, 0.0, 1.0}, up[3] = {0.0, 0.0, 1.0};
+    double u[3] = {0.3, 0.3, 0.3}, wo[3] = {9, 9, 9}, pdf = -1.0;
+    assert_int_equal(bwh_sampler_sample(&s, below, u, wo, &pdf), -1);
+    assert_int_equal(bwh_sampler_sample(&s, nan, u, wo, &pdf), -1);
+    assert_true(wo[0] == 9.0 && pdf == -1.0);
+    assert_true(bwh_sampler_pdf(&s, below, up) == 0.0);
+    assert_true(bwh_sampler_pdf(&s, up, below) == 0.0);
+    bwh_sampler_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(projected_solid_angles_add_up_to_pi),
+        cmocka_unit_test(arvo_samples_are_uniform_in_a_triangle),
+        cmocka_unit_test(sampler_phong_passes_chi_square),
+        cmocka_unit_test(sampler_ward_passes_chi_square),
+        cmocka_unit_test(sampler_decoded_measured_passes_chi_square),
+        cmocka_unit_test(chi_square_rejects_a_different_brdf),
+        cmocka_unit_test(pdf_integrates_to_one),
+        cmocka_unit_test(albedo_estimator_is_unbiased),
+        cmocka_unit_test(negative_values_are_clamped_alike_in_sample_and_pdf),
+        cmocka_unit_test(tree_and_linear_scan_pick_the_same_leaf),
+        cmocka_unit_test(bad_input_is_refused),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
