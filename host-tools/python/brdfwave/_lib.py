@@ -2,6 +2,7 @@
 import ctypes
 import ctypes.util
 import os
+import struct
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -94,3 +95,34 @@ def free(p):
 
 def last_error():
     return lib().bwh_last_error().decode("utf-8", "replace")
+
+
+SHAPES = ("spectra", "reflectance", "brdf", "brdf-full")
+_MODES = ("lossless", "max-error", "bytes", "step")
+_BASIS_NAMES = ("haar", "53", "97")
+
+
+def _float_of(bits):
+    return struct.unpack("<f", struct.pack("<I", bits))[0]
+
+
+def _header_dict(h):
+    d = h.dims
+    return {"version": h.version, "shape": SHAPES[d.shape], "level_out": d.level_out,
+            "level_in": d.level_in, "n_in": d.n_in, "n_out": d.n_out, "bands": d.bands,
+            "basis": _BASIS_NAMES[h.basis], "spectral_levels": h.spectral_levels,
+            "mode": _MODES[h.mode], "flags": h.flags, "prequant": h.prequant,
+            "step_q8": h.step_q8, "max_error": h.max_error, "scale": _float_of(h.scale_bits),
+            "offset": _float_of(h.offset_bits), "payload_len": h.payload_len,
+            "body_len": h.body_len, "crc": h.crc}
+
+
+def header_of(payload):
+    """Validates a payload's header and CRC (bw_header_read); returns it as a dict."""
+    L = lib()
+    h = Header()
+    payload = bytes(payload)
+    st = L.bw_header_read(payload, len(payload), ctypes.byref(h))
+    if st != 0:
+        raise BrdfwaveError(L.bw_strerror(st).decode())
+    return _header_dict(h)

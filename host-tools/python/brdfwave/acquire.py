@@ -220,7 +220,10 @@ class DataReady:
     def wait(self, seconds):
         """True if a rising edge arrived within seconds (pending events drained)."""
         sec = int(seconds)
-        if not self.line.event_wait(sec=sec, nsec=int((seconds - sec) * 1e9)):
+        try:
+            if not self.line.event_wait(sec=sec, nsec=int((seconds - sec) * 1e9)):
+                return False
+        except InterruptedError:  # a signal: the caller looks at its flag
             return False
         self.line.event_read()
         return True
