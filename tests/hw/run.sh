@@ -94,7 +94,7 @@ timeout "$VM_TIMEOUT" qemu-system-x86_64 -machine q35 -accel tcg -m 1024 -smp 1 
     -no-reboot -nic none -kernel "/boot/vmlinuz-$kver" -initrd "$C/initrd.gz" \
     -append "console=ttyS0 quiet panic=-1 bwroot=$ROOT" \
     -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
-    </dev/null 2>&1 | tr -d '\r' | tee "$log" | grep -E '^(hw|ok|FAIL|RESULT|hw-init)|Error|assert' 
+    </dev/null 2>&1 | sed -u 's/\r$//' | tee "$log" | grep -E '^(hw|ok|FAIL|RESULT|hw-init)|Error|assert' 
 rc=${PIPESTATUS[0]}
 if [ "$rc" = 124 ]; then
     echo "hw: the VM did not finish within $VM_TIMEOUT s (console: $log)"
