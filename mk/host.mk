@@ -12,6 +12,7 @@ CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/c
            host-tools/src/cmd_render.c host-tools/src/render_png.c
 HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
+include mk/hw.mk
 
 LIB := $(BUILD)/libbrdfwave.a
 BW_CLI := $(BUILD)/brdfwave

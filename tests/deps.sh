@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian packages a make goal needs, when they are missing.
-#   tests/deps.sh [check|run|bench|fuzz|reproduce]   (default: check)
+#   tests/deps.sh [check|hw|run|bench|fuzz|reproduce]   (default: check)
 set -eu
 goal=${1:-check}
+# the VM tests of the I2C acquirers (tests/hw/run.sh) and brdfwave acquire
+hw="libgpiod-dev python3-libgpiod python3-smbus2 i2c-tools qemu-system-x86 linux-image-amd64
+    linux-headers-amd64 linux-source-6.1 busybox-static cpio xz-utils python3-numpy"
 case "$goal" in
 check) pkgs="gcc make libc6-dev libcmocka-dev zlib1g-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
              gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf qemu-system-arm python3
-             python3-numpy python3-pywt" ;;
+             python3-numpy python3-pywt $hw" ;;
+hw)    pkgs="$hw" ;;
 run)   pkgs="gcc make libc6-dev zlib1g-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
 bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
              python3 python3-numpy python3-matplotlib" ;;

@@ -17,6 +17,7 @@ static const struct {
     {"grid", bw_cmd_grid, "print the geodesic triangle grid as CSV"},
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
     {"receive", bw_cmd_receive, "store payloads arriving on a serial port"},
+    {"acquire", bw_cmd_acquire, "store payloads offered over I2C on a data-ready edge"},
     {"import-rgl", bw_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
     {"render", bw_cmd_render, "path-trace a scene, comparing sampling strategies"},
 };

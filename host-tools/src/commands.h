@@ -11,6 +11,7 @@ int bw_cmd_grid(int argc, char **argv);
 int bw_cmd_synth(int argc, char **argv);
 int bw_cmd_receive(int argc, char **argv);
 int bw_cmd_render(int argc, char **argv);
+int bw_cmd_acquire(int argc, char **argv);
 /* `bwref import-rgl` of the reference model (host-tools/ref/cli/cmd_rgl.c),
  * under the main command */
 int bw_cmd_import_rgl(int argc, char **argv);

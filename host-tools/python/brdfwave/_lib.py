@@ -1,0 +1,128 @@
+"""ctypes view of libbrdfwave (build/host/libbrdfwave.so, `make pylib`)."""
+import ctypes
+import ctypes.util
+import os
+import struct
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+class BrdfwaveError(Exception):
+    """A payload, an input or an option the library rejected."""
+
+
+class Dims(ctypes.Structure):
+    _fields_ = [("shape", ctypes.c_uint8), ("level_out", ctypes.c_uint8),
+                ("level_in", ctypes.c_uint8), ("n_in", ctypes.c_uint32),
+                ("n_out", ctypes.c_uint32), ("bands", ctypes.c_uint32)]
+
+
+class Header(ctypes.Structure):
+    _fields_ = [("version", ctypes.c_uint8), ("dims", Dims), ("basis", ctypes.c_uint8),
+                ("spectral_levels", ctypes.c_uint8), ("mode", ctypes.c_uint8),
+                ("flags", ctypes.c_uint8), ("prequant", ctypes.c_uint32),
+                ("step_q8", ctypes.c_uint32), ("max_error", ctypes.c_uint32),
+                ("scale_bits", ctypes.c_uint32), ("offset_bits", ctypes.c_uint32),
+                ("payload_len", ctypes.c_uint32), ("body_len", ctypes.c_uint32),
+                ("crc", ctypes.c_uint32)]
+
+
+class EncodeOpts(ctypes.Structure):
+    """bwh_encode_opts_t (host-tools/src/bwhost.h)."""
+    _fields_ = [("mode", ctypes.c_int), ("max_error", ctypes.c_double),
+                ("byte_budget", ctypes.c_size_t), ("basis", ctypes.c_uint),
+                ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
+                ("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
+                ("device_timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
+                ("device_instructions", ctypes.POINTER(ctypes.c_uint64))]
+
+
+def _find():
+    env = os.environ.get("BRDFWAVE_LIB")
+    if env:
+        return env
+    # in the source tree: host-tools/python/brdfwave -> build/host
+    cand = os.path.join(_HERE, "..", "..", "..", "build", "host", "libbrdfwave.so")
+    if os.path.exists(cand):
+        return os.path.normpath(cand)
+    found = ctypes.util.find_library("brdfwave")
+    if found:
+        return found
+    raise BrdfwaveError("libbrdfwave.so not found: run 'make pylib' or set BRDFWAVE_LIB")
+
+
+_lib = None
+
+
+def lib():
+    global _lib
+    if _lib is not None:
+        return _lib
+    L = ctypes.CDLL(_find())
+    P = ctypes.POINTER
+    L.bwh_last_error.restype = ctypes.c_char_p
+    L.bwh_last_error.argtypes = []
+    L.bwh_decode.restype = ctypes.c_int
+    L.bwh_decode.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header),
+                             P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
+    L.bwh_encode_f32.restype = ctypes.c_int
+    L.bwh_encode_f32.argtypes = [P(Dims), P(ctypes.c_float), P(EncodeOpts),
+                                 P(P(ctypes.c_uint8)), P(ctypes.c_size_t)]
+    L.bw_dims_make.restype = ctypes.c_int
+    L.bw_dims_make.argtypes = [P(Dims), ctypes.c_int, ctypes.c_uint, ctypes.c_uint,
+                               ctypes.c_uint32, ctypes.c_uint32]
+    L.bw_strerror.restype = ctypes.c_char_p
+    L.bw_strerror.argtypes = [ctypes.c_int]
+    L.bw_header_read.restype = ctypes.c_int
+    L.bw_header_read.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
+    L.bwh_grid_count.restype = ctypes.c_size_t
+    L.bwh_grid_count.argtypes = [ctypes.c_uint]
+    L.bwh_grid_centres.restype = ctypes.c_int
+    L.bwh_grid_centres.argtypes = [ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p]
+    _lib = L
+    return L
+
+
+_free = ctypes.CDLL(None).free
+_free.restype = None
+_free.argtypes = [ctypes.c_void_p]
+
+
+def free(p):
+    """Releases a buffer the library allocated (malloc)."""
+    _free(ctypes.cast(p, ctypes.c_void_p))
+
+
+def last_error():
+    return lib().bwh_last_error().decode("utf-8", "replace")
+
+
+SHAPES = ("spectra", "reflectance", "brdf", "brdf-full")
+_MODES = ("lossless", "max-error", "bytes", "step")
+_BASIS_NAMES = ("haar", "53", "97")
+
+
+def _float_of(bits):
+    return struct.unpack("<f", struct.pack("<I", bits))[0]
+
+
+def _header_dict(h):
+    d = h.dims
+    return {"version": h.version, "shape": SHAPES[d.shape], "level_out": d.level_out,
+            "level_in": d.level_in, "n_in": d.n_in, "n_out": d.n_out, "bands": d.bands,
+            "basis": _BASIS_NAMES[h.basis], "spectral_levels": h.spectral_levels,
+            "mode": _MODES[h.mode], "flags": h.flags, "prequant": h.prequant,
+            "step_q8": h.step_q8, "max_error": h.max_error, "scale": _float_of(h.scale_bits),
+            "offset": _float_of(h.offset_bits), "payload_len": h.payload_len,
+            "body_len": h.body_len, "crc": h.crc}
+
+
+def header_of(payload):
+    """Validates a payload's header and CRC (bw_header_read); returns it as a dict."""
+    L = lib()
+    h = Header()
+    payload = bytes(payload)
+    st = L.bw_header_read(payload, len(payload), ctypes.byref(h))
+    if st != 0:
+        raise BrdfwaveError(L.bw_strerror(st).decode())
+    return _header_dict(h)

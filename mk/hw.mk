@@ -1,0 +1,41 @@
+# Acquisition over I2C with a data-ready line (docs/I2C.md): the shared
+# libbrdfwave for the Python package (ctypes), `brdfwave acquire` (libgpiod +
+# i2c-dev), the Python package's tests and the VM tests against the kernel's
+# i2c-stub and gpio-sim drivers (`make check-hw`, tests/hw/run.sh).
+#
+# Included by mk/host.mk before the CLI's link rule.
+
+# libbrdfwave.so: the library's sources again, position independent
+PYLIB := $(BUILD)/libbrdfwave.so
+PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(CORE_SRC) $(HOST_SRC))
+
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  CC-PIC  $<")
+	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
+
+$(PYLIB): $(PIC_OBJ)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
+
+all: $(PYLIB)
+
+# brdfwave acquire: needs libgpiod 1.6 (libgpiod-dev); without it the command
+# says so and fails
+CLI_OBJ += $(BUILD)/host-tools/src/cmd_acquire.o
+HAVE_GPIOD := $(shell pkg-config --exists 'libgpiod >= 1.6' 'libgpiod < 2' 2>/dev/null && echo 1)
+ifeq ($(HAVE_GPIOD),1)
+$(BUILD)/brdfwave: LDLIBS += -lgpiod
+else
+$(BUILD)/host-tools/src/cmd_acquire.o: CFLAGS += -DBW_NO_GPIOD
+endif
+
+.PHONY: pylib check-hw check-py
+pylib: $(PYLIB)
+
+check-py: $(PYLIB) $(BUILD)/brdfwave
+	$(Q)/usr/bin/python3 tests/python/test_package.py
+
+check-hw: all
+	$(Q)tests/deps.sh hw
+	$(Q)tests/hw/run.sh
