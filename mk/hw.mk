@@ -7,7 +7,10 @@
 
 # libbrdfwave.so: the library's sources again, position independent
 PYLIB := $(BUILD)/libbrdfwave.so
-PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(CORE_SRC) $(HOST_SRC))
+# (the sampler and the evaluation of decoded BRDFs, which need the reference
+# model's library, stay out: the package does not use them)
+PY_HOST_SRC := $(filter-out host-tools/src/bw_sample.c host-tools/src/brdf_eval.c,$(HOST_SRC))
+PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(CORE_SRC) $(PY_HOST_SRC))
 
 $(BUILD)/pic/%.o: %.c
 	@mkdir -p $(dir $@)
