@@ -65,6 +65,9 @@ same_payload "level-3 x 81 reflectance lossless" -i "$T/r.i32" --input-format i3
 same_payload "field spectra streamed" --input-format sed -i $DATA/*.sed --stream --basis 97 --max-error 0.0005
 "$BW" synth --model phong --kd 0.5 --ks 0.5 --n 50 --level 4 --incoming 256 -o "$T/p256.f32"
 same_payload "phong 256 x 1024 streamed" -i "$T/p256.f32" --bands 1 --level 4 --incoming 256 --stream --basis haar --max-error 0.002
+# the Rice coder: whole-measurement and streamed device paths
+same_payload "field spectra lossless, rice" --input-format sed -i $DATA/*.sed --lossless --basis 53 --coder rice
+same_payload "reflectance streamed, rice" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --coder rice
 "$BW" info "$T/dev.bwv" | grep -q "^order: streamed" && ok || bad "streamed payload not marked in info"
 
 # resend: the host loses a chunk and asks for it again
