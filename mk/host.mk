@@ -40,6 +40,7 @@ $(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB)
 include mk/tests.mk
 include mk/ref.mk
 -include mk/bench.mk
+-include mk/bench-rd.mk
 
 run: deps-run all
 	$(Q)$(MAKE) --no-print-directory TARGET=qemu all
