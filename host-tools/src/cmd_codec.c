@@ -54,7 +54,7 @@ static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
-    "                       [--basis haar|53|97|auto] [--scale S]\n"
+    "                       [--basis haar|53|97|auto] [--scale S] [--relative]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
     "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
@@ -79,7 +79,9 @@ static const char encode_help[] =
     "  --firmware ELF    device image (default: build/qemu/brdfwave-fw.elf)\n"
     "  --stream          code in the order a streaming encoder produces (the device\n"
     "                    then encodes spectrum by spectrum in bounded RAM; needs\n"
-    "                    --lossless, --max-error or a fixed --basis; not --level-in)\n";
+    "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
+    "  --relative        with --bytes or --ratio, float input > 0: code log(value),\n"
+    "                    so the budget buys relative rather than absolute accuracy\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -93,6 +95,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"scale", required_argument, 0, 's'},      {"help", no_argument, 0, 'h'},
         {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
         {"drop-chunk", required_argument, 0, 'K'}, {"stream", no_argument, 0, 'S'},
+        {"relative", no_argument, 0, 'R'},
         {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
@@ -171,6 +174,7 @@ int bw_cmd_encode(int argc, char **argv)
             break;
         case 'D': o.device = optarg; break;
         case 'S': o.flags |= BW_FLAG_STREAM_ORDER; break;
+        case 'R': o.flags |= BW_FLAG_LOG_VALUE; break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
             uint32_t k;
@@ -313,6 +317,11 @@ int bw_cmd_encode(int argc, char **argv)
         if (b < 1)
             b = 1;
         o.byte_budget = b > (double)UINT32_MAX ? UINT32_MAX : (size_t)floor(b);
+    }
+    if (!floats && (o.flags & BW_FLAG_LOG_VALUE)) {
+        usage_err(C, "--relative is for float input (--input-format f32)");
+        rc = 2;
+        goto out;
     }
     if (floats)
         st = bwh_encode_f32(&d, floats, &o, &payload, &plen);
@@ -461,6 +470,8 @@ int bw_cmd_info(int argc, char **argv)
     printf("spectral_levels: %u\n", h.spectral_levels);
     printf("mode: %s\n", bwh_mode_name(h.mode));
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                                       : "offset + scale * sample");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
     printf("prequant: %u\n", h.prequant);
     printf("step: %.4f\n", h.step_q8 / 256.0);

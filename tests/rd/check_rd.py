@@ -5,8 +5,8 @@ Every case encodes a fixed input with the brdfwave CLI, decodes it and checks:
   * the guarantee of its mode: --lossless decodes bit-exactly, --max-error E
     keeps every sample within E, --ratio R never exceeds 4 n / R bytes;
   * the rate against tests/rd/baseline.txt: the payload of a lossless or
-    max-error case, and the RMSE of a byte-budget case (whose rate is the
-    budget), may not grow by more than 1 %.
+    max-error case, and the RMSE (with --relative the relative L2 error) of a
+    byte-budget case, whose rate is the budget, may not grow by more than 1 %.
 RD_BASELINE_UPDATE=1 rewrites the baseline from this run (after a deliberate
 change; a smaller rate passes without it). Prints one line per case and
 "RESULT: N passed, M failed".
@@ -75,6 +75,7 @@ CASES = [  # set, mode arguments, extra layout arguments
     ("phong1", ["--ratio", "16"], []),
     ("phong1", ["--ratio", "64"], []),
     ("phong1", ["--ratio", "256"], []),
+    ("phong1", ["--ratio", "256"], ["--relative"]),
     ("field20", ["--lossless"], []),
     ("field20", ["--max-error", "2"], []),
     ("field20", ["--max-error", "8"], []),
@@ -83,6 +84,7 @@ CASES = [  # set, mode arguments, extra layout arguments
     ("rgl_paper", ["--lossless"], []),
     ("rgl_paper", ["--max-error", "4"], []),
     ("rgl_paper", ["--ratio", "64"], []),
+    ("rgl_paper", ["--ratio", "64"], ["--relative"]),
     ("spectralon8", ["--lossless"], []),
     ("spectralon8", ["--max-error", "4"], []),
     ("spectralon8", ["--ratio", "64"], []),
@@ -127,8 +129,13 @@ def main():
                     budget = int(4 * f.size / float(mode[1]))
                     if nbytes > budget:
                         errs.append("payload %d B over the budget %d B" % (nbytes, budget))
-                    value = float(np.sqrt(np.mean((d - f.astype(np.float64)) ** 2)))
-                    what = "RMSE %.6g (%d B of %d)" % (value, nbytes, budget)
+                    ref = f.astype(np.float64)
+                    if "--relative" in extra:
+                        value = float(np.sqrt(np.mean(((d - ref) / ref) ** 2)))
+                        what = "rel L2 %.6g (%d B of %d)" % (value, nbytes, budget)
+                    else:
+                        value = float(np.sqrt(np.mean((d - ref) ** 2)))
+                        what = "RMSE %.6g (%d B of %d)" % (value, nbytes, budget)
                 else:
                     run([bw, "decode", "-i", enc, "-o", dec, "--output-format", "i32"])
                     d = np.fromfile(dec, dtype="<i4").astype(np.int64)
@@ -161,7 +168,7 @@ def main():
     if update:
         with open(BASELINE, "w") as fh:
             fh.write("# tests/rd/check_rd.py baseline: payload bytes (lossless, max-error) or\n"
-                     "# RMSE (ratio). Rewrite with RD_BASELINE_UPDATE=1 after a deliberate change.\n")
+                     "# RMSE / relative L2 (ratio). Rewrite with RD_BASELINE_UPDATE=1 after a deliberate change.\n")
             for k, v in new:
                 fh.write("%s %.9g\n" % (k, v))
         print("baseline written: %s" % BASELINE)
