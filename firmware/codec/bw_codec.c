@@ -27,7 +27,7 @@
 #include "bw_rc.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 1u
+#define BW_VERSION 2u
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
