@@ -44,6 +44,7 @@ include mk/tests.mk
 include mk/ref.mk
 -include mk/bench.mk
 include mk/render.mk
+-include mk/bench-rd.mk
 
 run: deps-run all
 	$(Q)$(MAKE) --no-print-directory TARGET=qemu all

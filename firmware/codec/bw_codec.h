@@ -108,7 +108,11 @@ typedef struct {
 #define BW_FLAG_DECIMAL_SCALE 0x01u
 #define BW_FLAG_STREAM_ORDER 0x02u
 #define BW_FLAG_RICE 0x04u
-#define BW_FLAGS_KNOWN 0x07u
+/* LOG_VALUE (opaque to the core): samples code the logarithm of positive
+ *   values, value = exp(offset + scale * sample); a uniform error in the
+ *   samples is then a uniform relative error in the values. */
+#define BW_FLAG_LOG_VALUE 0x08u
+#define BW_FLAGS_KNOWN 0x0Fu
 
 /* ---- sizes -------------------------------------------------------------- */
 

@@ -1,8 +1,11 @@
 /*
  * Adaptive binary range coder (carry-less 32-bit range, LZMA style).
  *
- * Probabilities are 11-bit (bw_prob_t, probability of a 0 in units of
- * 1/2048) and adapt by 1/32 of the error after every bit. Bypass bits cost
+ * A model (bw_prob_t) holds an 11-bit probability of a 0 in units of 1/2048
+ * (bits 0-10) and a count of the bits it has seen, saturating at 31 (bits
+ * 11-15). It adapts by 2^-s of the error after every bit, s growing with the
+ * count: 3 for the first 4 bits, 4 up to 16, 5 up to 31, then 6 - fast
+ * while it learns, steady once it has. Bypass bits cost
  * exactly one bit. The encoder writes into a caller buffer and only records
  * an overflow (the caller then reports BW_ERR_OUTPUT_FULL), so it can also
  * run with a NULL buffer to count bytes. The decoder treats bytes past the
@@ -19,8 +22,25 @@ typedef uint16_t bw_prob_t;
 
 #define BW_PROB_BITS 11u
 #define BW_PROB_INIT ((bw_prob_t)(1u << (BW_PROB_BITS - 1u)))
-#define BW_PROB_SHIFT 5u
+#define BW_PROB_MASK 0x7FFu
+#define BW_PROB_COUNT_MAX 31u
 #define BW_RC_TOP (1u << 24)
+
+static inline uint32_t bw_prob_p0(const bw_prob_t *p) { return *p & BW_PROB_MASK; }
+
+/* probability stays within [7, 2041]: never 0, never the whole range */
+static inline void bw_prob_update(bw_prob_t *p, unsigned bit)
+{
+    uint32_t pr = *p & BW_PROB_MASK, cnt = (uint32_t)*p >> BW_PROB_BITS;
+    unsigned sh = cnt < 4u ? 3u : cnt < BW_PROB_COUNT_MAX ? 4u : 5u;
+    if (!bit)
+        pr += ((1u << BW_PROB_BITS) - pr) >> sh;
+    else
+        pr -= pr >> sh;
+    if (cnt < BW_PROB_COUNT_MAX)
+        cnt++;
+    *p = (bw_prob_t)(pr | (cnt << BW_PROB_BITS));
+}
 
 typedef struct {
     uint64_t low;
@@ -51,15 +71,14 @@ void bw_rc_dec_init(bw_rc_dec_t *d, const uint8_t *in, size_t len);
 
 static inline void bw_rc_enc_bit(bw_rc_enc_t *e, bw_prob_t *p, unsigned bit)
 {
-    uint32_t bound = (e->range >> BW_PROB_BITS) * *p;
+    uint32_t bound = (e->range >> BW_PROB_BITS) * bw_prob_p0(p);
     if (!bit) {
         e->range = bound;
-        *p = (bw_prob_t)(*p + (((1u << BW_PROB_BITS) - *p) >> BW_PROB_SHIFT));
     } else {
         e->low += bound;
         e->range -= bound;
-        *p = (bw_prob_t)(*p - (*p >> BW_PROB_SHIFT));
     }
+    bw_prob_update(p, bit);
     while (e->range < BW_RC_TOP) {
         e->range <<= 8;
         bw_rc_enc_shift_low(e);
@@ -89,18 +108,17 @@ static inline uint8_t bw_rc_dec_byte(bw_rc_dec_t *d)
 
 static inline unsigned bw_rc_dec_bit(bw_rc_dec_t *d, bw_prob_t *p)
 {
-    uint32_t bound = (d->range >> BW_PROB_BITS) * *p;
+    uint32_t bound = (d->range >> BW_PROB_BITS) * bw_prob_p0(p);
     unsigned bit;
     if (d->code < bound) {
         d->range = bound;
-        *p = (bw_prob_t)(*p + (((1u << BW_PROB_BITS) - *p) >> BW_PROB_SHIFT));
         bit = 0;
     } else {
         d->code -= bound;
         d->range -= bound;
-        *p = (bw_prob_t)(*p - (*p >> BW_PROB_SHIFT));
         bit = 1;
     }
+    bw_prob_update(p, bit);
     while (d->range < BW_RC_TOP) {
         d->range <<= 8;
         d->code = (d->code << 8) | bw_rc_dec_byte(d);

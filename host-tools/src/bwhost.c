@@ -265,6 +265,7 @@ uint32_t bwh_float_to_bits(float f)
  * scale. */
 typedef struct {
     double scale, offset, divisor;
+    int log; /* BW_FLAG_LOG_VALUE: value = exp(offset + scale * q) */
 } value_map_t;
 
 int bwh_decimal_exponent(float scale)
@@ -277,7 +278,7 @@ int bwh_decimal_exponent(float scale)
 
 static value_map_t value_map(float scale, float offset, unsigned flags)
 {
-    value_map_t m = {scale, offset, 0};
+    value_map_t m = {scale, offset, 0, (flags & BW_FLAG_LOG_VALUE) != 0};
     int k = bwh_decimal_exponent(scale);
     if ((flags & BW_FLAG_DECIMAL_SCALE) && k)
         m.divisor = pow(10.0, k);
@@ -286,7 +287,8 @@ static value_map_t value_map(float scale, float offset, unsigned flags)
 
 static float map_value(const value_map_t *m, int32_t q)
 {
-    return (float)(m->offset + (m->divisor ? (double)q / m->divisor : m->scale * (double)q));
+    double v = m->offset + (m->divisor ? (double)q / m->divisor : m->scale * (double)q);
+    return (float)(m->log ? exp(v) : v);
 }
 
 static int status_fail(int st)
@@ -380,9 +382,44 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     return 0;
 }
 
+/* BW_FLAG_LOG_VALUE: the samples are round((log x - offset) / scale) on 2^20
+ * levels each side of the mid-range offset, so the byte-budget search spends
+ * its bits on relative rather than absolute error. */
+static int encode_log(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o,
+                      uint8_t **out, size_t *out_len)
+{
+    size_t n = bw_dims_samples(dims);
+    if (o->mode != BW_MODE_BYTES)
+        return fail("--relative needs --bytes or --ratio");
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(x[i]) || !(x[i] > 0))
+            return fail("--relative needs positive finite values (sample %zu = %g)", i,
+                        (double)x[i]);
+        double l = log((double)x[i]);
+        lo = fmin(lo, l);
+        hi = fmax(hi, l);
+    }
+    float offset = (float)(0.5 * (lo + hi));
+    double half = fmax(fabs(hi - (double)offset), fabs(lo - (double)offset));
+    float scale = (float)(half > 0 ? half / 1048576.0 : 1.0);
+    if (!(scale > 0) || !isfinite(scale) || !isfinite(offset))
+        return fail("--relative: the value range cannot be represented");
+    int32_t *q = malloc((n ? n : 1) * sizeof *q);
+    if (!q)
+        return fail("out of memory");
+    for (size_t i = 0; i < n; i++)
+        q[i] = (int32_t)nearbyint((log((double)x[i]) - (double)offset) / (double)scale);
+    int rc = bwh_encode_i32(dims, q, o, scale, offset, out, out_len);
+    free(q);
+    return rc;
+}
+
 int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
                    size_t *out_len)
 {
+    if (o->flags & BW_FLAG_LOG_VALUE)
+        return encode_log(dims, x, o, out, out_len);
     *out = NULL;
     *out_len = 0;
     int st = bw_dims_check(dims);
@@ -422,7 +459,9 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
             scale = budget / 3.5;
             break;
         default:
-            scale = maxabs > 0 ? maxabs / 1048576.0 : 1.0;
+            /* 2^23 levels: fine enough that the quantiser, not the grid,
+             * sets the size between the exact coding and step 1 */
+            scale = maxabs > 0 ? maxabs / 8388608.0 : 1.0;
             break;
         }
     }

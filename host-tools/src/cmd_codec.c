@@ -54,7 +54,8 @@ static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
-    "                       [--basis haar|53|97|auto] [--scale S] [--coder range|rice]\n"
+    "                       [--basis haar|53|97|auto] [--scale S] [--relative]\n"
+    "                       [--coder range|rice]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
     "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
@@ -80,6 +81,8 @@ static const char encode_help[] =
     "  --stream          code in the order a streaming encoder produces (the device\n"
     "                    then encodes spectrum by spectrum in bounded RAM; needs\n"
     "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
+    "  --relative        with --bytes or --ratio, float input > 0: code log(value),\n"
+    "                    so the budget buys relative rather than absolute accuracy\n"
     "  --coder C         entropy coder: range (default, the smallest payload) or rice\n"
     "                    (adaptive Rice strips: a few times fewer instructions per\n"
     "                    sample on the device, a few percent more bytes)\n";
@@ -96,7 +99,8 @@ int bw_cmd_encode(int argc, char **argv)
         {"scale", required_argument, 0, 's'},      {"help", no_argument, 0, 'h'},
         {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
         {"drop-chunk", required_argument, 0, 'K'}, {"stream", no_argument, 0, 'S'},
-        {"coder", required_argument, 0, 'C'},      {0, 0, 0, 0}};
+        {"relative", no_argument, 0, 'R'},         {"coder", required_argument, 0, 'C'},
+        {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
     int nin = 0;
@@ -179,6 +183,7 @@ int bw_cmd_encode(int argc, char **argv)
             else if (!strcmp(optarg, "range")) o.flags &= ~BW_FLAG_RICE;
             else return usage_err(C, "--coder must be range or rice");
             break;
+        case 'R': o.flags |= BW_FLAG_LOG_VALUE; break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
             uint32_t k;
@@ -321,6 +326,11 @@ int bw_cmd_encode(int argc, char **argv)
         if (b < 1)
             b = 1;
         o.byte_budget = b > (double)UINT32_MAX ? UINT32_MAX : (size_t)floor(b);
+    }
+    if (!floats && (o.flags & BW_FLAG_LOG_VALUE)) {
+        usage_err(C, "--relative is for float input (--input-format f32)");
+        rc = 2;
+        goto out;
     }
     if (floats)
         st = bwh_encode_f32(&d, floats, &o, &payload, &plen);
@@ -470,6 +480,8 @@ int bw_cmd_info(int argc, char **argv)
     printf("mode: %s\n", bwh_mode_name(h.mode));
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     printf("coder: %s\n", h.flags & BW_FLAG_RICE ? "rice" : "range");
+    printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                                       : "offset + scale * sample");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
     printf("prequant: %u\n", h.prequant);
     printf("step: %.4f\n", h.step_q8 / 256.0);

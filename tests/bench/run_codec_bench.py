@@ -399,15 +399,25 @@ def opj_levels(shape):
 def peers_u16(b, table, ds_key, u16, to_ref):
     """JPEG-LS, OpenJPEG, libaec, xz, zstd on a 2-D uint16 array; to_ref maps
     decoded integers to reference units."""
-    n = u16.size
+    raw = b.tmp("%s.u16" % ds_key)
+    u16.astype("<u2").tofile(raw)
+    jpegls_u16(b, table, ds_key, u16, to_ref)
+    openjpeg_u16(b, table, ds_key, u16, to_ref)
+    libaec_u16(b, table, ds_key, u16, to_ref)
+    h, w = u16.shape
+    general_purpose(b, table, ds_key, raw, "u16", lambda buf: to_ref(
+        np.frombuffer(buf, dtype="<u2").astype(np.int64).reshape(h, w)))
+
+
+def jpegls_u16(b, table, ds_key, u16, to_ref, nears=None):
+    """CharLS JPEG-LS, lossless and NEAR = nears (default NEARS), sample
+    precision = the data's bit depth; the image is u16 as it stands (h rows)."""
     raw = b.tmp("%s.u16" % ds_key)
     u16.astype("<u2").tofile(raw)
     h, w = u16.shape
     bits = max(2, int(u16.max()).bit_length())
-
-    # JPEG-LS (CharLS helper), sample precision = the data's bit depth
     if os.path.exists(PEER_JPEGLS) and os.access(PEER_JPEGLS, os.X_OK):
-        for near in [0] + NEARS:
+        for near in [0] + (NEARS if nears is None else nears):
             out = b.tmp("%s_near%d.jls" % (ds_key, near))
             dec = out + ".u16"
             cmd = [PEER_JPEGLS, "-b", str(bits), str(w), str(h), str(near), raw, out, dec]
@@ -426,11 +436,15 @@ def peers_u16(b, table, ds_key, u16, to_ref):
     else:
         note(b, table, "JPEG-LS", "helper %s not built (CharLS missing?)" % rel(PEER_JPEGLS))
 
-    # OpenJPEG: both orientations, keep the better per setting
+
+def openjpeg_u16(b, table, ds_key, u16, to_ref, rates=None):
+    """OpenJPEG 5/3 lossless and 9/7 at -r rates (default OPJ_RATES), both
+    orientations, the better kept per setting."""
+    rates = OPJ_RATES if rates is None else rates
     if have("opj_compress") and have("opj_decompress"):
         variants = {"rows": u16, "cols": np.ascontiguousarray(u16.T)}
         settings = [("5/3 lossless", [])] + [("9/7 -r %g" % r, ["-I", "-r", "%g" % r])
-                                             for r in OPJ_RATES]
+                                             for r in rates]
         pgms = {}
         for o, a in variants.items():
             p = b.tmp("%s_%s.pgm" % (ds_key, o))
@@ -469,7 +483,13 @@ def peers_u16(b, table, ds_key, u16, to_ref):
     else:
         note(b, table, "OpenJPEG", "opj_compress/opj_decompress not found")
 
-    # libaec (CCSDS 121.0), lossless
+
+def libaec_u16(b, table, ds_key, u16, to_ref):
+    """libaec (CCSDS 121.0), lossless, samples in the array's row-major order."""
+    n = u16.size
+    raw = b.tmp("%s.u16" % ds_key)
+    u16.astype("<u2").tofile(raw)
+    h, w = u16.shape
     if have("aec"):
         for name, flags in (("-j 64 -r 128 (preprocessing)", ["-n", "16", "-j", "64", "-r", "128"]),
                             ("-j 64 -r 128 -N (no preprocessing)",
@@ -490,9 +510,6 @@ def peers_u16(b, table, ds_key, u16, to_ref):
                       t1 + t2, cmdline(cmd))
     else:
         note(b, table, "libaec", "aec not found")
-
-    general_purpose(b, table, ds_key, raw, "u16", lambda buf: to_ref(
-        np.frombuffer(buf, dtype="<u2").astype(np.int64).reshape(h, w)))
 
 
 def general_purpose(b, table, ds_key, raw, inp, decode):
@@ -529,6 +546,18 @@ def peers_f32(b, table, ds_key, f32, zfp_dims, tols):
     raw = b.tmp("%s.f32" % ds_key)
     f32.astype("<f4").tofile(raw)
     h, w = f32.shape
+    zfp_f32(b, table, ds_key, f32, zfp_dims, tols)
+    general_purpose(b, table, ds_key, raw, "f32", lambda buf: np.frombuffer(
+        buf, dtype="<f4").astype(np.float64).reshape(h, w))
+
+
+def zfp_f32(b, table, ds_key, f32, zfp_dims, tols, to_ref=None):
+    """ZFP reversible (-R) and fixed-accuracy (-a tol) on a float32 array laid
+    out as zfp_dims; to_ref maps the decoded [h][w] array to the table's."""
+    raw = b.tmp("%s.f32" % ds_key)
+    f32.astype("<f4").tofile(raw)
+    h, w = f32.shape
+    to_ref = (lambda d: d) if to_ref is None else to_ref
     if have("zfp"):
         for name, flags in ([("-R", ["-R"])] + [("-a %g" % t, ["-a", "%.9g" % t]) for t in tols]):
             out = b.tmp("%s.zfp" % ds_key)
@@ -544,11 +573,9 @@ def peers_f32(b, table, ds_key, f32, zfp_dims, tols):
                 b.peer_fail(table, str(e))
                 continue
             b.add_row(table, "zfp", "%s (%s)" % (name, " ".join(zfp_dims)), "f32", fsize(out),
-                      d.reshape(h, w), t1 + t2, cmdline(cmd))
+                      to_ref(d.reshape(h, w)), t1 + t2, cmdline(cmd))
     else:
         note(b, table, "zfp", "zfp not found")
-    general_purpose(b, table, ds_key, raw, "f32", lambda buf: np.frombuffer(
-        buf, dtype="<f4").astype(np.float64).reshape(h, w))
 
 
 def note(b, table, peer, msg):

@@ -143,6 +143,18 @@ for R in 8 64 256; do
     size=$(stat -c %s "$T/p.bwv")
     [ "$size" -le $((4 * 16384 / R)) ] && ok || bad "ratio $R: $size bytes > budget $((4 * 16384 / R))"
 done
+# --relative: log(values) coded; same budget, smaller relative error than the plain coding
+expect_ok "encode ratio 128" "$BW" encode -i "$T/p.f32" -o "$T/pa.bwv" --bands 1 --level 4 --incoming 16 --ratio 128
+expect_ok "encode ratio 128 relative" "$BW" encode -i "$T/p.f32" -o "$T/pr.bwv" --bands 1 --level 4 --incoming 16 --ratio 128 --relative
+[ "$(stat -c %s "$T/pr.bwv")" -le 512 ] && ok || bad "ratio 128 --relative: over 512 bytes"
+"$BW" info "$T/pr.bwv" | grep -q '^values: exp(' && ok || bad "info does not show the log mapping"
+"$BW" decode -i "$T/pa.bwv" -o "$T/pa.f32" && "$BW" compare "$T/p.f32" "$T/pa.f32" >"$T/cmpa"
+"$BW" decode -i "$T/pr.bwv" -o "$T/pr.f32" && "$BW" compare "$T/p.f32" "$T/pr.f32" >"$T/cmpr"
+$PY -c "import sys; sys.exit(0 if float('$(key relative_l2_percent "$T/cmpr")') < float('$(key relative_l2_percent "$T/cmpa")') else 1)" &&
+    ok || bad "--relative: rel L2 $(key relative_l2_percent "$T/cmpr") not below $(key relative_l2_percent "$T/cmpa")"
+expect_error "relative lossless" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --lossless --relative
+printf '\000\000\000\000' | cat - "$T/p.f32" | head -c 65536 >"$T/p0.f32"
+expect_error "relative with a zero value" "$BW" encode -i "$T/p0.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --ratio 64 --relative
 expect_ok "encode bytes" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --bytes 3000
 [ "$(stat -c %s "$T/p.bwv")" -le 3000 ] && ok || bad "bytes 3000 exceeded"
 expect_ok "compare identical" "$BW" compare "$T/p.f32" "$T/p.f32"

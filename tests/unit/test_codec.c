@@ -1778,7 +1778,7 @@ static void unchecked_decoding_of_garbage_bodies_returns_a_status(void **state)
             if (len >= 4)
                 memcpy(g, "BWAV", 4);
             if (len > 4)
-                g[4] = 1;
+                g[4] = 2;
             bw_status_t st = bw_decode_unchecked(g, len, y, n, work, wb);
             if (!known_status(st))
                 fail_msg("random payload %d: bw_decode_unchecked returns %d", it, st);
@@ -1862,7 +1862,7 @@ static void a_bad_magic_or_version_is_refused(void **state)
         assert_int_equal(bw_decode_unchecked(p, pl.len, y, n, work, wb), BW_ERR_MAGIC);
     }
     memcpy(p, pl.buf, pl.len);
-    p[4] = 2;
+    p[4] = 3;
     fix_crc(p);
     assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_VERSION);
     free(p);

@@ -1,0 +1,12 @@
+# Rate-distortion benchmark with targets: brdfwave against JPEG-LS (CharLS),
+# OpenJPEG, ZFP, libaec, xz and zstd on the synthetic, field, Spectralon and
+# RGL sets. Writes build/bench/rd.md, rd.csv and one rd_<set>.png per set.
+# Uses BW_CLI (mk/host.mk) and the JPEG-LS helper of mk/bench.mk.
+
+.PHONY: bench-rd bench-rd-deps
+bench-rd-deps:
+	$(Q)tests/deps.sh bench
+
+bench-rd: bench-rd-deps $(BW_CLI)
+	$(Q)$(MAKE) --no-print-directory $(BENCH_JPEGLS)
+	BW=$(BW_CLI) PEER_JPEGLS=$(BENCH_JPEGLS) $(BENCH_PYTHON) tests/bench/run_rd_bench.py
