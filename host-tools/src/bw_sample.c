@@ -10,31 +10,6 @@
 
 #define S_PI 3.14159265358979323846
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    double r0 = a[1] * b[2] - a[2] * b[1];
-    double r1 = a[2] * b[0] - a[0] * b[2];
-    double r2 = a[0] * b[1] - a[1] * b[0];
-    out[0] = r0;
-    out[1] = r1;
-    out[2] = r2;
-}
-
-static void normalize3(double v[3])
-{
-    double n = sqrt(dot3(v, v));
-    if (n > 0.0) {
-        v[0] /= n;
-        v[1] /= n;
-        v[2] /= n;
-    }
-}
-
 /* first node of level l: 4 (4^l - 1) / 3 */
 static size_t level_offset(unsigned l)
 {
@@ -48,11 +23,11 @@ double bwh_projected_solid_angle(const double a[3], const double b[3], const dou
     for (int k = 0; k < 3; k++) {
         const double *p = v[k], *q = v[(k + 1) % 3];
         double n[3];
-        cross3(p, q, n);
-        double sn = sqrt(dot3(n, n));
+        bwg_cross3(p, q, n);
+        double sn = sqrt(bwg_dot3(n, n));
         if (sn == 0.0)
             continue;
-        double gamma = atan2(sn, dot3(p, q));
+        double gamma = atan2(sn, bwg_dot3(p, q));
         sum += gamma * n[2] / sn;
     }
     return 0.5 * fabs(sum);
@@ -63,14 +38,14 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
     memcpy(t->a, a, sizeof t->a);
     memcpy(t->b, b, sizeof t->b);
     memcpy(t->c, c, sizeof t->c);
-    double tb[3], tc[3], ab = dot3(a, b), ac = dot3(a, c);
+    double tb[3], tc[3], ab = bwg_dot3(a, b), ac = bwg_dot3(a, c);
     for (int k = 0; k < 3; k++) {
         tb[k] = b[k] - ab * a[k];
         tc[k] = c[k] - ac * a[k];
     }
-    normalize3(tb);
-    normalize3(tc);
-    double ca = dot3(tb, tc);
+    bwg_normalize3(tb);
+    bwg_normalize3(tc);
+    double ca = bwg_dot3(tb, tc);
     ca = ca > 1.0 ? 1.0 : ca < -1.0 ? -1.0 : ca;
     t->alpha = acos(ca);
     t->cos_alpha = ca;
@@ -91,23 +66,23 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
     double vv = s + t->sin_alpha * t->cos_c;
     double q = ((vv * c - uu * s) * t->cos_alpha - vv) / ((vv * s + uu * c) * t->sin_alpha);
     q = q > 1.0 ? 1.0 : q < -1.0 ? -1.0 : q;
-    double e[3], ca = dot3(t->c, t->a);
+    double e[3], ca = bwg_dot3(t->c, t->a);
     for (int k = 0; k < 3; k++)
         e[k] = t->c[k] - ca * t->a[k];
-    normalize3(e);
+    bwg_normalize3(e);
     double sq = sqrt(1.0 - q * q), cp[3];
     for (int k = 0; k < 3; k++)
         cp[k] = q * t->a[k] + sq * e[k];
-    double cb = dot3(cp, t->b);
+    double cb = bwg_dot3(cp, t->b);
     double z = 1.0 - u2 * (1.0 - cb);
     double f[3];
     for (int k = 0; k < 3; k++)
         f[k] = cp[k] - cb * t->b[k];
-    normalize3(f);
+    bwg_normalize3(f);
     double sz = sqrt(fmax(0.0, 1.0 - z * z));
     for (int k = 0; k < 3; k++)
         out[k] = z * t->b[k] + sz * f[k];
-    normalize3(out);
+    bwg_normalize3(out);
 }
 
 void bwh_sample_cosine(double u1, double u2, double out[3])
@@ -481,13 +456,13 @@ static void frame(const double n[3], double t[3], double b[3])
 {
     if (fabs(n[2]) < 0.9) {
         double z[3] = {0.0, 0.0, 1.0};
-        cross3(z, n, t);
+        bwg_cross3(z, n, t);
     } else {
         double x[3] = {1.0, 0.0, 0.0};
-        cross3(x, n, t);
+        bwg_cross3(x, n, t);
     }
-    normalize3(t);
-    cross3(n, t, b);
+    bwg_normalize3(t);
+    bwg_cross3(n, t, b);
 }
 
 static double diffuse_prob(const bwh_brdf_params_t *p)
@@ -538,7 +513,7 @@ void bwh_ward_sample(const bwh_brdf_params_t *p, const double wi[3], const doubl
     double u1 = u[1] > 0.0 ? u[1] : 1e-300;
     double th = atan(sqrt(-log(u1) / q));
     double st = sin(th), h[3] = {st * cp, st * sp, cos(th)};
-    double d = dot3(wi, h);
+    double d = bwg_dot3(wi, h);
     for (int k = 0; k < 3; k++)
         wo[k] = 2.0 * d * h[k] - wi[k];
 }
@@ -549,7 +524,7 @@ double bwh_ward_pdf(const bwh_brdf_params_t *p, const double wi[3], const double
         return 0.0;
     double pd = diffuse_prob(p);
     double h[3] = {wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]};
-    normalize3(h);
+    bwg_normalize3(h);
     double spec = 0.0;
     if (h[2] > 0.0) {
         double c2 = h[2] * h[2], t2 = (1.0 - c2) / c2;
@@ -557,7 +532,7 @@ double bwh_ward_pdf(const bwh_brdf_params_t *p, const double wi[3], const double
         double q = r2 > 0.0 ? (h[0] * h[0] / (p->ax * p->ax) + h[1] * h[1] / (p->ay * p->ay)) / r2
                             : 0.0;
         double ph = exp(-t2 * q) / (S_PI * p->ax * p->ay * c2 * h[2]);
-        double oh = dot3(wo, h);
+        double oh = bwg_dot3(wo, h);
         spec = oh > 0.0 ? ph / (4.0 * oh) : 0.0;
     }
     return pd * wo[2] / S_PI + (1.0 - pd) * spec;

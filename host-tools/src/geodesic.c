@@ -5,35 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    double r0 = a[1] * b[2] - a[2] * b[1];
-    double r1 = a[2] * b[0] - a[0] * b[2];
-    double r2 = a[0] * b[1] - a[1] * b[0];
-    out[0] = r0;
-    out[1] = r1;
-    out[2] = r2;
-}
-
-static void normalize3(double v[3])
-{
-    double n = sqrt(dot3(v, v));
-    v[0] /= n;
-    v[1] /= n;
-    v[2] /= n;
-}
-
 static void midpoint(const double a[3], const double b[3], double out[3])
 {
     out[0] = a[0] + b[0];
     out[1] = a[1] + b[1];
     out[2] = a[2] + b[2];
-    normalize3(out);
+    bwg_normalize3(out);
 }
 
 static void set3(double dst[3], const double src[3])
@@ -129,15 +106,15 @@ void bwh_tri_centre(const bwh_tri_t *t, double out[3])
 {
     for (int k = 0; k < 3; k++)
         out[k] = t->v[0][k] + t->v[1][k] + t->v[2][k];
-    normalize3(out);
+    bwg_normalize3(out);
 }
 
 double bwh_solid_angle(const double a[3], const double b[3], const double c[3])
 {
     double bc[3];
-    cross3(b, c, bc);
-    double num = fabs(dot3(a, bc));
-    double den = 1.0 + dot3(a, b) + dot3(b, c) + dot3(c, a);
+    bwg_cross3(b, c, bc);
+    double num = fabs(bwg_dot3(a, bc));
+    double den = 1.0 + bwg_dot3(a, b) + bwg_dot3(b, c) + bwg_dot3(c, a);
     return 2.0 * atan2(num, den);
 }
 
@@ -164,8 +141,8 @@ int bwh_grid_centres(unsigned level, double (*xyz)[3], double *solid_angle)
 static double side(const double d[3], const double p[3], const double q[3])
 {
     double n[3];
-    cross3(p, q, n);
-    return dot3(d, n);
+    bwg_cross3(p, q, n);
+    return bwg_dot3(d, n);
 }
 
 long bwh_grid_locate(unsigned level, const double dir[3])

@@ -8,11 +8,39 @@
 #ifndef BWH_GEODESIC_H
 #define BWH_GEODESIC_H
 
+#include <math.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Small 3-vector helpers shared by the grid and the sampler. */
+static inline double bwg_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void bwg_cross3(const double a[3], const double b[3], double out[3])
+{
+    double r0 = a[1] * b[2] - a[2] * b[1];
+    double r1 = a[2] * b[0] - a[0] * b[2];
+    double r2 = a[0] * b[1] - a[1] * b[0];
+    out[0] = r0;
+    out[1] = r1;
+    out[2] = r2;
+}
+
+/* Scales v to unit length; leaves a zero vector alone. */
+static inline void bwg_normalize3(double v[3])
+{
+    double n = sqrt(bwg_dot3(v, v));
+    if (n > 0.0) {
+        v[0] /= n;
+        v[1] /= n;
+        v[2] /= n;
+    }
+}
 
 #define BWH_GRID_MAX_LEVEL 6u
 

@@ -56,6 +56,23 @@ DPKG_PACKAGES = ["libcharls2", "libcharls-dev", "libopenjp2-7", "libopenjp2-tool
 # --------------------------------------------------------------------------
 # small helpers
 
+# The paper's synthetic sets: key, `brdfwave synth` arguments, the layout
+# arguments for `brdfwave encode`, description (shared with run_rd_bench.py).
+PAPER_SETS = [
+    ("Phong1", ["--model", "phong", "--kd", "0.75", "--ks", "0.25", "--n", "20",
+                "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
+     "modified Phong kd=0.75 ks=0.25 n=20; 16 incoming (phi=0) x 1024 outgoing (level 4)"),
+    ("Phong2", ["--model", "phong", "--kd", "0.5", "--ks", "0.5", "--n", "50",
+                "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
+     "modified Phong kd=0.5 ks=0.5 n=50; 16 incoming (phi=0) x 1024 outgoing (level 4)"),
+    ("Ward", ["--model", "ward", "--ax", "0.35", "--ay", "0.05", "--kd", "0.75",
+              "--ks", "0.25", "--level", "4", "--level-in", "4"],
+     ["--level", "4", "--level-in", "4"],
+     "Ward anisotropic ax=0.35 ay=0.05 kd=0.75 ks=0.25; 1024 incoming (level-in 4) x "
+     "1024 outgoing (level 4)"),
+]
+
+
 def log(msg):
     print(msg, file=sys.stderr, flush=True)
 
@@ -875,19 +892,7 @@ def main():
     peers_u16(b, tu, "field", u16, lambda d: d.astype(np.float64))
 
     # ---- (b) synthetic sets
-    synth_sets = [
-        ("Phong1", ["--model", "phong", "--kd", "0.75", "--ks", "0.25", "--n", "20",
-                    "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
-         "modified Phong kd=0.75 ks=0.25 n=20; 16 incoming (phi=0) x 1024 outgoing (level 4)"),
-        ("Phong2", ["--model", "phong", "--kd", "0.5", "--ks", "0.5", "--n", "50",
-                    "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
-         "modified Phong kd=0.5 ks=0.5 n=50; 16 incoming (phi=0) x 1024 outgoing (level 4)"),
-        ("Ward", ["--model", "ward", "--ax", "0.35", "--ay", "0.05", "--kd", "0.75",
-                  "--ks", "0.25", "--level", "4", "--level-in", "4"],
-         ["--level", "4", "--level-in", "4"],
-         "Ward anisotropic ax=0.35 ay=0.05 kd=0.75 ks=0.25; 1024 incoming (level-in 4) x "
-         "1024 outgoing (level 4)"),
-    ]
+    synth_sets = PAPER_SETS
     for key, synth_args, layout, desc in synth_sets:
         raw = b.tmp("%s.f32" % key)
         cmd = [bw, "synth"] + synth_args + ["-o", raw]

@@ -103,19 +103,7 @@ def load_sets(bw, wanted):
     def want(k):
         return not wanted or k in wanted
 
-    for key, args, layout, desc in [
-        ("Phong1", ["--model", "phong", "--kd", "0.75", "--ks", "0.25", "--n", "20",
-                    "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
-         "modified Phong kd=0.75 ks=0.25 n=20, 16 incoming x 1024 outgoing (level 4)"),
-        ("Phong2", ["--model", "phong", "--kd", "0.5", "--ks", "0.5", "--n", "50",
-                    "--level", "4", "--incoming", "16"], ["--level", "4", "--incoming", "16"],
-         "modified Phong kd=0.5 ks=0.5 n=50, 16 incoming x 1024 outgoing (level 4)"),
-        ("Ward", ["--model", "ward", "--ax", "0.35", "--ay", "0.05", "--kd", "0.75",
-                  "--ks", "0.25", "--level", "4", "--level-in", "4"],
-         ["--level", "4", "--level-in", "4"],
-         "Ward ax=0.35 ay=0.05 kd=0.75 ks=0.25, 1024 incoming (level-in 4) x 1024 "
-         "outgoing (level 4)"),
-    ]:
+    for key, args, layout, desc in cb.PAPER_SETS:
         if want(key):
             f = synth(bw, key, args)
             sets.append(Set(key, key, f, ["--bands", "1"] + layout,
