@@ -162,10 +162,6 @@ static uint32_t in_pos(const plan_t *pl, uint32_t i)
 {
     return has_in(&pl->dims) ? bw_biohaar_pos(i, pl->dims.level_in) : i;
 }
-static uint32_t out_pos(const plan_t *pl, uint32_t o)
-{
-    return has_out(&pl->dims) ? bw_biohaar_pos(o, pl->dims.level_out) : 0u;
-}
 /* Context class of an outgoing coefficient from its parent level j (-1 for
  * a scaling coefficient): 0 finest details, 1 next, 2 coarser. */
 static unsigned level_cls(const plan_t *pl, int j)
@@ -179,12 +175,6 @@ static uint32_t in_gain(const plan_t *pl, uint32_t i)
 {
     return has_in(&pl->dims) ? bw_biohaar_inv_gain_q16(pl->dims.level_in, bw_biohaar_coef_level(i))
                              : 65536u;
-}
-static uint32_t out_gain(const plan_t *pl, uint32_t o)
-{
-    return has_out(&pl->dims)
-               ? bw_biohaar_inv_gain_q16(pl->dims.level_out, bw_biohaar_coef_level(o))
-               : 65536u;
 }
 
 static void transform_fwd(const plan_t *pl, int32_t *x)
@@ -244,6 +234,47 @@ static inline uint64_t div_q8(uint32_t a, uint64_t st)
         }
     }
     return q;
+}
+
+/* The outgoing coefficients in coarse-to-fine order (the order of
+ * bw_biohaar_pos) without a division per step: the next one is child m of
+ * parent p at level j (j = -1: the scaling coefficient of base p). */
+typedef struct {
+    int j;
+    uint32_t p, m;
+} out_walk_t;
+
+static void walk_init(out_walk_t *w)
+{
+    w->j = -1;
+    w->p = 0;
+    w->m = 1;
+}
+
+/* The in-place position of the current coefficient of a level-L hemisphere
+ * and its parent level (-1: scaling); steps to the next. */
+static uint32_t walk_next(out_walk_t *w, unsigned L, int *level)
+{
+    uint32_t pos;
+    *level = w->j;
+    if (w->j < 0) {
+        pos = w->p << (2u * L);
+        if (++w->p == 4u) {
+            w->j = 0;
+            w->p = 0;
+            w->m = 1;
+        }
+        return pos;
+    }
+    pos = (4u * w->p + w->m) << (2u * (L - (unsigned)w->j - 1u));
+    if (++w->m == 4u) {
+        w->m = 1;
+        if (++w->p == 4u << (2u * (unsigned)w->j)) {
+            w->p = 0;
+            w->j++;
+        }
+    }
+    return pos;
 }
 
 /* The spectral subbands of a vector, Mallat order: subband 0 the
@@ -333,39 +364,54 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
     }
 }
 
+/* The step of every vector, walking the outgoing hemisphere as the coder
+ * does; the subband steps are recomputed only when the vector's gain
+ * changes (once per level). */
 static void quantise(const plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
+    unsigned L = d->level_out;
     uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
     spec_bands_t sb;
     uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
+    uint32_t steps_gio = 0; /* no vector has gain 0: the first one computes */
     spec_bands(pl, &sb);
     for (uint32_t i = 0; i < d->n_in; i++) {
         uint32_t gi = in_gain(pl, i);
         int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
-        if (forward && has_in(d)) {
-            /* incoming space: drop a whole [outgoing][band] block */
+        for (int pass = forward && has_in(d) ? 0 : 1; pass < 2; pass++) {
+            /* pass 0: the incoming space, drop a whole [outgoing][band] block
+             * whose energy stays below the threshold; pass 1: every vector */
             uint64_t e = 0;
-            for (uint32_t o = 0; o < d->n_out && e < thr; o++) {
-                vec_steps(pl, &sb, (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16), steps);
-                e += vec_energy(&sb, steps, blk + (size_t)out_pos(pl, o) * b);
+            out_walk_t w;
+            walk_init(&w);
+            for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
+                uint32_t pos = 0, g_out = 65536u;
+                if (has_out(d)) {
+                    int j;
+                    pos = walk_next(&w, L, &j);
+                    g_out = bw_biohaar_inv_gain_q16(L, j);
+                }
+                uint32_t gio = (uint32_t)(((uint64_t)gi * g_out) >> 16);
+                if (gio != steps_gio) {
+                    vec_steps(pl, &sb, gio, steps);
+                    steps_gio = gio;
+                }
+                int32_t *v = blk + (size_t)pos * b;
+                if (!pass) {
+                    e += vec_energy(&sb, steps, v);
+                } else if (forward && b > 1u && vec_energy(&sb, steps, v) < thr) {
+                    /* outgoing space: drop the spectral vector */
+                    memset(v, 0, (size_t)b * sizeof *v);
+                } else {
+                    vec_quant(&sb, steps, v, forward);
+                }
             }
-            if (e < thr) {
+            if (!pass && e < thr) {
                 memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
-                continue;
+                break;
             }
-        }
-        for (uint32_t o = 0; o < d->n_out; o++) {
-            uint32_t gio = (uint32_t)(((uint64_t)gi * out_gain(pl, o)) >> 16);
-            int32_t *v = blk + (size_t)out_pos(pl, o) * b;
-            vec_steps(pl, &sb, gio, steps);
-            if (forward && b > 1u && vec_energy(&sb, steps, v) < thr) {
-                /* outgoing space: drop the spectral vector */
-                memset(v, 0, (size_t)b * sizeof *v);
-                continue;
-            }
-            vec_quant(&sb, steps, v, forward);
         }
     }
 }
@@ -423,37 +469,9 @@ typedef struct {
     uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
     unsigned qi;
     stream_queue_t q;
-    /* coarse-to-fine order: the next outgoing coefficient is child m of
-     * parent p at level j (j = -1: the scaling coefficient of base p) */
-    int j;
-    uint32_t p, m;
+    out_walk_t w; /* coarse-to-fine order */
 } iter_t;
 
-/* Steps (j, p, m) to the next outgoing coefficient in coarse-to-fine order
- * (the order of bw_biohaar_pos) and returns the position of the current one. */
-static uint32_t walk_out(iter_t *it, unsigned L, int *level)
-{
-    uint32_t pos;
-    *level = it->j;
-    if (it->j < 0) {
-        pos = it->p << (2u * L);
-        if (++it->p == 4u) {
-            it->j = 0;
-            it->p = 0;
-            it->m = 1;
-        }
-        return pos;
-    }
-    pos = (4u * it->p + it->m) << (2u * (L - (unsigned)it->j - 1u));
-    if (++it->m == 4u) {
-        it->m = 1;
-        if (++it->p == 4u << (2u * (unsigned)it->j)) {
-            it->p = 0;
-            it->j++;
-        }
-    }
-    return pos;
-}
 
 static void iter_vec(iter_t *it)
 {
@@ -469,7 +487,7 @@ static void iter_vec(iter_t *it)
             pos_out = it->q.pos[it->qi];
             level = it->q.level[it->qi++];
         } else {
-            pos_out = walk_out(it, pl->dims.level_out, &level);
+            pos_out = walk_next(&it->w, pl->dims.level_out, &level);
         }
     }
     size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + pos_out;
@@ -484,9 +502,7 @@ static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
     it->i = it->o = it->k = 0;
     it->leaf = 0;
     it->qi = it->q.n = 0;
-    it->j = -1;
-    it->p = 0;
-    it->m = 1;
+    walk_init(&it->w);
     iter_vec(it);
 }
 
@@ -499,8 +515,7 @@ static void iter_next_vec(iter_t *it)
         it->i++;
         it->leaf = 0;
         it->qi = it->q.n = 0;
-        it->j = -1;
-        it->p = 0;
+        walk_init(&it->w);
     }
     if (it->i < it->pl->dims.n_in)
         iter_vec(it);
