@@ -300,6 +300,29 @@ static __attribute__((noinline)) uint64_t timed_decode(set_t *s, size_t len, bw_
     return t1 - t0;
 }
 
+/* Largest absolute error of the decoded samples (in verify) against the
+ * input, and their squared error in *sse. */
+static uint32_t decoded_error(const set_t *s, uint64_t *sse)
+{
+    uint32_t worst = 0;
+    *sse = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        int64_t e = (int64_t)s->verify[i] - s->x[i];
+        uint64_t a = (uint64_t)(e < 0 ? -e : e);
+        if (a > worst)
+            worst = (uint32_t)a;
+        *sse += a * a;
+    }
+    return worst;
+}
+
+/* The mode's guarantee: lossless exact, max-error within its bound. */
+static int bound_held(uint8_t mode, uint32_t max_error, uint32_t worst)
+{
+    return !(mode == BW_MODE_LOSSLESS && worst != 0) &&
+           !(mode == BW_MODE_MAX_ERROR && worst > max_error);
+}
+
 static void max_stack(uint32_t *m, uint32_t v)
 {
     if (v > *m)
@@ -335,22 +358,9 @@ static void run_mode(set_t *s, const bench_mode_t *m)
     bw_header_t h;
     uint64_t t_dec = timed_decode(s, len, &h, &st_d, &stk_d);
     max_stack(&stack_dec_max, stk_d);
-    uint32_t worst = 0;
     uint64_t sse = 0;
-    if (st_d == BW_OK) {
-        for (size_t i = 0; i < s->n; i++) {
-            int64_t e = (int64_t)s->verify[i] - s->x[i];
-            uint64_t a = (uint64_t)(e < 0 ? -e : e);
-            if (a > worst)
-                worst = (uint32_t)a;
-            sse += a * a;
-        }
-    }
-    int ok = st_v == BW_OK && st_d == BW_OK;
-    if (m->mode == BW_MODE_LOSSLESS && worst != 0)
-        ok = 0;
-    if (m->mode == BW_MODE_MAX_ERROR && worst > m->max_error)
-        ok = 0;
+    uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;
+    int ok = st_v == BW_OK && st_d == BW_OK && bound_held(m->mode, m->max_error, worst);
     if (m->mode == BW_MODE_BYTES && (len > p.byte_budget || len_v > p.byte_budget))
         ok = 0;
 
@@ -429,20 +439,10 @@ static void run_fast(set_t *s)
             bw_header_t h;
             uint64_t t_dec = timed_decode(s, len, &h, &st_d, &stk);
             max_stack(&stack_dec_max, stk);
-            uint32_t worst = 0;
             uint64_t sse = 0;
-            for (size_t k = 0; st_d == BW_OK && k < s->n; k++) {
-                int64_t e = (int64_t)s->verify[k] - s->x[k];
-                uint64_t a = (uint64_t)(e < 0 ? -e : e);
-                if (a > worst)
-                    worst = (uint32_t)a;
-                sse += a * a;
-            }
-            int ok = st_d == BW_OK && (h.flags & BW_FLAG_RICE);
-            if (m->mode == BW_MODE_LOSSLESS && worst != 0)
-                ok = 0;
-            if (m->mode == BW_MODE_MAX_ERROR && worst > m->max_error)
-                ok = 0;
+            uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;
+            int ok = st_d == BW_OK && (h.flags & BW_FLAG_RICE) &&
+                     bound_held(m->mode, m->max_error, worst);
             printf("FAST coder=rice basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
                    " worst=%lu sse=%llu status=%s\n",
                    basis, m->name, (unsigned long)s->n, (unsigned long)len, t_enc, t_dec,
