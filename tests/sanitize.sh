@@ -4,7 +4,10 @@
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
 # trips. Compiles the sources directly (firmware/codec/*.c, host-tools/src/
 # bwhost.c, geodesic.c and brdf_models.c, each test) into $SANITIZE_BUILD (default
-# build/sanitize), independent of the Makefile's build.
+# build/sanitize), independent of the Makefile's build. The codec core is
+# compiled for size (-Os, as for the device's flash budget), so that the
+# forms its loops take in that build (BW_SMALL) run here; the other builds
+# run the -O2 forms.
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
 # Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
@@ -29,8 +32,10 @@ echo "== building with $CC -fsanitize=address,undefined into $OUT"
 objs=()
 for src in $LIB_SRC; do
     obj="$OUT/obj/$(echo "${src%.c}" | tr / _).o"
+    opt=
+    case $src in firmware/codec/*) opt=-Os ;; esac
     # shellcheck disable=SC2086
-    $CC $CFLAGS -c "$src" -o "$obj"
+    $CC $CFLAGS $opt -c "$src" -o "$obj"
     objs+=("$obj")
 done
 

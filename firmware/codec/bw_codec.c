@@ -308,10 +308,15 @@ static void vec_steps(const plan_t *pl, const spec_bands_t *sb, uint32_t gio, ui
         st[i] = elem_step(pl->step_q8, gio, 65536u, sb->gain[i]);
 }
 
-/* Normalised energy of a vector: sum of (c / step)^2 in Q16, saturating. */
-static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const int32_t *x)
+/* Normalised energy of a vector: sum of (c / step)^2 in Q16, saturating; it
+ * stops once the sum reaches limit (the callers only compare it with a
+ * threshold), so for most vectors after a few elements. */
+static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const int32_t *x,
+                           uint64_t limit)
 {
     uint64_t e = 0;
+    if (limit == 0u)
+        return 0;
     for (unsigned i = 0; i < sb->count; i++) {
         uint64_t st = steps[i] ? steps[i] : 1u;
         for (uint32_t k = sb->lo[i]; k < sb->lo[i + 1u]; k++) {
@@ -321,6 +326,8 @@ static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const 
             e += r * r;
             if (e > ((uint64_t)1 << 62))
                 return (uint64_t)1 << 62;
+            if (e >= limit)
+                return e;
         }
     }
     return e;
@@ -400,8 +407,8 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
                 }
                 int32_t *v = blk + (size_t)pos * b;
                 if (!pass) {
-                    e += vec_energy(&sb, steps, v);
-                } else if (forward && b > 1u && vec_energy(&sb, steps, v) < thr) {
+                    e += vec_energy(&sb, steps, v, thr - e);
+                } else if (forward && b > 1u && vec_energy(&sb, steps, v, thr) < thr) {
                     /* outgoing space: drop the spectral vector */
                     memset(v, 0, (size_t)b * sizeof *v);
                 } else {
@@ -633,25 +640,69 @@ static bool strip_enc_overflow(const strip_enc_t *se)
     return se->rice ? se->re.w.overflow : se->rc.overflow;
 }
 
+/* Rice: the values in coding order, whole strips straight from a vector. */
+static void rice_vector(strip_enc_t *se, const int32_t *v, uint32_t b)
+{
+    uint32_t k = 0;
+    if (se->cnt == 0u)
+        for (; k + BW_STRIP <= b; k += BW_STRIP)
+            bw_rice_enc_strip(&se->re, v + k, BW_STRIP);
+    for (; k < b; k++) {
+        se->v[se->cnt] = v[k];
+        if (++se->cnt == BW_STRIP)
+            strip_code(se);
+    }
+}
+
+static inline void rice_push(strip_enc_t *se, const int32_t *v, uint32_t b)
+{
+    if (b == 1u) { /* one value per direction */
+        se->v[se->cnt] = *v;
+        if (++se->cnt == BW_STRIP)
+            strip_code(se);
+    } else {
+        rice_vector(se, v, b);
+    }
+}
+
 static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
 {
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    if (!BW_SMALL && se->rice && !pl->stream) {
+        /* the coarse-to-fine order of walk_next as loops (Rice strips need
+         * no context class): the 4 scaling coefficients, then per level j
+         * the children 1..3 of every parent */
+        unsigned L = d->level_out;
+        for (uint32_t i = 0; i < d->n_in; i++) {
+            const int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
+            if (!has_out(d)) {
+                for (uint32_t o = 0; o < d->n_out; o++)
+                    rice_push(se, blk, b);
+                continue;
+            }
+            for (uint32_t p = 0; p < 4u; p++)
+                rice_push(se, blk + ((size_t)p << (2u * L)) * b, b);
+            for (unsigned j = 0; j < L; j++) {
+                unsigned sh = 2u * (L - j - 1u);
+                size_t step = ((size_t)1 << sh) * b;
+                const int32_t *c = blk;
+                for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                    rice_push(se, c + step, b);
+                    rice_push(se, c + 2u * step, b);
+                    rice_push(se, c + 3u * step, b);
+                }
+            }
+        }
+        return;
+    }
     iter_t it;
     iter_init(&it, pl, x);
-    size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
-    uint32_t b = pl->dims.bands;
+    size_t vectors = (size_t)d->n_in * d->n_out;
     for (size_t n = 0; n < vectors; n++) {
         const int32_t *v = it.vec;
         if (se->rice) {
-            uint32_t k = 0;
-            /* whole strips straight from the vector, the rest through v[] */
-            if (se->cnt == 0u)
-                for (; k + BW_STRIP <= b; k += BW_STRIP)
-                    bw_rice_enc_strip(&se->re, v + k, BW_STRIP);
-            for (; k < b; k++) {
-                se->v[se->cnt] = v[k];
-                if (++se->cnt == BW_STRIP)
-                    strip_code(se);
-            }
+            rice_vector(se, v, b);
         } else {
             unsigned cd = it.cls_dir;
             for (uint32_t k = 0; k < b; k++)
@@ -855,11 +906,26 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
-    if (pl->prequant == 1u)
-        memcpy(work, samples, pl->n * sizeof *work);
-    else
-        for (size_t i = 0; i < pl->n; i++)
-            work[i] = prequantise(samples[i], pl->prequant);
+    /* load with the range check (|x| <= MAX as one unsigned compare) and the
+     * prequantiser: floor((x + e) / q) as an unsigned division of
+     * x + e + K q, which is >= 0 for every valid x (q = 1: x itself) */
+    uint32_t bad = 0, q = pl->prequant;
+    if (!BW_SMALL && q == 1u) {
+        for (size_t i = 0; i < pl->n; i++) {
+            int32_t x = samples[i];
+            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+            work[i] = x;
+        }
+    } else {
+        uint32_t k = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k * q;
+        for (size_t i = 0; i < pl->n; i++) {
+            int32_t x = samples[i];
+            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+            work[i] = (int32_t)(((uint32_t)x + bias) / q - k);
+        }
+    }
+    if (bad)
+        return BW_ERR_RANGE;
     transform_fwd(pl, work);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
@@ -1008,12 +1074,6 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         return BW_ERR_ARG;
     if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
         return BW_ERR_ARG;
-    size_t n = bw_dims_samples(dims);
-    uint32_t out_of_range = 0;
-    for (size_t i = 0; i < n; i++) /* |x| <= MAX as one unsigned compare */
-        out_of_range |= (uint32_t)samples[i] + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-    if (out_of_range)
-        return BW_ERR_RANGE;
 
     plan_t pl;
     bw_status_t fit = BW_OK;
@@ -1220,7 +1280,7 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
         uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
         spec_bands(pl, &sb);
         vec_steps(pl, &sb, gio, steps);
-        if (b > 1u && vec_energy(&sb, steps, v) < thr)
+        if (b > 1u && vec_energy(&sb, steps, v, thr) < thr)
             memset(v, 0, (size_t)b * sizeof *v);
         else
             vec_quant(&sb, steps, v, true);

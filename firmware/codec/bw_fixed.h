@@ -33,6 +33,14 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
     return (int32_t)(uint32_t)(uint64_t)(((int64_t)c * v + 32768) >> 16);
 }
 
+/* 1 in a build for size (-Os): a few loops take their smaller, slower form;
+ * the bits they produce are the same. */
+#if defined(__OPTIMIZE_SIZE__)
+#define BW_SMALL 1
+#else
+#define BW_SMALL 0
+#endif
+
 /* Number of significant bits of v (0 for 0). */
 static inline unsigned bw_bitlen(uint32_t v)
 {

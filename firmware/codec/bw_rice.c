@@ -1,10 +1,13 @@
 /*
  * Adaptive Rice strip coder: see bw_rice.h for the bit stream.
  *
- * The encoder looks at a strip once to sum its zigzag values and count its
- * zeros, picks the Rice parameter from the mean (rice_k), and only for strips with many zeros
- * computes the exact sizes of the sparse and dense codes to choose between
- * them.
+ * The encoder looks at a strip once to sum its zigzag values, count its zeros
+ * and negative values and OR its codes; it picks the Rice parameter from the
+ * mean (rice_k). For a strip with many zeros it chooses between the sparse
+ * and dense codes as their exact sizes would: bounds on both sizes from those
+ * counts settle most strips, and only when the bounds overlap (or a code may
+ * escape) are the sizes counted. The codes are then written with the bit
+ * writer held in locals.
  */
 #include "bw_rice.h"
 
@@ -20,7 +23,12 @@
 #define KM_MAX 3u      /* sparse magnitude parameter: 2 bits */
 #define KG_MAX 7u      /* sparse gap parameter: 3 bits */
 
+/* A build for size (BW_SMALL, -Os) writes the same bits with the plain
+ * writer and always sizes both codes of a strip: smaller and slower. */
+#define RICE_SMALL BW_SMALL
+
 /* ---- bit writer ---------------------------------------------------------- */
+
 
 static inline void emit32(bw_bitw_t *w, uint32_t word)
 {
@@ -96,8 +104,25 @@ static inline int32_t unzigzag(uint32_t u) { return (int32_t)((u >> 1) ^ (0u - (
  * mean sum / n the best Rice parameter is near log2(mean ln 2), one below
  * LOCO-I's rule n 2^k >= sum in most strips. The answer is at most the bit
  * length of the mean, and at least two below it. */
-static inline unsigned rice_k(uint64_t sum, uint32_t n, unsigned kmax)
+static inline unsigned rice_k32(uint32_t sum, uint32_t n, unsigned kmax)
 {
+    /* sum < 2^31: n 2^k stays below 2^32 while the loop runs */
+    unsigned k = bw_bitlen(sum / n);
+    k = k > 2u ? k - 2u : 0u;
+    if (k > kmax)
+        return kmax;
+    uint32_t m = n << k;
+    while (k < kmax && (uint64_t)m * 7u < (uint64_t)sum * 4u) {
+        k++;
+        m <<= 1;
+    }
+    return k;
+}
+
+static unsigned rice_k(uint64_t sum, uint32_t n, unsigned kmax)
+{
+    if (sum < 0x80000000u)
+        return rice_k32((uint32_t)sum, n, kmax);
     uint32_t mean = sum >> 32 ? 0xFFFFFFFFu : (uint32_t)sum / n;
     unsigned k = bw_bitlen(mean);
     k = k > 2u ? k - 2u : 0u;
@@ -137,104 +162,203 @@ typedef struct {
     uint32_t bits;
 } sparse_t;
 
-static sparse_t sparse_plan(const int32_t *v, unsigned cnt, unsigned nz)
+/* The parameters from the strip's counts: n non-zero values (>= 1) whose
+ * magnitudes less one sum to msum, nz zeros. */
+static sparse_t sparse_params(uint64_t msum, unsigned n, unsigned nz)
 {
     sparse_t sp;
-    uint32_t n = cnt - nz; /* non-zero values, >= 1 */
-    uint64_t msum = 0;
-    for (unsigned b = 0; b < cnt; b++)
-        if (v[b])
-            msum += bw_abs32(v[b]) - 1u;
     sp.km = rice_k(msum, n, KM_MAX);
     sp.kg = rice_k(nz, n + 1u, KG_MAX);
-    uint32_t bits = 5u, gap = 0;
-    for (unsigned b = 0; b < cnt; b++) {
-        if (!v[b]) {
-            gap++;
-            continue;
-        }
-        bits += rice_bits(gap, sp.kg) + rice_bits(bw_abs32(v[b]) - 1u, sp.km) + 1u;
-        gap = 0;
-    }
-    if (gap)
-        bits += rice_bits(gap, sp.kg);
-    sp.bits = bits;
+    sp.bits = 0;
     return sp;
 }
 
-void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
+/* The exact choice: whether the sparse code with the parameters of sp is
+ * smaller than the dense code with parameter k. */
+static bool sparse_smaller(const int32_t *v, unsigned cnt, unsigned k, const sparse_t *sp)
 {
-    uint64_t sum = 0;
-    unsigned nz = 0;
+    uint32_t dense = 0, sparse = 5u, gap = 0;
     for (unsigned b = 0; b < cnt; b++) {
-        uint32_t u = zigzag(v[b]);
-        sum += u;
-        nz += u == 0u;
-    }
-    if (sum == 0u) {
-        put_mode(e, MODE_ZERO);
-        return;
-    }
-    unsigned k = rice_k(sum, cnt, 31u);
-    if (nz >= cnt / 4u) {
-        uint32_t dense = 0;
-        for (unsigned b = 0; b < cnt; b++)
-            dense += rice_bits(zigzag(v[b]), k);
-        sparse_t sp = sparse_plan(v, cnt, nz);
-        if (sp.bits < dense) {
-            put_mode(e, MODE_SPARSE);
-            put(&e->w, sp.km | (sp.kg << 2), 5u);
-            uint32_t gap = 0;
-            for (unsigned b = 0; b < cnt; b++) {
-                if (!v[b]) {
-                    gap++;
-                    continue;
-                }
-                put_rice(&e->w, gap, sp.kg);
-                put_rice(&e->w, bw_abs32(v[b]) - 1u, sp.km);
-                put(&e->w, v[b] < 0, 1u);
-                gap = 0;
-            }
-            if (gap)
-                put_rice(&e->w, gap, sp.kg);
-            return;
+        int32_t x = v[b];
+        dense += rice_bits(zigzag(x), k);
+        if (!x) {
+            gap++;
+            continue;
         }
+        sparse += rice_bits(gap, sp->kg) + rice_bits(bw_abs32(x) - 1u, sp->km) + 1u;
+        gap = 0;
     }
-    put_mode(e, MODE_DENSE + k);
-    if (k >= 16u) {
-        for (unsigned b = 0; b < cnt; b++)
-            put_rice(&e->w, zigzag(v[b]), k);
+    if (gap)
+        sparse += rice_bits(gap, sp->kg);
+    return sparse < dense;
+}
+
+/* Bounds of sum over m values x of floor(x / 2^k), from their sum s:
+ * [floor((s - m (2^k - 1)) / 2^k), floor(s / 2^k)]. */
+static inline uint32_t shifted_lo(uint32_t s, uint32_t m, unsigned k)
+{
+    uint32_t r = m * low_mask(k);
+    return s > r ? (s - r) >> k : 0u;
+}
+
+/*
+ * Sparse or dense, decided as the exact sizes would decide (sparse when its
+ * size is below the dense size), from bounds on both sizes that the strip's
+ * counts give; only when the bounds overlap are the sizes computed. Every
+ * value's zigzag code is below 2^26 (`any` is their OR), so no sum
+ * overflows and no code escapes unless the checks below say so.
+ * Returns 1 sparse, 0 dense, -1 undecided.
+ */
+static int sparse_by_bounds(uint32_t sum, uint32_t any, unsigned cnt, unsigned nz, unsigned k,
+                            uint64_t msum, const sparse_t *sp)
+{
+    unsigned n = cnt - nz;
+    if ((any >> k) >= QMAX || ((any >> 1) >> sp->km) >= QMAX || (nz >> sp->kg) >= QMAX)
+        return -1; /* an escape may occur */
+    uint32_t d_base = cnt * (k + 1u);
+    uint32_t d_lo = d_base + shifted_lo(sum, cnt, k), d_hi = d_base + (sum >> k);
+    uint32_t m = (uint32_t)msum;
+    uint32_t s_base = 5u + n + n * (1u + sp->km) + n * (1u + sp->kg);
+    uint32_t s_lo = s_base + shifted_lo(m, n, sp->km) + shifted_lo(nz, n + 1u, sp->kg);
+    uint32_t s_hi = s_base + 1u + sp->kg + (m >> sp->km) + (nz >> sp->kg);
+    if (s_hi < d_lo)
+        return 1;
+    if (d_hi <= s_lo)
+        return 0;
+    return -1;
+}
+
+/* The writer in locals, so that the loops below keep it in registers. */
+#define W_LOAD(w) uint32_t buf = (w)->buf; unsigned left = (w)->left
+#define W_STORE(w) ((w)->buf = buf, (w)->left = left)
+/* appends code (len bits, 1 <= len <= 31) */
+#define W_PUT(w, code, len)                                         \
+    do {                                                            \
+        uint32_t c_ = (code);                                       \
+        unsigned l_ = (len);                                        \
+        if (l_ < left) {                                            \
+            buf = (buf << l_) | c_;                                 \
+            left -= l_;                                             \
+        } else {                                                    \
+            unsigned s_ = l_ - left;                                \
+            emit32((w), (buf << left) | (c_ >> s_));                \
+            left = 32u - s_;                                        \
+            buf = c_;                                               \
+        }                                                           \
+    } while (0)
+
+static void code_sparse(bw_bitw_t *w, const int32_t *v, unsigned cnt, const sparse_t *sp)
+{
+    unsigned km = sp->km, kg = sp->kg;
+    put(w, km | (kg << 2), 5u);
+    if (RICE_SMALL) {
+        uint32_t gap = 0;
+        for (unsigned b = 0; b < cnt; b++) {
+            if (!v[b]) {
+                gap++;
+                continue;
+            }
+            put_rice(w, gap, kg);
+            put_rice(w, bw_abs32(v[b]) - 1u, km);
+            put(w, v[b] < 0, 1u);
+            gap = 0;
+        }
+        if (gap)
+            put_rice(w, gap, kg);
         return;
     }
-    /* the common case, with the writer in registers: every code is at most
-     * 15 + 1 + 15 bits */
-    bw_bitw_t *w = &e->w;
-    uint32_t buf = w->buf, bitk = 1u << k, mask = bitk - 1u;
-    unsigned left = w->left;
+    W_LOAD(w);
+    uint32_t gap = 0, gbit = 1u << kg, gmask = gbit - 1u, mbit = 1u << km, mmask = mbit - 1u;
+    for (unsigned b = 0; b < cnt; b++) {
+        int32_t x = v[b];
+        if (!x) {
+            gap++;
+            continue;
+        }
+        uint32_t a = bw_abs32(x) - 1u, qg = gap >> kg, qm = a >> km;
+        if (qg >= QMAX || qm >= QMAX) { /* an escape: the general writer */
+            W_STORE(w);
+            put_rice(w, gap, kg);
+            put_rice(w, a, km);
+            put(w, x < 0, 1u);
+            buf = w->buf;
+            left = w->left;
+        } else {
+            /* gap code, then magnitude code and sign: each at most 15 + 1 + 7 bits */
+            W_PUT(w, (gap & gmask) | gbit, qg + 1u + kg);
+            W_PUT(w, (((a & mmask) | mbit) << 1) | ((uint32_t)x >> 31), qm + 2u + km);
+        }
+        gap = 0;
+    }
+    W_STORE(w);
+    if (gap)
+        put_rice(w, gap, kg);
+}
+
+static void code_dense(bw_bitw_t *w, const int32_t *v, unsigned cnt, unsigned k)
+{
+    if (RICE_SMALL || k >= 16u) {
+        for (unsigned b = 0; b < cnt; b++)
+            put_rice(w, zigzag(v[b]), k);
+        return;
+    }
+    /* every code is at most 15 + 1 + 15 bits */
+    W_LOAD(w);
+    uint32_t bitk = 1u << k, mask = bitk - 1u;
     for (unsigned b = 0; b < cnt; b++) {
         uint32_t u = zigzag(v[b]), q = u >> k;
         if (q >= QMAX) {
-            w->buf = buf;
-            w->left = left;
+            W_STORE(w);
             put_rice(w, u, k);
             buf = w->buf;
             left = w->left;
             continue;
         }
-        uint32_t code = (u & mask) | bitk;
-        unsigned len = q + 1u + k;
-        if (len < left) {
-            buf = (buf << len) | code;
-            left -= len;
-        } else {
-            unsigned spill = len - left;
-            emit32(w, (buf << left) | (code >> spill));
-            left = 32u - spill;
-            buf = code;
+        W_PUT(w, (u & mask) | bitk, q + 1u + k);
+    }
+    W_STORE(w);
+}
+
+void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
+{
+    uint32_t sum32 = 0, neg = 0, any = 0;
+    unsigned nz = 0;
+    for (unsigned b = 0; b < cnt; b++) {
+        int32_t x = v[b];
+        uint32_t u = zigzag(x);
+        sum32 += u;
+        neg += (uint32_t)x >> 31;
+        any |= u;
+        nz += u == 0u;
+    }
+    if (any == 0u) {
+        put_mode(e, MODE_ZERO);
+        return;
+    }
+    uint64_t sum = sum32;
+    bool wide = (any >> 26) != 0u;
+    if (wide) { /* the sum may have wrapped: again in 64 bits */
+        sum = 0;
+        for (unsigned b = 0; b < cnt; b++)
+            sum += zigzag(v[b]);
+    }
+    unsigned k = rice_k(sum, cnt, 31u);
+    if (nz >= cnt / 4u) {
+        unsigned n = cnt - nz;
+        /* sum of |v| is (sum + neg) / 2: a negative v has an odd code */
+        uint64_t msum = (sum + neg) / 2u - n;
+        sparse_t sp = sparse_params(msum, n, nz);
+        int pick = RICE_SMALL || wide ? -1 : sparse_by_bounds(sum32, any, cnt, nz, k, msum, &sp);
+        if (pick < 0)
+            pick = sparse_smaller(v, cnt, k, &sp);
+        if (pick) {
+            put_mode(e, MODE_SPARSE);
+            code_sparse(&e->w, v, cnt, &sp);
+            return;
         }
     }
-    w->buf = buf;
-    w->left = left;
+    put_mode(e, MODE_DENSE + k);
+    code_dense(&e->w, v, cnt, k);
 }
 
 size_t bw_rice_enc_finish(bw_rice_enc_t *e)
