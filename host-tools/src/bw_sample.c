@@ -51,6 +51,7 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
     t->cos_alpha = ca;
     t->sin_alpha = sin(t->alpha);
     t->cos_c = ab;
+    memcpy(t->e, tc, sizeof t->e);
     t->area = bwh_solid_angle(a, b, c);
     t->proj = bwh_projected_solid_angle(a, b, c);
 }
@@ -66,13 +67,9 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
     double vv = s + t->sin_alpha * t->cos_c;
     double q = ((vv * c - uu * s) * t->cos_alpha - vv) / ((vv * s + uu * c) * t->sin_alpha);
     q = q > 1.0 ? 1.0 : q < -1.0 ? -1.0 : q;
-    double e[3], ca = bwg_dot3(t->c, t->a);
-    for (int k = 0; k < 3; k++)
-        e[k] = t->c[k] - ca * t->a[k];
-    bwg_normalize3(e);
     double sq = sqrt(1.0 - q * q), cp[3];
     for (int k = 0; k < 3; k++)
-        cp[k] = q * t->a[k] + sq * e[k];
+        cp[k] = q * t->a[k] + sq * t->e[k];
     double cb = bwg_dot3(cp, t->b);
     double z = 1.0 - u2 * (1.0 - cb);
     double f[3];
@@ -331,33 +328,34 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
     return p / s->leaf[k].area;
 }
 
-/* Picks one of 4 children in proportion to v; *u is rescaled into the
- * chosen child's interval so that it can pick again below. */
-static unsigned pick4(const double *v, double *u)
+/* Picks one of 4 children in proportion to v with *t in [0, sum of v):
+ * the first child whose running sum passes *t; *t becomes the offset inside
+ * that child, so that it picks again below without a division. Rounding can
+ * leave *t at or past the sum: then the last child with a positive value,
+ * and *t moves inside it. */
+static unsigned pick4(const double *v, double *t)
 {
-    double sum = v[0] + v[1] + v[2] + v[3], t = *u * sum, acc = 0.0;
-    unsigned last = 0;
-    for (unsigned m = 0; m < 4; m++)
-        if (v[m] > 0.0)
-            last = m;
+    double x = *t;
     for (unsigned m = 0; m < 4; m++) {
-        if (!(v[m] > 0.0))
-            continue;
-        if (t < acc + v[m] || m == last) {
-            double r = (t - acc) / v[m];
-            *u = r < 0.0 ? 0.0 : r < 1.0 ? r : nextafter(1.0, 0.0);
+        if (x < v[m]) {
+            *t = x;
             return m;
         }
-        acc += v[m];
+        x -= v[m];
     }
-    return last; /* not reached: the parent's sum is positive */
+    unsigned last = 3;
+    while (last > 0 && !(v[last] > 0.0))
+        last--;
+    *t = 0.5 * v[last];
+    return last;
 }
 
 static size_t descend(const bwh_sampler_t *s, const double *node, double u)
 {
-    size_t idx = pick4(node, &u);
+    double t = u * tree_total(node);
+    size_t idx = pick4(node, &t);
     for (unsigned l = 1; l <= s->level; l++)
-        idx = 4 * idx + pick4(node + level_offset(l) + 4 * idx, &u);
+        idx = 4 * idx + pick4(node + level_offset(l) + 4 * idx, &t);
     return idx;
 }
 

@@ -56,6 +56,7 @@ typedef struct {
     double a[3], b[3], c[3];
     double alpha, cos_alpha, sin_alpha; /* angle at vertex a */
     double cos_c;                       /* a . b */
+    double e[3];                        /* unit, in the plane of a and c, normal to a */
     double area;                        /* solid angle */
     double proj;                        /* integral of cos(theta) over it */
 } bwh_leaf_t;

@@ -2,7 +2,9 @@
  * Sampling throughput of the triangle hierarchy (bwh_sampler_sample: a
  * descent of O(level) steps) against a linear scan of the same leaves
  * (bwh_sampler_sample_linear: the O(n) running sum), same sampler, same
- * random numbers, one thread, CPU time. Used by `make bench-render`.
+ * random numbers, one thread, CPU time; and, for scale, the analytic Phong
+ * lobe sampler with its pdf (bwh_phong_sample + bwh_phong_pdf, what the
+ * renderer calls per direction). Used by `make bench-render`.
  *
  *   bench_sampling LEVEL     prints key: value lines
  */
@@ -37,8 +39,10 @@ static double phong(void *ctx, const double wi[3], const double wo[3])
     return bwh_brdf_phong(ctx, wi, wo);
 }
 
-/* samples per CPU second over at least `min_seconds` */
-static double rate(const bwh_sampler_t *s, int linear, double min_seconds, double *check)
+/* samples per CPU second over at least `min_seconds`; linear: 0 tree, 1
+ * scan, 2 the analytic lobe of p */
+static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, int linear,
+                   double min_seconds, double *check)
 {
     long n = 0, batch = 1000;
     double t0 = cpu(), t, acc = 0.0;
@@ -47,8 +51,15 @@ static double rate(const bwh_sampler_t *s, int linear, double min_seconds, doubl
             double th = 1.4 * rnd(), ph = 6.283185307179586 * rnd();
             double wi[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
             double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-            int rc = linear ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
+            int rc;
+            if (linear == 2) {
+                bwh_phong_sample(p, wi, u, wo);
+                pdf = bwh_phong_pdf(p, wi, wo);
+                rc = pdf > 0.0 ? 0 : -1;
+            } else {
+                rc = linear ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
                             : bwh_sampler_sample(s, wi, u, wo, &pdf);
+            }
             if (rc == 0)
                 acc += wo[2] / pdf;
         }
@@ -71,12 +82,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_sampling: cannot build the sampler at level %u\n", level);
         return 1;
     }
-    double c1, c2;
-    double tree = rate(&s, 0, 1.0, &c1);
-    double scan = rate(&s, 1, 1.0, &c2);
+    double c1, c2, c3;
+    double tree = rate(&s, &p, 0, 1.0, &c1);
+    double scan = rate(&s, &p, 1, 1.0, &c2);
+    double lobe = rate(&s, &p, 2, 1.0, &c3);
     printf("level: %u\nleaves: %zu\ntree_samples_per_second: %.0f\n"
-           "linear_samples_per_second: %.0f\nratio: %.2f\n", level, s.n_leaves, tree, scan,
-           tree / scan);
+           "linear_samples_per_second: %.0f\nratio: %.2f\nanalytic_samples_per_second: %.0f\n",
+           level, s.n_leaves, tree, scan, tree / scan, lobe);
     bwh_sampler_free(&s);
     return 0;
 }

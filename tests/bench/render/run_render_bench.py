@@ -6,7 +6,9 @@ Writes build/bench/render.md and the images in build/bench/render/:
     importance sampling at equal samples, and at equal CPU time;
   - Table 6 style: the room with three measured RGL BRDFs (import-rgl,
     encoded at 20:1 and decoded), uniform vs wavelet sampling;
-  - sampling throughput of the hierarchy at level 6 vs a linear scan.
+  - what the image variance is made of (an analytic run at 4x the paths);
+  - sampling throughput of the hierarchy at level 6 vs a linear scan, and the
+    analytic lobe sampler's for scale.
 Every ratio is between runs of this script on this machine.
 """
 import os
@@ -121,6 +123,43 @@ def main():
     r_time = f(wav_t, "variance") / f(ana, "variance")
     md.append("")
 
+    # ---- what the image variance is made of ----
+    # V(N) = floor + c / N: the analytic run at 4 N spp gives the floor (the
+    # image's own edges and texture, which no sampler removes) and with it the
+    # part of each run that is sampling noise
+    hi = render("table5_analytic_4x", ["analytic"], ext, spp=4 * SPP, level=4)[0]
+    floor = (4.0 * f(hi, "variance") - f(eq[1], "variance")) / 3.0
+    md.append("### Where the variance comes from\n")
+    md.append("The analytic lobe rendered again at %d spp (image variance %.5f) gives, with "
+              "V(N) = floor + c / N, the part no sampler removes: floor = (4 V(%d) - V(%d)) / 3 "
+              "= %.5f, %.0f %% of the analytic image variance at %d spp. The rest is the "
+              "sampling noise; at equal time each strategy's noise scales with its CPU time "
+              "per path.\n" % (4 * SPP, f(hi, "variance"), 4 * SPP, SPP, floor,
+                                 100.0 * floor / f(eq[1], "variance"), SPP))
+    md.append("| sampling (%d spp) | image variance | noise = variance - floor | noise vs analytic "
+              "| CPU s | CPU vs analytic |" % SPP)
+    md.append("|---|---|---|---|---|---|")
+    n_ana = f(eq[1], "variance") - floor
+    for x in eq:
+        n = f(x, "variance") - floor
+        md.append("| %s | %.5f | %.5f | %.2f x | %.2f | %.2f x |" % (
+            label(x), f(x, "variance"), n, n / n_ana, f(x, "cpu_seconds"),
+            f(x, "cpu_seconds") / f(eq[1], "cpu_seconds")))
+    prod = ["%s: %.2f x %.2f = %.2f" % (
+        label(x), (f(x, "variance") - floor) / n_ana,
+        f(x, "cpu_seconds") / f(eq[1], "cpu_seconds"),
+        (f(x, "variance") - floor) / n_ana * f(x, "cpu_seconds") / f(eq[1], "cpu_seconds"))
+        for x in eq if x["sampling"] == "wavelet"]
+    wbest = min((x for x in eq if x["sampling"] == "wavelet"), key=lambda x: f(x, "variance"))
+    md.append("\nAt equal time a strategy beats the analytic lobe when its noise per path times "
+              "its CPU time per path is below the analytic's (1): %s. The least noisy hierarchy "
+              "(%s) has %.2f x the analytic's noise per path at %.2f x its CPU time per path "
+              "(the samplers' own costs are in the throughput table below), and %.0f %% of the "
+              "analytic image variance is the floor that no sampler changes.\n" % (
+                  "; ".join(prod), label(wbest), (f(wbest, "variance") - floor) / n_ana,
+                  f(wbest, "cpu_seconds") / f(eq[1], "cpu_seconds"),
+                  100.0 * floor / f(eq[1], "variance")))
+
     # ---- Table 6 style room ----
     mats = []
     md.append("## Table 6 style: room with measured BRDFs\n")
@@ -167,16 +206,19 @@ def main():
               "incoming directions; both draw the same distribution (the unit tests check "
               "they pick the same leaves); each timed for at least 1 CPU second. The paper "
               "gives no throughput, only O(log4 n) against O(n).\n" % SAMPLING)
-    md.append("| level | leaves | hierarchy samples/s | linear scan samples/s | ratio |")
-    md.append("|---|---|---|---|---|")
+    md.append("| level | leaves | hierarchy samples/s | linear scan samples/s | ratio "
+              "| analytic lobe samples/s |")
+    md.append("|---|---|---|---|---|---|")
     thr = {}
     for lv in (4, 6):
         h, _ = blocks(run([SAMPLING, str(lv)]))
         thr[lv] = h
-        md.append("| %d | %s | %.3g | %.3g | %.1f x |" % (
+        md.append("| %d | %s | %.3g | %.3g | %.1f x | %.3g |" % (
             lv, h["leaves"], float(h["tree_samples_per_second"]),
-            float(h["linear_samples_per_second"]), float(h["ratio"])))
-    md.append("")
+            float(h["linear_samples_per_second"]), float(h["ratio"]),
+            float(h["analytic_samples_per_second"])))
+    md.append("\nThe last column is the analytic Phong lobe sampler with its pdf, the work the "
+              "renderer does per direction with `--sampling analytic`, timed the same way.\n")
 
     # ---- targets ----
     r_thr = float(thr[6]["ratio"])
