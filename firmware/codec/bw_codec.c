@@ -890,14 +890,30 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
 
 /* ---- encoder ------------------------------------------------------------- */
 
-/* floor((x + E) / (2E + 1)): the nearest multiple of 2E+1, error <= E */
-static int32_t prequantise(int32_t x, uint32_t q)
+/* Loads n samples into out with the range check (|x| <= MAX as one unsigned
+ * compare) and the prequantiser q = 2E + 1 (1: none): floor((x + E) / q),
+ * the nearest multiple of q, error <= E, as an unsigned division of
+ * x + E + K q, which is >= 0 for every valid x. Returns BW_ERR_RANGE, after
+ * loading all, when a sample is out of range. */
+static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
-    /* |x| <= 2^24 and q <= 2^25 + 1: every term fits 32 bits */
-    if (q == 1u)
-        return x;
-    int32_t e = (int32_t)((q - 1u) / 2u), v = x + e;
-    return v >= 0 ? (int32_t)((uint32_t)v / q) : -(int32_t)(((uint32_t)-v + q - 1u) / q);
+    uint32_t bad = 0;
+    if (!BW_SMALL && q == 1u) {
+        for (size_t i = 0; i < n; i++) {
+            int32_t x = in[i];
+            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+            out[i] = x;
+        }
+    } else {
+        /* |x| <= 2^24 and q <= 2^25 + 1: x + bias fits 32 bits */
+        uint32_t k = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k * q;
+        for (size_t i = 0; i < n; i++) {
+            int32_t x = in[i];
+            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+            out[i] = (int32_t)(((uint32_t)x + bias) / q - k);
+        }
+    }
+    return bad ? BW_ERR_RANGE : BW_OK;
 }
 
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
@@ -906,26 +922,9 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
-    /* load with the range check (|x| <= MAX as one unsigned compare) and the
-     * prequantiser: floor((x + e) / q) as an unsigned division of
-     * x + e + K q, which is >= 0 for every valid x (q = 1: x itself) */
-    uint32_t bad = 0, q = pl->prequant;
-    if (!BW_SMALL && q == 1u) {
-        for (size_t i = 0; i < pl->n; i++) {
-            int32_t x = samples[i];
-            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-            work[i] = x;
-        }
-    } else {
-        uint32_t k = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k * q;
-        for (size_t i = 0; i < pl->n; i++) {
-            int32_t x = samples[i];
-            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-            work[i] = (int32_t)(((uint32_t)x + bias) / q - k);
-        }
-    }
-    if (bad)
-        return BW_ERR_RANGE;
+    bw_status_t st = load_samples(work, samples, pl->n, pl->prequant);
+    if (st != BW_OK)
+        return st;
     transform_fwd(pl, work);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
@@ -1304,11 +1303,9 @@ bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
     stream_plan(s, &pl);
     unsigned lv = has_out(d) ? L : 0u;
     int32_t *v = pend_slot(s, lv, s->pend_n[lv]);
-    for (uint32_t k = 0; k < b; k++) {
-        if (spectrum[k] > BW_SAMPLE_MAX || spectrum[k] < -BW_SAMPLE_MAX)
-            return s->err = BW_ERR_RANGE;
-        v[k] = prequantise(spectrum[k], s->prequant);
-    }
+    bw_status_t st = load_samples(v, spectrum, b, s->prequant);
+    if (st != BW_OK)
+        return s->err = st;
     if (s->spec_levels)
         bw_spec_fwd(v, b, s->basis, s->spec_levels, s->tmp);
     s->pushed++;

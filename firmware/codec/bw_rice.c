@@ -104,32 +104,19 @@ static inline int32_t unzigzag(uint32_t u) { return (int32_t)((u >> 1) ^ (0u - (
  * mean sum / n the best Rice parameter is near log2(mean ln 2), one below
  * LOCO-I's rule n 2^k >= sum in most strips. The answer is at most the bit
  * length of the mean, and at least two below it. */
-static inline unsigned rice_k32(uint32_t sum, uint32_t n, unsigned kmax)
-{
-    /* sum < 2^31: n 2^k stays below 2^32 while the loop runs */
-    unsigned k = bw_bitlen(sum / n);
-    k = k > 2u ? k - 2u : 0u;
-    if (k > kmax)
-        return kmax;
-    uint32_t m = n << k;
-    while (k < kmax && (uint64_t)m * 7u < (uint64_t)sum * 4u) {
-        k++;
-        m <<= 1;
-    }
-    return k;
-}
-
 static unsigned rice_k(uint64_t sum, uint32_t n, unsigned kmax)
 {
-    if (sum < 0x80000000u)
-        return rice_k32((uint32_t)sum, n, kmax);
     uint32_t mean = sum >> 32 ? 0xFFFFFFFFu : (uint32_t)sum / n;
     unsigned k = bw_bitlen(mean);
     k = k > 2u ? k - 2u : 0u;
     if (k > kmax)
         return kmax;
-    while (k < kmax && ((uint64_t)n << k) * 7u / 4u < sum)
+    /* 1.75 m < sum as 7 m < 4 sum; sum < 2^38, m < 2^39: no overflow */
+    uint64_t m = (uint64_t)n << k;
+    while (k < kmax && m * 7u < sum * 4u) {
         k++;
+        m <<= 1;
+    }
     return k;
 }
 
@@ -156,10 +143,9 @@ static void put_mode(bw_rice_enc_t *e, unsigned mode)
     e->mode = mode;
 }
 
-/* Sparse code of a strip: parameters and size. */
+/* Parameters of the sparse code of a strip. */
 typedef struct {
     unsigned km, kg;
-    uint32_t bits;
 } sparse_t;
 
 /* The parameters from the strip's counts: n non-zero values (>= 1) whose
@@ -169,7 +155,6 @@ static sparse_t sparse_params(uint64_t msum, unsigned n, unsigned nz)
     sparse_t sp;
     sp.km = rice_k(msum, n, KM_MAX);
     sp.kg = rice_k(nz, n + 1u, KG_MAX);
-    sp.bits = 0;
     return sp;
 }
 
@@ -231,6 +216,7 @@ static int sparse_by_bounds(uint32_t sum, uint32_t any, unsigned cnt, unsigned n
 /* The writer in locals, so that the loops below keep it in registers. */
 #define W_LOAD(w) uint32_t buf = (w)->buf; unsigned left = (w)->left
 #define W_STORE(w) ((w)->buf = buf, (w)->left = left)
+#define W_RELOAD(w) (buf = (w)->buf, left = (w)->left)
 /* appends code (len bits, 1 <= len <= 31) */
 #define W_PUT(w, code, len)                                         \
     do {                                                            \
@@ -281,8 +267,7 @@ static void code_sparse(bw_bitw_t *w, const int32_t *v, unsigned cnt, const spar
             put_rice(w, gap, kg);
             put_rice(w, a, km);
             put(w, x < 0, 1u);
-            buf = w->buf;
-            left = w->left;
+            W_RELOAD(w);
         } else {
             /* gap code, then magnitude code and sign: each at most 15 + 1 + 7 bits */
             W_PUT(w, (gap & gmask) | gbit, qg + 1u + kg);
@@ -310,8 +295,7 @@ static void code_dense(bw_bitw_t *w, const int32_t *v, unsigned cnt, unsigned k)
         if (q >= QMAX) {
             W_STORE(w);
             put_rice(w, u, k);
-            buf = w->buf;
-            left = w->left;
+            W_RELOAD(w);
             continue;
         }
         W_PUT(w, (u & mask) | bitk, q + 1u + k);

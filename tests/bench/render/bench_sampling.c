@@ -39,9 +39,11 @@ static double phong(void *ctx, const double wi[3], const double wo[3])
     return bwh_brdf_phong(ctx, wi, wo);
 }
 
-/* samples per CPU second over at least `min_seconds`; linear: 0 tree, 1
- * scan, 2 the analytic lobe of p */
-static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, int linear,
+enum method { TREE, SCAN, LOBE };
+
+/* samples per CPU second over at least `min_seconds`: the hierarchy s by
+ * its tree or its linear scan, or the analytic lobe of p */
+static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum method how,
                    double min_seconds, double *check)
 {
     long n = 0, batch = 1000;
@@ -52,13 +54,13 @@ static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, int linea
             double wi[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
             double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
             int rc;
-            if (linear == 2) {
+            if (how == LOBE) {
                 bwh_phong_sample(p, wi, u, wo);
                 pdf = bwh_phong_pdf(p, wi, wo);
                 rc = pdf > 0.0 ? 0 : -1;
             } else {
-                rc = linear ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
-                            : bwh_sampler_sample(s, wi, u, wo, &pdf);
+                rc = how == SCAN ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
+                                 : bwh_sampler_sample(s, wi, u, wo, &pdf);
             }
             if (rc == 0)
                 acc += wo[2] / pdf;
@@ -83,9 +85,9 @@ int main(int argc, char **argv)
         return 1;
     }
     double c1, c2, c3;
-    double tree = rate(&s, &p, 0, 1.0, &c1);
-    double scan = rate(&s, &p, 1, 1.0, &c2);
-    double lobe = rate(&s, &p, 2, 1.0, &c3);
+    double tree = rate(&s, &p, TREE, 1.0, &c1);
+    double scan = rate(&s, &p, SCAN, 1.0, &c2);
+    double lobe = rate(&s, &p, LOBE, 1.0, &c3);
     printf("level: %u\nleaves: %zu\ntree_samples_per_second: %.0f\n"
            "linear_samples_per_second: %.0f\nratio: %.2f\nanalytic_samples_per_second: %.0f\n",
            level, s.n_leaves, tree, scan, tree / scan, lobe);
