@@ -28,14 +28,14 @@
 #include "bw_rice.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 2u
+#define BW_VERSION 3u
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
 #define STEP_REFINE 512u     /* then bisection on the step to 1/512 of it   */
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 
-static const uint8_t magic[4] = {'B', 'W', 'A', 'V'};
+static const uint8_t magic[2] = {'B', 'W'};
 
 /* ---- sizes and dims ------------------------------------------------------ */
 
@@ -796,28 +796,48 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
 
 /* ---- header -------------------------------------------------------------- */
 
-static void header_write(uint8_t *h, const plan_t *pl, const bw_params_t *pa, uint32_t mode,
-                         uint32_t body_len)
+
+/* Reads a LEB128 value of at most 32 bits at q, before end, in its shortest
+ * form only (every encoding is then unique); returns the next byte, or NULL. */
+static const uint8_t *get_varint(const uint8_t *q, const uint8_t *end, uint32_t *v)
 {
-    memset(h, 0, BW_HEADER_SIZE);
-    memcpy(h, magic, 4);
-    h[4] = BW_VERSION;
-    h[5] = pl->dims.shape;
-    h[6] = pl->dims.level_out;
-    h[7] = pl->dims.level_in;
-    bw_put_u32(h + 8, pl->dims.n_in);
-    bw_put_u32(h + 12, pl->dims.bands);
-    h[16] = (uint8_t)pl->basis;
-    h[17] = (uint8_t)pl->spec_levels;
-    h[18] = (uint8_t)mode;
-    h[19] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
-    bw_put_u32(h + 20, pl->prequant);
-    bw_put_u32(h + 24, pl->step_q8);
-    bw_put_u32(h + 28, mode == BW_MODE_MAX_ERROR ? pa->max_error : 0u);
-    bw_put_u32(h + 32, pa->scale_bits);
-    bw_put_u32(h + 36, pa->offset_bits);
-    bw_put_u32(h + 40, body_len);
-    bw_put_u32(h + 44, 0); /* reserved */
+    uint32_t x = 0;
+    for (unsigned sh = 0; q < end && sh < 35u; sh += 7u) {
+        uint32_t b = *q++;
+        if (sh == 28u && b > 0x0Fu)
+            return NULL; /* beyond 32 bits */
+        x |= (b & 0x7Fu) << sh;
+        if (!(b & 0x80u)) {
+            *v = x;
+            return sh && !b ? NULL : q; /* NULL: not the shortest form */
+        }
+    }
+    return NULL;
+}
+
+/* Writes the header at out (NULL: only counts); returns its length. */
+static size_t header_write(uint8_t *out, const plan_t *pl, const bw_params_t *pa, uint32_t mode)
+{
+    uint8_t tmp[BW_HEADER_MAX], *h = out ? out : tmp;
+    uint32_t v[3] = {pl->dims.n_in, pl->dims.bands,
+                     mode == BW_MODE_MAX_ERROR ? pa->max_error : pl->step_q8 - STEP_ONE_Q8};
+    h[0] = magic[0];
+    h[1] = magic[1];
+    h[2] = BW_VERSION;
+    h[3] = (uint8_t)(pl->dims.shape | mode << 2 | pl->basis << 4);
+    h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
+    h[5] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
+    h[6] = (uint8_t)pl->spec_levels;
+    bw_put_u32(h + 7, pa->scale_bits);
+    bw_put_u32(h + 11, pa->offset_bits);
+    size_t n = BW_HEADER_FIXED;
+    for (unsigned k = 0; k < (mode != BW_MODE_LOSSLESS ? 3u : 2u); k++)
+        for (uint32_t x = v[k];; x >>= 7) {
+            h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
+            if (x <= 0x7Fu)
+                break;
+        }
+    return n;
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -825,65 +845,57 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
     if (!p || !h)
         return BW_ERR_ARG;
     memset(h, 0, sizeof *h);
-    if (len < 4u)
-        return BW_ERR_TRUNCATED;
-    if (memcmp(p, magic, 4) != 0)
-        return BW_ERR_MAGIC;
-    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE)
-        return BW_ERR_TRUNCATED;
-    h->version = p[4];
-    if (h->version != BW_VERSION)
-        return BW_ERR_VERSION;
-    h->body_len = bw_get_u32(p + 40);
-    if (h->body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
-        return BW_ERR_TRUNCATED;
-    h->payload_len = BW_HEADER_SIZE + h->body_len + BW_TRAILER_SIZE;
-    if (h->payload_len != len)
-        return BW_ERR_TRAILING;
-    h->crc = bw_get_u32(p + BW_HEADER_SIZE + h->body_len);
-    if (bw_crc32(p, BW_HEADER_SIZE + h->body_len) != h->crc)
+    bw_status_t st = bw_header_parse_fields(p, len, h);
+    if (st == BW_ERR_MAGIC || st == BW_ERR_VERSION || len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
+        return st;
+    h->crc = bw_get_u32(p + len - BW_TRAILER_SIZE);
+    if (bw_crc32(p, len - BW_TRAILER_SIZE) != h->crc)
         return BW_ERR_CRC;
-    bw_status_t st = bw_header_parse_fields(p, h);
-    return st;
+    return st == BW_ERR_TRUNCATED ? BW_ERR_HEADER : st; /* the CRC holds: a bad header */
 }
 
-bw_status_t bw_header_parse_fields(const uint8_t *p, bw_header_t *h)
+bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
 {
+    if (len >= 2u && (p[0] != magic[0] || p[1] != magic[1]))
+        return BW_ERR_MAGIC;
+    if (len >= 3u && p[2] != BW_VERSION)
+        return BW_ERR_VERSION;
+    if (len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    const uint8_t *q = p + BW_HEADER_FIXED, *end = p + len - BW_TRAILER_SIZE;
     bw_dims_t *d = &h->dims;
-    d->shape = p[5];
-    d->level_out = p[6];
-    d->level_in = p[7];
-    d->n_in = bw_get_u32(p + 8);
-    d->bands = bw_get_u32(p + 12);
+    h->version = p[2];
+    d->shape = p[3] & 3u;
+    h->mode = (uint8_t)(p[3] >> 2 & 3u);
+    h->basis = (uint8_t)(p[3] >> 4 & 3u);
+    d->level_out = p[4] & 15u;
+    d->level_in = p[4] >> 4;
+    h->flags = p[5];
+    h->spectral_levels = p[6];
+    uint32_t v[3] = {0u, 0u, 0u};
+    for (unsigned k = 0; k < (h->mode != BW_MODE_LOSSLESS ? 3u : 2u); k++)
+        if (!(q = get_varint(q, end, &v[k])))
+            return BW_ERR_HEADER;
+    d->n_in = v[0];
+    d->bands = v[1];
+    uint32_t e = v[2];
+    bool me = h->mode == BW_MODE_MAX_ERROR;
+    h->max_error = me ? e : 0u;
+    h->prequant = me ? 2u * e + 1u : 1u;
+    h->step_q8 = STEP_ONE_Q8 + (me ? 0u : e);
+    h->scale_bits = bw_get_u32(p + 7);
+    h->offset_bits = bw_get_u32(p + 11);
+    h->header_len = (uint32_t)(q - p);
+    h->body_len = (uint32_t)(end - q);
+    h->payload_len = (uint32_t)len;
     d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
                : d->level_out <= BW_MAX_LEVEL ? tri_count(d->level_out)
                                               : 0u;
-    h->basis = p[16];
-    h->spectral_levels = p[17];
-    h->mode = p[18];
-    h->flags = p[19];
-    h->prequant = bw_get_u32(p + 20);
-    h->step_q8 = bw_get_u32(p + 24);
-    h->max_error = bw_get_u32(p + 28);
-    h->scale_bits = bw_get_u32(p + 32);
-    h->offset_bits = bw_get_u32(p + 36);
-    h->body_len = bw_get_u32(p + 40);
-    if (bw_dims_check(d) != BW_OK)
-        return BW_ERR_HEADER;
-    if (h->basis >= BW_BASIS_COUNT || h->spectral_levels != bw_spec_levels(d->bands) ||
-        h->mode > BW_MODE_STEP || (h->flags & ~BW_FLAGS_KNOWN) != 0u)
-        return BW_ERR_HEADER;
-    if ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL)
-        return BW_ERR_HEADER;
-    if (h->prequant < 1u || h->prequant > 2u * (uint32_t)BW_SAMPLE_MAX + 1u ||
-        h->step_q8 < STEP_ONE_Q8)
-        return BW_ERR_HEADER;
-    if (h->mode == BW_MODE_MAX_ERROR
-            ? (h->max_error < 1u || h->max_error > BW_SAMPLE_MAX ||
-               h->prequant != 2u * h->max_error + 1u)
-            : (h->max_error != 0u || h->prequant != 1u))
-        return BW_ERR_HEADER;
-    if (bw_get_u32(p + 44) != 0u)
+    if (bw_dims_check(d) != BW_OK || h->basis >= BW_BASIS_COUNT ||
+        h->spectral_levels != bw_spec_levels(d->bands) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
+        (p[3] & 0xC0u) != 0u ||
+        ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL) ||
+        (me ? e - 1u >= (uint32_t)BW_SAMPLE_MAX : e > UINT32_MAX - STEP_ONE_Q8))
         return BW_ERR_HEADER;
     return BW_OK;
 }
@@ -932,23 +944,22 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
 
     strip_enc_t se;
     bool counting = out == NULL;
-    size_t body_cap = 0;
+    size_t body_cap = 0, hl = header_write(NULL, pl, pa, mode);
     if (!counting) {
-        if (cap < BW_HEADER_SIZE + BW_TRAILER_SIZE)
+        if (cap < hl + BW_TRAILER_SIZE)
             return BW_ERR_OUTPUT_FULL;
-        body_cap = cap - BW_HEADER_SIZE - BW_TRAILER_SIZE;
+        body_cap = cap - hl - BW_TRAILER_SIZE;
     }
-    strip_enc_init(&se, counting ? NULL : out + BW_HEADER_SIZE, body_cap,
-                   (pa->flags & BW_FLAG_RICE) != 0u);
+    strip_enc_init(&se, counting ? NULL : out + hl, body_cap, (pa->flags & BW_FLAG_RICE) != 0u);
     code_body(pl, work, &se);
     size_t body = strip_enc_finish(&se);
-    *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+    *len = hl + body + BW_TRAILER_SIZE;
     if (counting)
         return BW_OK;
-    if (strip_enc_overflow(&se) || body > UINT32_MAX)
+    if (strip_enc_overflow(&se) || *len > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
-    header_write(out, pl, pa, mode, (uint32_t)body);
-    bw_put_u32(out + BW_HEADER_SIZE + body, bw_crc32(out, BW_HEADER_SIZE + body));
+    header_write(out, pl, pa, mode);
+    bw_put_u32(out + hl + body, bw_crc32(out, hl + body));
     return BW_OK;
 }
 
@@ -1011,46 +1022,47 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         return encode_pass(pl, pa, pa->mode, samples, work, out, cap, len);
 
     size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
-    /* the exact coding first: if it fits, nothing is lost */
+    /* the exact coding first: if it fits, nothing is lost, and the payload
+     * is the lossless one */
     pl->step_q8 = STEP_ONE_Q8;
+    st = encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, NULL, 0, &sz);
+    if (st != BW_OK)
+        return st;
+    if (sz <= budget)
+        return encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, out, budget, len);
+    unsigned lo = 0, hi = STEP_T_MAX;
+    pl->step_q8 = step_of(hi);
     st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
     if (st != BW_OK)
         return st;
-    if (sz > budget) {
-        unsigned lo = 0, hi = STEP_T_MAX;
-        pl->step_q8 = step_of(hi);
+    if (sz > budget)
+        return BW_ERR_BUDGET;
+    while (hi - lo > 1u) {
+        unsigned mid = (lo + hi) / 2u;
+        pl->step_q8 = step_of(mid);
         st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
         if (st != BW_OK)
             return st;
-        if (sz > budget)
-            return BW_ERR_BUDGET;
-        while (hi - lo > 1u) {
-            unsigned mid = (lo + hi) / 2u;
-            pl->step_q8 = step_of(mid);
-            st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
-            if (st != BW_OK)
-                return st;
-            if (sz <= budget)
-                hi = mid;
-            else
-                lo = mid;
-        }
-        /* then on the step itself, down to 1/512 of it: at 32 steps per
-         * octave the payload still jumps by about 2 % from step to step */
-        uint32_t lo_s = step_of(lo), hi_s = step_of(hi);
-        while (hi_s - lo_s > 1u && (uint64_t)(hi_s - lo_s) * STEP_REFINE > hi_s) {
-            uint32_t mid = lo_s + (hi_s - lo_s) / 2u;
-            pl->step_q8 = mid;
-            st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
-            if (st != BW_OK)
-                return st;
-            if (sz <= budget)
-                hi_s = mid;
-            else
-                lo_s = mid;
-        }
-        pl->step_q8 = hi_s;
+        if (sz <= budget)
+            hi = mid;
+        else
+            lo = mid;
     }
+    /* then on the step itself, down to 1/512 of it: at 32 steps per
+     * octave the payload still jumps by about 2 % from step to step */
+    uint32_t lo_s = step_of(lo), hi_s = step_of(hi);
+    while (hi_s - lo_s > 1u && (uint64_t)(hi_s - lo_s) * STEP_REFINE > hi_s) {
+        uint32_t mid = lo_s + (hi_s - lo_s) / 2u;
+        pl->step_q8 = mid;
+        st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+        if (st != BW_OK)
+            return st;
+        if (sz <= budget)
+            hi_s = mid;
+        else
+            lo_s = mid;
+    }
+    pl->step_q8 = hi_s;
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
 }
 
@@ -1141,12 +1153,12 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
 
     bw_status_t st;
     if (h->flags & BW_FLAG_RICE) {
-        st = decode_body_rice(&pl, work, p + BW_HEADER_SIZE, h->body_len);
+        st = decode_body_rice(&pl, work, p + h->header_len, h->body_len);
     } else {
         models_t m;
         models_init(&m);
         bw_rc_dec_t rc;
-        bw_rc_dec_init(&rc, p + BW_HEADER_SIZE, h->body_len);
+        bw_rc_dec_init(&rc, p + h->header_len, h->body_len);
         st = decode_body(&pl, work, &rc, &m);
     }
     if (st != BW_OK)
@@ -1181,16 +1193,9 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
     bw_header_t h;
     if (!payload || !samples || !work)
         return BW_ERR_ARG;
-    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE)
-        return BW_ERR_TRUNCATED;
-    if (memcmp(payload, magic, 4) != 0)
-        return BW_ERR_MAGIC;
-    memset(&h, 0, sizeof h);
-    bw_status_t st = bw_header_parse_fields(payload, &h);
+    bw_status_t st = bw_header_parse_fields(payload, len, &h); /* every field but crc */
     if (st != BW_OK)
         return st;
-    if (h.body_len > len - BW_HEADER_SIZE - BW_TRAILER_SIZE)
-        return BW_ERR_TRUNCATED;
     return decode_checked(payload, &h, samples, samples_cap, work, work_cap);
 }
 
@@ -1236,8 +1241,6 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
         return BW_ERR_ARG;
     if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
         return BW_ERR_WORK;
-    if (cap < BW_HEADER_SIZE + BW_TRAILER_SIZE)
-        return BW_ERR_OUTPUT_FULL;
     s->dims = *dims;
     s->params = *pa;
     s->params.flags |= BW_FLAG_STREAM_ORDER;
@@ -1253,10 +1256,12 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     plan_t pl;
     stream_plan(s, &pl);
     plan_tables(&pl);
+    size_t hl = header_write(NULL, &pl, &s->params, s->params.mode);
+    if (cap < hl + BW_TRAILER_SIZE)
+        return BW_ERR_OUTPUT_FULL;
     s->out = out;
     s->cap = cap;
-    strip_enc_init(&s->se, out + BW_HEADER_SIZE, cap - BW_HEADER_SIZE - BW_TRAILER_SIZE,
-                   (pa->flags & BW_FLAG_RICE) != 0u);
+    strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE, (pa->flags & BW_FLAG_RICE) != 0u);
     s->err = BW_OK;
     return BW_OK;
 }
@@ -1352,13 +1357,14 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
     if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
         return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
     size_t body = strip_enc_finish(&s->se);
-    if (strip_enc_overflow(&s->se) || body > UINT32_MAX)
-        return s->err = BW_ERR_OUTPUT_FULL;
     plan_t pl;
     stream_plan(s, &pl);
-    header_write(s->out, &pl, &s->params, s->params.mode, (uint32_t)body);
-    bw_put_u32(s->out + BW_HEADER_SIZE + body, bw_crc32(s->out, BW_HEADER_SIZE + body));
-    *len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+    /* the header's room was kept at init */
+    size_t hl = header_write(s->out, &pl, &s->params, s->params.mode);
+    if (strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
+        return s->err = BW_ERR_OUTPUT_FULL;
+    bw_put_u32(s->out + hl + body, bw_crc32(s->out, hl + body));
+    *len = hl + body + BW_TRAILER_SIZE;
     s->err = BW_ERR_ARG; /* finished: no more pushes */
     return BW_OK;
 }

@@ -116,14 +116,15 @@ typedef struct {
 
 /* ---- sizes -------------------------------------------------------------- */
 
-#define BW_HEADER_SIZE 48u
-#define BW_TRAILER_SIZE 4u /* CRC-32 */
+#define BW_HEADER_FIXED 15u /* magic, version, packed fields, scale, offset */
+#define BW_HEADER_MAX 29u   /* with the longest varints                     */
+#define BW_TRAILER_SIZE 4u  /* CRC-32 */
 
 /* Worst case payload size for n samples. The entropy coder spends at most
  * 9 bytes per sample (see bw_coder.c, "bounded length"), plus the strip
  * presence flags, the coder flush and the header and trailer. */
 #define BW_PAYLOAD_BOUND(n) \
-    ((size_t)BW_HEADER_SIZE + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
+    ((size_t)BW_HEADER_MAX + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
 
 /* Work area for the encoder and decoder, in int32 elements: the coefficient
  * array plus one spectral line of scratch. */
@@ -172,6 +173,7 @@ typedef struct {
     uint32_t scale_bits;
     uint32_t offset_bits;
     uint32_t payload_len; /* total bytes, header to CRC inclusive */
+    uint32_t header_len;
     uint32_t body_len;
     uint32_t crc;
 } bw_header_t;
@@ -179,8 +181,9 @@ typedef struct {
 /* Parses and validates the header and the CRC of payload[len]. */
 bw_status_t bw_header_read(const uint8_t *payload, size_t len, bw_header_t *hdr);
 
-/* Validates the header fields alone (no length or CRC check). */
-bw_status_t bw_header_parse_fields(const uint8_t *payload, bw_header_t *hdr);
+/* Parses and validates the header of payload[len] without the CRC check;
+ * the body is what lies between the header and the last 4 bytes. */
+bw_status_t bw_header_parse_fields(const uint8_t *payload, size_t len, bw_header_t *hdr);
 
 /* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.
  * samples may be the same array as work. */

@@ -54,9 +54,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* the sample count the header declares, if its fields are valid */
     size_t n = 0;
     int st_fields = BW_ERR_TRUNCATED;
-    if (size >= BW_HEADER_SIZE) {
+    if (size >= BW_HEADER_FIXED + BW_TRAILER_SIZE) {
         memset(&hf, 0, sizeof hf);
-        st_fields = bw_header_parse_fields(data, &hf);
+        st_fields = bw_header_parse_fields(data, size, &hf);
         require(known(st_fields), "bw_header_parse_fields: unknown status", st_fields);
         if (st_fields == BW_OK)
             n = bw_dims_samples(&hf.dims);

@@ -247,8 +247,8 @@ static size_t check_lossless(const bw_dims_t *d, unsigned basis, const int32_t *
         fail_msg("%s: bw_encode: %s", what, bw_strerror(st));
     if (hash_i32(x, n) != before)
         fail_msg("%s: bw_encode modified its input", what);
-    if (len < BW_HEADER_SIZE + BW_TRAILER_SIZE || len > cap)
-        fail_msg("%s: payload length %zu outside [52, %zu]", what, len, cap);
+    if (len < BW_HEADER_FIXED + 2u + BW_TRAILER_SIZE || len > cap)
+        fail_msg("%s: payload length %zu outside [13, %zu]", what, len, cap);
 
     int32_t *y = alias ? work : xmalloc(n * sizeof *y);
     bw_header_t h;
@@ -1435,7 +1435,8 @@ static void check_budgets(const bw_dims_t *d, const int32_t *x, unsigned basis, 
         if (st != BW_OK)
             fail_msg("%s: budget %zu: bw_decode: %s", what, budget, bw_strerror(st));
         check_header_dims(&h, d, what);
-        assert_int_equal(h.mode, BW_MODE_BYTES);
+        /* the exact coding, when it fits, is the lossless payload */
+        assert_int_equal(h.mode, budget >= lossless ? BW_MODE_LOSSLESS : BW_MODE_BYTES);
         assert_int_equal(h.basis, basis);
         assert_int_equal(h.prequant, 1);
         if (budget >= lossless) {
@@ -1507,7 +1508,7 @@ static void byte_budget_too_small_is_refused(void **state)
     size_t n = bw_dims_samples(&d);
     int32_t *x = xmalloc(n * sizeof *x);
     fill_full(x, n, 5100);
-    for (size_t budget = 0; budget <= BW_HEADER_SIZE + BW_TRAILER_SIZE; budget++) {
+    for (size_t budget = 0; budget <= BW_HEADER_FIXED + 2u + BW_TRAILER_SIZE; budget++) {
         bw_params_t p = params_of(BW_MODE_BYTES, (unsigned)budget % 3u);
         p.byte_budget = (uint32_t)budget;
         uint8_t *out;
@@ -1520,7 +1521,7 @@ static void byte_budget_too_small_is_refused(void **state)
     p.byte_budget = 1u << 30;
     size_t wb = bw_work_bound(n, d.bands), len;
     int32_t *work = xmalloc(wb * sizeof *work);
-    uint8_t small[40];
+    uint8_t small[BW_HEADER_FIXED + 2u + BW_TRAILER_SIZE];
     assert_int_equal(bw_encode(&d, &p, x, work, NULL, small, sizeof small, &len), BW_ERR_BUDGET);
     free(work);
     free(x);
@@ -1623,11 +1624,82 @@ static uint32_t get_le32(const uint8_t *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-/* Rewrites the CRC of a payload whose header states its body length. */
-static void fix_crc(uint8_t *p)
+/* Rewrites the CRC (the last 4 bytes) of a payload of len bytes. */
+static void fix_crc(uint8_t *p, size_t len)
 {
-    uint32_t body = get_le32(p + 40);
-    put_le32(p + BW_HEADER_SIZE + body, bw_crc32(p, BW_HEADER_SIZE + body));
+    put_le32(p + len - BW_TRAILER_SIZE, bw_crc32(p, len - BW_TRAILER_SIZE));
+}
+
+/* The header as its fields on the wire (docs/FORMAT.md), written here
+ * independently of the codec so that tests can build headers the encoder
+ * never writes. */
+typedef struct {
+    uint8_t b3, b4, flags, levels; /* bytes 3..6 */
+    uint32_t n_in, bands;
+    uint32_t scale, offset;
+    bool has_param;                /* max_error (mode 1) or step_q8 - 256 (modes 2, 3) */
+    uint32_t param;
+    unsigned pad;                  /* n_in written with this many extra varint bytes */
+} wire_hdr_t;
+
+static wire_hdr_t wire_of(const uint8_t *payload, size_t len)
+{
+    bw_header_t h;
+    assert_int_equal(bw_header_read(payload, len, &h), BW_OK);
+    wire_hdr_t w = {payload[3], payload[4], payload[5], payload[6], h.dims.n_in, h.dims.bands,
+                    h.scale_bits, h.offset_bits, h.mode != BW_MODE_LOSSLESS,
+                    h.mode == BW_MODE_MAX_ERROR ? h.max_error : h.step_q8 - 256u, 0};
+    return w;
+}
+
+static size_t wire_varint(uint8_t *p, uint32_t v, unsigned pad)
+{
+    size_t n = 0;
+    for (;;) {
+        uint8_t b = v & 0x7Fu;
+        v >>= 7;
+        if (v || pad) {
+            p[n++] = b | 0x80u;
+            if (!v)
+                pad--;
+        } else {
+            p[n++] = b;
+            return n;
+        }
+    }
+}
+
+/* header + body + CRC into out (room for body_len + 64); returns the length */
+static size_t wire_payload(uint8_t *out, const wire_hdr_t *w, const uint8_t *body,
+                           size_t body_len)
+{
+    out[0] = 'B';
+    out[1] = 'W';
+    out[2] = 3;
+    out[3] = w->b3;
+    out[4] = w->b4;
+    out[5] = w->flags;
+    out[6] = w->levels;
+    put_le32(out + 7, w->scale);
+    put_le32(out + 11, w->offset);
+    size_t n = 15;
+    n += wire_varint(out + n, w->n_in, w->pad);
+    n += wire_varint(out + n, w->bands, 0);
+    if (w->has_param)
+        n += wire_varint(out + n, w->param, 0);
+    memcpy(out + n, body, body_len);
+    n += body_len;
+    n += BW_TRAILER_SIZE;
+    fix_crc(out, n);
+    return n;
+}
+
+static void body_of(const payload_t *pl, const uint8_t **body, size_t *len)
+{
+    bw_header_t h;
+    assert_int_equal(bw_header_read(pl->buf, pl->len, &h), BW_OK);
+    *body = pl->buf + h.header_len;
+    *len = h.body_len;
 }
 
 static void every_truncation_of_a_valid_payload_is_rejected(void **state)
@@ -1640,29 +1712,39 @@ static void every_truncation_of_a_valid_payload_is_rejected(void **state)
         size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
         int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
         assert_int_equal(bw_decode(pl.buf, pl.len, y, n, work, wb, NULL), BW_OK);
+        bw_header_t h0;
+        assert_int_equal(bw_header_read(pl.buf, pl.len, &h0), BW_OK);
         for (size_t len = 0; len < pl.len; len++) {
-            /* a fresh copy of exactly len bytes, so ASan sees any over-read */
+            /* a fresh copy of exactly len bytes, so ASan sees any over-read;
+             * the payload ends where its container ends, so a cut shows as
+             * too short for a header or as a CRC that no longer matches */
             uint8_t *cut = xmalloc(len);
             memcpy(cut, pl.buf, len);
             bw_status_t st = bw_decode(cut, len, y, n, work, wb, NULL);
-            if (st != BW_ERR_TRUNCATED)
+            bw_status_t want = len < BW_HEADER_FIXED + BW_TRAILER_SIZE ? BW_ERR_TRUNCATED
+                                                                       : BW_ERR_CRC;
+            if (st != want)
                 fail_msg("%s cut to %zu of %zu bytes: bw_decode returns %d (%s)",
                          robust_cases[c].name, len, pl.len, st, bw_strerror(st));
+            /* without the CRC: a cut inside the header leaves it short (a
+             * number whose bytes run out reads as a bad header), one inside
+             * the body leaves the body parser short of input */
             st = bw_decode_unchecked(cut, len, y, n, work, wb);
-            if (st != BW_ERR_TRUNCATED)
+            if (len < BW_HEADER_FIXED + BW_TRAILER_SIZE ? st != BW_ERR_TRUNCATED
+                : len < h0.header_len + BW_TRAILER_SIZE ? st != BW_ERR_TRUNCATED && st != BW_ERR_HEADER
+                                                        : !known_status(st))
                 fail_msg("%s cut to %zu of %zu bytes: bw_decode_unchecked returns %d (%s)",
                          robust_cases[c].name, len, pl.len, st, bw_strerror(st));
             free(cut);
             tried++;
         }
-        /* a body cut short whose header and CRC agree with the cut: the
-         * range decoder runs out of input */
-        for (size_t body = get_le32(pl.buf + 40); body-- > 0;) {
-            size_t len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
+        /* a body cut short under a valid CRC: the body decoder runs out of
+         * input */
+        for (size_t body = h0.body_len; body-- > 0;) {
+            size_t len = h0.header_len + body + BW_TRAILER_SIZE;
             uint8_t *cut = xmalloc(len);
-            memcpy(cut, pl.buf, BW_HEADER_SIZE + body);
-            put_le32(cut + 40, (uint32_t)body);
-            fix_crc(cut);
+            memcpy(cut, pl.buf, h0.header_len + body);
+            fix_crc(cut, len);
             bw_status_t st = bw_decode(cut, len, y, n, work, wb, NULL);
             if (st != BW_ERR_CORRUPT)
                 fail_msg("%s: body cut to %zu bytes with a consistent header: bw_decode returns "
@@ -1726,34 +1808,33 @@ static void unchecked_decoding_of_garbage_bodies_returns_a_status(void **state)
         make_payload(&robust_cases[c], 6200u + c, &pl);
         size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
         int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
-        size_t body0 = get_le32(pl.buf + 40);
+        const uint8_t *b0;
+        size_t body0;
+        body_of(&pl, &b0, &body0);
+        wire_hdr_t w0 = wire_of(pl.buf, pl.len);
+        unsigned mode = (w0.b3 >> 2) & 3u;
+        uint8_t *body = xmalloc(2u * body0 + 16u);
         for (int it = 0; it < 3000; it++) {
-            size_t body = rng_below(&r, (uint32_t)(2u * body0 + 16u));
-            size_t len = BW_HEADER_SIZE + body + BW_TRAILER_SIZE;
-            uint8_t *g = xmalloc(len);
-            memcpy(g, pl.buf, BW_HEADER_SIZE);
+            size_t blen = rng_below(&r, (uint32_t)(2u * body0 + 16u));
             unsigned style = (unsigned)it % 4u;
-            for (size_t i = 0; i < body; i++)
-                g[BW_HEADER_SIZE + i] = style == 0   ? (uint8_t)rng_u32(&r)
-                                        : style == 1 ? (uint8_t)(rng_below(&r, 8) ? 0x00 : rng_u32(&r))
-                                        : style == 2 ? (uint8_t)(rng_below(&r, 8) ? 0xFF : rng_u32(&r))
-                                                     : (pl.buf[BW_HEADER_SIZE + i % body0] ^
-                                                        (uint8_t)(rng_below(&r, 16) ? 0 : rng_u32(&r)));
-            put_le32(g + 40, (uint32_t)body);
+            for (size_t i = 0; i < blen; i++)
+                body[i] = style == 0   ? (uint8_t)rng_u32(&r)
+                          : style == 1 ? (uint8_t)(rng_below(&r, 8) ? 0x00 : rng_u32(&r))
+                          : style == 2 ? (uint8_t)(rng_below(&r, 8) ? 0xFF : rng_u32(&r))
+                                       : (b0[i % body0] ^ (uint8_t)(rng_below(&r, 16) ? 0 : rng_u32(&r)));
+            wire_hdr_t w = w0;
             if (it % 2 == 1) /* half of the bodies go to the other entropy decoder */
-                g[19] ^= BW_FLAG_RICE;
+                w.flags ^= BW_FLAG_RICE;
             /* other valid header values: basis, and large steps or bounds */
             if (it % 3 == 1) {
-                g[16] = (uint8_t)rng_below(&r, BW_BASIS_COUNT);
-                if (g[18] == BW_MODE_MAX_ERROR) {
-                    uint32_t e = 1u + rng_below(&r, (uint32_t)BW_SAMPLE_MAX);
-                    put_le32(g + 28, e);
-                    put_le32(g + 20, 2u * e + 1u);
-                } else if (g[18] != BW_MODE_LOSSLESS) {
-                    put_le32(g + 24, 256u + rng_u32(&r) % (UINT32_MAX - 256u));
-                }
+                w.b3 = (uint8_t)((w.b3 & ~0x30u) | rng_below(&r, BW_BASIS_COUNT) << 4);
+                if (mode == BW_MODE_MAX_ERROR)
+                    w.param = 1u + rng_below(&r, (uint32_t)BW_SAMPLE_MAX);
+                else if (mode != BW_MODE_LOSSLESS)
+                    w.param = rng_u32(&r) % (UINT32_MAX - 256u);
             }
-            fix_crc(g);
+            uint8_t *g = xmalloc(blen + 64u);
+            size_t len = wire_payload(g, &w, body, blen);
             bw_status_t st = bw_decode_unchecked(g, len, y, n, work, wb);
             if (!known_status(st))
                 fail_msg("%s, garbage body %d: bw_decode_unchecked returns %d",
@@ -1769,16 +1850,17 @@ static void unchecked_decoding_of_garbage_bodies_returns_a_status(void **state)
             runs++;
             free(g);
         }
+        free(body);
         /* random bytes after a valid magic, including the header */
         for (int it = 0; it < 3000; it++) {
             size_t len = rng_below(&r, 400);
             uint8_t *g = xmalloc(len);
             for (size_t i = 0; i < len; i++)
                 g[i] = (uint8_t)rng_u32(&r);
-            if (len >= 4)
-                memcpy(g, "BWAV", 4);
-            if (len > 4)
-                g[4] = 2;
+            if (len >= 2)
+                memcpy(g, "BW", 2);
+            if (len > 2)
+                g[2] = 3;
             bw_status_t st = bw_decode_unchecked(g, len, y, n, work, wb);
             if (!known_status(st))
                 fail_msg("random payload %d: bw_decode_unchecked returns %d", it, st);
@@ -1809,21 +1891,26 @@ static void undersized_decoder_buffers_are_refused(void **state)
     assert_int_equal(bw_decode(pl.buf, pl.len, y, n, work, wb, NULL), BW_OK);
     /* a header declaring far more samples than the buffers hold */
     bw_dims_t big = dims_of(BW_SHAPE_SPECTRA, 0, 0, 1u << 24, 16);
-    uint8_t *p = xmalloc(pl.len);
-    memcpy(p, pl.buf, pl.len);
-    p[5] = big.shape;
-    p[6] = p[7] = 0;
-    put_le32(p + 8, big.n_in);
-    put_le32(p + 12, big.bands);
-    p[17] = (uint8_t)bw_spec_levels(big.bands);
-    fix_crc(p);
-    assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_WORK);
+    wire_hdr_t w = wire_of(pl.buf, pl.len);
+    w.b3 = (uint8_t)((w.b3 & ~3u) | big.shape);
+    w.b4 = 0;
+    w.n_in = big.n_in;
+    w.bands = big.bands;
+    w.levels = (uint8_t)bw_spec_levels(big.bands);
+    const uint8_t *body;
+    size_t blen;
+    body_of(&pl, &body, &blen);
+    uint8_t *p = xmalloc(blen + 64u);
+    size_t plen = wire_payload(p, &w, body, blen);
+    assert_int_equal(bw_decode(p, plen, y, n, work, wb, NULL), BW_ERR_WORK);
     free(p);
     free(y);
     free(work);
     free_payload(&pl);
 }
 
+/* The payload ends where its container (file, frame) ends: bytes after it
+ * move the CRC and are refused. */
 static void trailing_bytes_are_refused(void **state)
 {
     (void)state;
@@ -1834,12 +1921,13 @@ static void trailing_bytes_are_refused(void **state)
     uint8_t *p = xmalloc(pl.len + 100);
     memcpy(p, pl.buf, pl.len);
     memset(p + pl.len, 0, 100);
-    assert_int_equal(bw_decode(p, pl.len + 1, y, n, work, wb, NULL), BW_ERR_TRAILING);
-    assert_int_equal(bw_decode(p, pl.len + 100, y, n, work, wb, NULL), BW_ERR_TRAILING);
+    assert_int_equal(bw_decode(p, pl.len + 1, y, n, work, wb, NULL), BW_ERR_CRC);
+    assert_int_equal(bw_decode(p, pl.len + 100, y, n, work, wb, NULL), BW_ERR_CRC);
     bw_header_t h;
-    assert_int_equal(bw_header_read(p, pl.len + 4, &h), BW_ERR_TRAILING);
-    /* the unchecked decoder ignores what follows the body */
-    assert_int_equal(bw_decode_unchecked(p, pl.len + 100, y, n, work, wb), BW_OK);
+    assert_int_equal(bw_header_read(p, pl.len + 4, &h), BW_ERR_CRC);
+    /* the unchecked decoder reads the old CRC and zeros as body: a status,
+     * no memory error */
+    assert_true(known_status(bw_decode_unchecked(p, pl.len + 100, y, n, work, wb)));
     free(p);
     free(y);
     free(work);
@@ -1854,129 +1942,147 @@ static void a_bad_magic_or_version_is_refused(void **state)
     size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
     int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
     uint8_t *p = xmalloc(pl.len);
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 2; i++) {
         memcpy(p, pl.buf, pl.len);
         p[i] = (uint8_t)(p[i] ^ 0x20);
-        fix_crc(p);
+        fix_crc(p, pl.len);
         assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_MAGIC);
         assert_int_equal(bw_decode_unchecked(p, pl.len, y, n, work, wb), BW_ERR_MAGIC);
     }
-    memcpy(p, pl.buf, pl.len);
-    p[4] = 3;
-    fix_crc(p);
-    assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_VERSION);
+    static const uint8_t versions[] = {0, 1, 2, 4, 255};
+    for (size_t i = 0; i < sizeof versions; i++) {
+        memcpy(p, pl.buf, pl.len);
+        p[2] = versions[i];
+        fix_crc(p, pl.len);
+        assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_VERSION);
+        assert_int_equal(bw_decode_unchecked(p, pl.len, y, n, work, wb), BW_ERR_VERSION);
+    }
     free(p);
     free(y);
     free(work);
     free_payload(&pl);
 }
 
+/* One header field at a time set to a value no encoder writes, with the CRC
+ * recomputed: every reader refuses it as a bad header. */
+typedef struct {
+    const char *field;
+    void (*set)(wire_hdr_t *w);
+} header_mod_t;
+
+static void m_level_out_7(wire_hdr_t *w) { w->b4 = (uint8_t)((w->b4 & 0xF0u) | 7u); }
+static void m_level_in_1(wire_hdr_t *w) { w->b4 = (uint8_t)((w->b4 & 0x0Fu) | 0x10u); }
+static void m_n_in_2(wire_hdr_t *w) { w->n_in = 2; }
+static void m_n_in_0(wire_hdr_t *w) { w->n_in = 0; }
+static void m_bands_0(wire_hdr_t *w) { w->bands = 0; }
+static void m_bands_65536(wire_hdr_t *w) { w->bands = 65536; }
+static void m_basis_3(wire_hdr_t *w) { w->b3 |= 0x30u; }
+static void m_levels_plus_1(wire_hdr_t *w) { w->levels++; }
+static void m_unknown_flag(wire_hdr_t *w) { w->flags |= (uint8_t)(BW_FLAGS_KNOWN + 1u); }
+static void m_flag_0x80(wire_hdr_t *w) { w->flags |= 0x80u; }
+static void m_reserved_b3_6(wire_hdr_t *w) { w->b3 |= 0x40u; }
+static void m_reserved_b3_7(wire_hdr_t *w) { w->b3 |= 0x80u; }
+static void m_n_in_overlong(wire_hdr_t *w) { w->pad = 1; }
+static void m_n_in_6_bytes(wire_hdr_t *w) { w->pad = 5; }
+static void m_n_in_33_bits(wire_hdr_t *w) { w->pad = 4; } /* 5th byte carries 0x80 */
+
 static void out_of_range_header_fields_are_refused_after_recomputing_the_crc(void **state)
 {
     (void)state;
-    static const struct {
-        const char *field;
-        unsigned off, size;
-        uint32_t value;
-    } mods[] = {
-        {"shape 4", 5, 1, 4},
-        {"level_out 7", 6, 1, 7},
-        {"level_in 1 (reflectance)", 7, 1, 1},
-        {"n_in 2 (reflectance)", 8, 4, 2},
-        {"bands 0", 12, 4, 0},
-        {"bands 65536", 12, 4, 65536},
-        {"basis 3", 16, 1, 3},
-        {"basis 255", 16, 1, 255},
-        {"spectral levels +1", 17, 1, 0x100},
-        {"mode 4", 18, 1, 4},
-        {"an unknown flag", 19, 1, (uint8_t)(~BW_FLAGS_KNOWN & (BW_FLAGS_KNOWN + 1u))},
-        {"flags 0x80", 19, 1, 0x80},
-        {"prequant 0", 20, 4, 0},
-        {"prequant 3 (lossless)", 20, 4, 3},
-        {"step 255", 24, 4, 255},
-        {"max_error 1 (lossless)", 28, 4, 1},
-        {"reserved 1", 44, 4, 1},
-        {"reserved 0x80000000", 44, 4, 0x80000000u},
+    static const header_mod_t mods[] = {
+        {"level_out 7", m_level_out_7},
+        {"level_in 1 (reflectance)", m_level_in_1},
+        {"n_in 2 (reflectance)", m_n_in_2},
+        {"n_in 0", m_n_in_0},
+        {"bands 0", m_bands_0},
+        {"bands 65536", m_bands_65536},
+        {"basis 3", m_basis_3},
+        {"spectral levels +1", m_levels_plus_1},
+        {"an unknown flag", m_unknown_flag},
+        {"flags 0x80", m_flag_0x80},
+        {"reserved bit 6 of byte 3", m_reserved_b3_6},
+        {"reserved bit 7 of byte 3", m_reserved_b3_7},
+        {"n_in in a longer varint than needed", m_n_in_overlong},
+        {"n_in in a 6-byte varint", m_n_in_6_bytes},
+        {"n_in with bits beyond 32", m_n_in_33_bits},
     };
     payload_t pl;
     /* reflectance level 1 x 5 bands, lossless */
     make_payload(&robust_cases[0], 6600, &pl);
     size_t n = bw_dims_samples(&pl.dims), wb = bw_work_bound(n, pl.dims.bands);
     int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
-    uint8_t *p = xmalloc(pl.len);
+    const uint8_t *body;
+    size_t blen;
+    body_of(&pl, &body, &blen);
+    uint8_t *p = xmalloc(blen + 64u);
+    /* the writer here and the codec's agree byte for byte */
+    wire_hdr_t w0 = wire_of(pl.buf, pl.len);
+    assert_int_equal(wire_payload(p, &w0, body, blen), pl.len);
+    assert_memory_equal(p, pl.buf, pl.len);
     for (size_t m = 0; m < ARRAY_LEN(mods); m++) {
-        memcpy(p, pl.buf, pl.len);
-        if (mods[m].value == 0x100)
-            p[mods[m].off]++;
-        else if (mods[m].size == 1)
-            p[mods[m].off] = (uint8_t)mods[m].value;
-        else
-            put_le32(p + mods[m].off, mods[m].value);
-        fix_crc(p);
+        wire_hdr_t w = w0;
+        mods[m].set(&w);
+        size_t len = wire_payload(p, &w, body, blen);
+        if (w.pad == 4u) { /* a fifth byte with a bit above 2^32 */
+            p[15 + 4] |= 0x10u;
+            fix_crc(p, len);
+        }
         bw_header_t h;
-        bw_status_t st = bw_header_read(p, pl.len, &h);
+        bw_status_t st = bw_header_read(p, len, &h);
         if (st != BW_ERR_HEADER)
             fail_msg("%s: bw_header_read returns %d (%s)", mods[m].field, st, bw_strerror(st));
-        st = bw_decode(p, pl.len, y, n, work, wb, NULL);
+        st = bw_decode(p, len, y, n, work, wb, NULL);
         if (st != BW_ERR_HEADER)
             fail_msg("%s: bw_decode returns %d (%s)", mods[m].field, st, bw_strerror(st));
-        st = bw_decode_unchecked(p, pl.len, y, n, work, wb);
+        st = bw_decode_unchecked(p, len, y, n, work, wb);
         if (st != BW_ERR_HEADER)
             fail_msg("%s: bw_decode_unchecked returns %d (%s)", mods[m].field, st,
                      bw_strerror(st));
     }
-    /* max-error headers: prequant must be 2E+1 */
-    payload_t me;
-    make_payload(&robust_cases[1], 6601, &me);
-    size_t n2 = bw_dims_samples(&me.dims), wb2 = bw_work_bound(n2, me.dims.bands);
-    int32_t *y2 = xmalloc(n2 * sizeof *y2), *work2 = xmalloc(wb2 * sizeof *work2);
-    uint8_t *q = xmalloc(me.len);
-    memcpy(q, me.buf, me.len);
-    put_le32(q + 20, get_le32(q + 20) + 2u);
-    fix_crc(q);
-    assert_int_equal(bw_decode(q, me.len, y2, n2, work2, wb2, NULL), BW_ERR_HEADER);
-    free(q);
-    free(y2);
-    free(work2);
-    free_payload(&me);
     free(p);
     free(y);
     free(work);
     free_payload(&pl);
 }
 
-/* In max-error mode the header must hold prequant = 2E + 1 as numbers, not
- * modulo 2^32: E = 2^31 with prequant 1 (or E = 2^31 + 1 with prequant 3)
- * is a bound no encoder can write and must be refused, as must E = 0 and
- * E > BW_SAMPLE_MAX. */
+/* In max-error mode the header holds E, 1 <= E <= BW_SAMPLE_MAX, and the
+ * prequantiser is 2E + 1: E = 0 and E beyond the sample range (up to the
+ * largest 32-bit value, where 2E + 1 wraps) are refused. */
 static void a_max_error_header_whose_bound_wraps_is_refused(void **state)
 {
     (void)state;
-    static const uint32_t bad[][2] = {
-        {0x80000000u, 1u},
-        {0x80000001u, 3u},
-        {0xFFFFFFFFu, 0xFFFFFFFFu},
-        {0u, 1u},
-        {(uint32_t)BW_SAMPLE_MAX + 1u, 2u * ((uint32_t)BW_SAMPLE_MAX + 1u) + 1u},
-    };
+    static const uint32_t bad[] = {0u, (uint32_t)BW_SAMPLE_MAX + 1u, 0x80000000u, 0x80000001u,
+                                   0xFFFFFFFFu};
     payload_t me;
     make_payload(&robust_cases[1], 6700, &me); /* max-error 2 */
     size_t n = bw_dims_samples(&me.dims), wb = bw_work_bound(n, me.dims.bands);
     int32_t *y = xmalloc(n * sizeof *y), *work = xmalloc(wb * sizeof *work);
-    uint8_t *q = xmalloc(me.len);
+    const uint8_t *body;
+    size_t blen;
+    body_of(&me, &body, &blen);
+    uint8_t *q = xmalloc(blen + 64u);
+    wire_hdr_t w0 = wire_of(me.buf, me.len);
+    assert_int_equal((w0.b3 >> 2) & 3u, BW_MODE_MAX_ERROR);
+    assert_int_equal(w0.param, 2);
     for (size_t i = 0; i < ARRAY_LEN(bad); i++) {
-        memcpy(q, me.buf, me.len);
-        put_le32(q + 28, bad[i][0]);
-        put_le32(q + 20, bad[i][1]);
-        fix_crc(q);
+        wire_hdr_t w = w0;
+        w.param = bad[i];
+        size_t len = wire_payload(q, &w, body, blen);
         bw_header_t h;
-        bw_status_t st = bw_header_read(q, me.len, &h);
+        bw_status_t st = bw_header_read(q, len, &h);
         if (st != BW_ERR_HEADER)
-            fail_msg("max_error %u with prequant %u: bw_header_read returns %d (%s), max_error "
-                     "%u",
-                     bad[i][0], bad[i][1], st, bw_strerror(st), h.max_error);
-        assert_int_equal(bw_decode(q, me.len, y, n, work, wb, NULL), BW_ERR_HEADER);
+            fail_msg("max_error %u: bw_header_read returns %d (%s), max_error %u", bad[i], st,
+                     bw_strerror(st), h.max_error);
+        assert_int_equal(bw_decode(q, len, y, n, work, wb, NULL), BW_ERR_HEADER);
     }
+    /* and the largest valid bound reads back with prequant 2E + 1 */
+    wire_hdr_t w = w0;
+    w.param = BW_SAMPLE_MAX;
+    size_t len = wire_payload(q, &w, body, blen);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(q, len, &h), BW_OK);
+    assert_int_equal(h.max_error, BW_SAMPLE_MAX);
+    assert_int_equal(h.prequant, 2u * BW_SAMPLE_MAX + 1u);
     free(q);
     free(y);
     free(work);
@@ -2040,7 +2146,7 @@ static void encoder_refuses_bad_input(void **state)
 
     /* output buffer */
     assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, good - 1, &len), BW_ERR_OUTPUT_FULL);
-    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, BW_HEADER_SIZE, &len),
+    assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, BW_HEADER_FIXED + BW_TRAILER_SIZE, &len),
                      BW_ERR_OUTPUT_FULL);
     assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, 0, &len), BW_ERR_OUTPUT_FULL);
     assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, good, &len), BW_OK);

@@ -23,8 +23,8 @@ class Header(ctypes.Structure):
                 ("flags", ctypes.c_uint8), ("prequant", ctypes.c_uint32),
                 ("step_q8", ctypes.c_uint32), ("max_error", ctypes.c_uint32),
                 ("scale_bits", ctypes.c_uint32), ("offset_bits", ctypes.c_uint32),
-                ("payload_len", ctypes.c_uint32), ("body_len", ctypes.c_uint32),
-                ("crc", ctypes.c_uint32)]
+                ("payload_len", ctypes.c_uint32), ("header_len", ctypes.c_uint32),
+                ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32)]
 
 
 class EncodeOpts(ctypes.Structure):
@@ -114,7 +114,7 @@ def _header_dict(h):
             "mode": _MODES[h.mode], "flags": h.flags, "prequant": h.prequant,
             "step_q8": h.step_q8, "max_error": h.max_error, "scale": _float_of(h.scale_bits),
             "offset": _float_of(h.offset_bits), "payload_len": h.payload_len,
-            "body_len": h.body_len, "crc": h.crc}
+            "header_len": h.header_len, "body_len": h.body_len, "crc": h.crc}
 
 
 def header_of(payload):

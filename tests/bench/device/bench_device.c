@@ -352,11 +352,10 @@ static void run_mode(set_t *s, const bench_mode_t *m)
         return;
     }
     uint32_t crc_e = bw_crc32(s->out, len);
-    unsigned basis = s->out[16];
-    unsigned levels = s->out[17];
 
     bw_header_t h;
     uint64_t t_dec = timed_decode(s, len, &h, &st_d, &stk_d);
+    unsigned basis = h.basis, levels = h.spectral_levels;
     max_stack(&stack_dec_max, stk_d);
     uint64_t sse = 0;
     uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;

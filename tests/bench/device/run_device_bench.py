@@ -625,7 +625,7 @@ def main():
       "every basis and keeps the best, so *basis fixed* gives the same encode with the "
       "chosen basis named up front (same payload). Modes: lossless; max-error E; bytes: "
       "budget = 2 x samples / R bytes (ratio R against the 16-bit raw samples), payload "
-      "including its 48-byte header and CRC. ÷ memcpy: instructions per sample divided by "
+      "including its header and CRC. ÷ memcpy: instructions per sample divided by "
       "the memcpy floor of the same data set in the same run.")
     A("")
 
