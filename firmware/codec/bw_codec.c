@@ -796,6 +796,9 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
 
 /* ---- header -------------------------------------------------------------- */
 
+#define SCALE_ONE_BITS 0x3F800000u /* 1.0f: the default scale, not stored */
+#define H_SCALE 0x40u              /* byte 3: a scale field follows          */
+#define H_OFFSET 0x80u             /* byte 3: an offset field follows        */
 
 /* Reads a LEB128 value of at most 32 bits at q, before end, in its shortest
  * form only (every encoding is then unique); returns the next byte, or NULL. */
@@ -815,28 +818,41 @@ static const uint8_t *get_varint(const uint8_t *q, const uint8_t *end, uint32_t 
     return NULL;
 }
 
+/* The header's numbers: n_in, bands, the mode's parameter (E, or the step
+ * above 1), then the scale and offset bits, stored when they differ from
+ * 1.0f and 0. */
+enum { HV_N_IN, HV_BANDS, HV_PARAM, HV_SCALE, HV_OFFSET, HV_COUNT };
+
 /* Writes the header at out (NULL: only counts); returns its length. */
 static size_t header_write(uint8_t *out, const plan_t *pl, const bw_params_t *pa, uint32_t mode)
 {
     uint8_t tmp[BW_HEADER_MAX], *h = out ? out : tmp;
-    uint32_t v[3] = {pl->dims.n_in, pl->dims.bands,
-                     mode == BW_MODE_MAX_ERROR ? pa->max_error : pl->step_q8 - STEP_ONE_Q8};
+    uint32_t v[HV_COUNT] = {pl->dims.n_in, pl->dims.bands,
+                            mode == BW_MODE_MAX_ERROR ? pa->max_error : pl->step_q8 - STEP_ONE_Q8,
+                            pa->scale_bits, pa->offset_bits};
+    uint32_t b3 = pl->dims.shape | mode << 2 | pl->basis << 4;
+    size_t n = BW_HEADER_FIXED;
+    for (unsigned k = 0; k < HV_COUNT; k++) {
+        if (k < HV_SCALE) {
+            if (k != HV_PARAM || mode != BW_MODE_LOSSLESS)
+                for (uint32_t x = v[k];; x >>= 7) {
+                    h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
+                    if (x <= 0x7Fu)
+                        break;
+                }
+        } else if (v[k] != (k == HV_SCALE ? SCALE_ONE_BITS : 0u)) {
+            b3 |= H_SCALE << (k - HV_SCALE);
+            bw_put_u32(h + n, v[k]);
+            n += 4u;
+        }
+    }
     h[0] = magic[0];
     h[1] = magic[1];
     h[2] = BW_VERSION;
-    h[3] = (uint8_t)(pl->dims.shape | mode << 2 | pl->basis << 4);
+    h[3] = (uint8_t)b3;
     h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
     h[5] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
     h[6] = (uint8_t)pl->spec_levels;
-    bw_put_u32(h + 7, pa->scale_bits);
-    bw_put_u32(h + 11, pa->offset_bits);
-    size_t n = BW_HEADER_FIXED;
-    for (unsigned k = 0; k < (mode != BW_MODE_LOSSLESS ? 3u : 2u); k++)
-        for (uint32_t x = v[k];; x >>= 7) {
-            h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
-            if (x <= 0x7Fu)
-                break;
-        }
     return n;
 }
 
@@ -872,19 +888,29 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     d->level_in = p[4] >> 4;
     h->flags = p[5];
     h->spectral_levels = p[6];
-    uint32_t v[3] = {0u, 0u, 0u};
-    for (unsigned k = 0; k < (h->mode != BW_MODE_LOSSLESS ? 3u : 2u); k++)
-        if (!(q = get_varint(q, end, &v[k])))
+    uint32_t v[HV_COUNT] = {0u, 0u, 0u, SCALE_ONE_BITS, 0u};
+    for (unsigned k = 0; k < HV_COUNT; k++) {
+        if (k < HV_SCALE) {
+            if (k != HV_PARAM || h->mode != BW_MODE_LOSSLESS)
+                q = get_varint(q, end, &v[k]);
+        } else if (p[3] & (H_SCALE << (k - HV_SCALE))) {
+            /* stored only when it is not the default */
+            uint32_t w = end - q >= 4 ? bw_get_u32(q) : v[k];
+            q = w == v[k] ? NULL : q + 4;
+            v[k] = w;
+        }
+        if (!q)
             return BW_ERR_HEADER;
-    d->n_in = v[0];
-    d->bands = v[1];
-    uint32_t e = v[2];
+    }
+    d->n_in = v[HV_N_IN];
+    d->bands = v[HV_BANDS];
+    uint32_t e = v[HV_PARAM];
     bool me = h->mode == BW_MODE_MAX_ERROR;
     h->max_error = me ? e : 0u;
     h->prequant = me ? 2u * e + 1u : 1u;
     h->step_q8 = STEP_ONE_Q8 + (me ? 0u : e);
-    h->scale_bits = bw_get_u32(p + 7);
-    h->offset_bits = bw_get_u32(p + 11);
+    h->scale_bits = v[HV_SCALE];
+    h->offset_bits = v[HV_OFFSET];
     h->header_len = (uint32_t)(q - p);
     h->body_len = (uint32_t)(end - q);
     h->payload_len = (uint32_t)len;
@@ -893,7 +919,6 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
                                               : 0u;
     if (bw_dims_check(d) != BW_OK || h->basis >= BW_BASIS_COUNT ||
         h->spectral_levels != bw_spec_levels(d->bands) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
-        (p[3] & 0xC0u) != 0u ||
         ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL) ||
         (me ? e - 1u >= (uint32_t)BW_SAMPLE_MAX : e > UINT32_MAX - STEP_ONE_Q8))
         return BW_ERR_HEADER;

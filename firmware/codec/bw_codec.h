@@ -116,8 +116,8 @@ typedef struct {
 
 /* ---- sizes -------------------------------------------------------------- */
 
-#define BW_HEADER_FIXED 15u /* magic, version, packed fields, scale, offset */
-#define BW_HEADER_MAX 29u   /* with the longest varints                     */
+#define BW_HEADER_FIXED 7u /* magic, version, packed fields          */
+#define BW_HEADER_MAX 27u  /* with the longest varints, scale, offset */
 #define BW_TRAILER_SIZE 4u  /* CRC-32 */
 
 /* Worst case payload size for n samples. The entropy coder spends at most

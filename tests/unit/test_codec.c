@@ -1636,7 +1636,7 @@ static void fix_crc(uint8_t *p, size_t len)
 typedef struct {
     uint8_t b3, b4, flags, levels; /* bytes 3..6 */
     uint32_t n_in, bands;
-    uint32_t scale, offset;
+    uint32_t scale, offset;        /* written when b3 bits 6, 7 are set */
     bool has_param;                /* max_error (mode 1) or step_q8 - 256 (modes 2, 3) */
     uint32_t param;
     unsigned pad;                  /* n_in written with this many extra varint bytes */
@@ -1680,13 +1680,19 @@ static size_t wire_payload(uint8_t *out, const wire_hdr_t *w, const uint8_t *bod
     out[4] = w->b4;
     out[5] = w->flags;
     out[6] = w->levels;
-    put_le32(out + 7, w->scale);
-    put_le32(out + 11, w->offset);
-    size_t n = 15;
+    size_t n = 7;
     n += wire_varint(out + n, w->n_in, w->pad);
     n += wire_varint(out + n, w->bands, 0);
     if (w->has_param)
         n += wire_varint(out + n, w->param, 0);
+    if (w->b3 & 0x40u) {
+        put_le32(out + n, w->scale);
+        n += 4;
+    }
+    if (w->b3 & 0x80u) {
+        put_le32(out + n, w->offset);
+        n += 4;
+    }
     memcpy(out + n, body, body_len);
     n += body_len;
     n += BW_TRAILER_SIZE;
@@ -1980,8 +1986,8 @@ static void m_basis_3(wire_hdr_t *w) { w->b3 |= 0x30u; }
 static void m_levels_plus_1(wire_hdr_t *w) { w->levels++; }
 static void m_unknown_flag(wire_hdr_t *w) { w->flags |= (uint8_t)(BW_FLAGS_KNOWN + 1u); }
 static void m_flag_0x80(wire_hdr_t *w) { w->flags |= 0x80u; }
-static void m_reserved_b3_6(wire_hdr_t *w) { w->b3 |= 0x40u; }
-static void m_reserved_b3_7(wire_hdr_t *w) { w->b3 |= 0x80u; }
+static void m_scale_default(wire_hdr_t *w) { w->b3 |= 0x40u, w->scale = 0x3F800000u; }
+static void m_offset_zero(wire_hdr_t *w) { w->b3 |= 0x80u, w->offset = 0; }
 static void m_n_in_overlong(wire_hdr_t *w) { w->pad = 1; }
 static void m_n_in_6_bytes(wire_hdr_t *w) { w->pad = 5; }
 static void m_n_in_33_bits(wire_hdr_t *w) { w->pad = 4; } /* 5th byte carries 0x80 */
@@ -2000,8 +2006,8 @@ static void out_of_range_header_fields_are_refused_after_recomputing_the_crc(voi
         {"spectral levels +1", m_levels_plus_1},
         {"an unknown flag", m_unknown_flag},
         {"flags 0x80", m_flag_0x80},
-        {"reserved bit 6 of byte 3", m_reserved_b3_6},
-        {"reserved bit 7 of byte 3", m_reserved_b3_7},
+        {"the default scale 1.0 stored", m_scale_default},
+        {"the default offset 0 stored", m_offset_zero},
         {"n_in in a longer varint than needed", m_n_in_overlong},
         {"n_in in a 6-byte varint", m_n_in_6_bytes},
         {"n_in with bits beyond 32", m_n_in_33_bits},
@@ -2024,7 +2030,7 @@ static void out_of_range_header_fields_are_refused_after_recomputing_the_crc(voi
         mods[m].set(&w);
         size_t len = wire_payload(p, &w, body, blen);
         if (w.pad == 4u) { /* a fifth byte with a bit above 2^32 */
-            p[15 + 4] |= 0x10u;
+            p[7 + 4] |= 0x10u;
             fix_crc(p, len);
         }
         bw_header_t h;
