@@ -32,7 +32,7 @@
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
-#define STEP_REFINE 512u     /* then bisection on the step to 1/512 of it   */
+#define STEP_REFINE 16384u   /* then bisection on the step to 1/16384 of it */
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 
 static const uint8_t magic[2] = {'B', 'W'};
@@ -1073,8 +1073,9 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         else
             lo = mid;
     }
-    /* then on the step itself, down to 1/512 of it: at 32 steps per
-     * octave the payload still jumps by about 2 % from step to step */
+    /* then on the step itself, down to 1/16384 of it: at 32 steps per
+     * octave the payload still jumps by about 2 % from step to step, and
+     * small payloads (a few hundred bytes) move by a few bytes at a time */
     uint32_t lo_s = step_of(lo), hi_s = step_of(hi);
     while (hi_s - lo_s > 1u && (uint64_t)(hi_s - lo_s) * STEP_REFINE > hi_s) {
         uint32_t mid = lo_s + (hi_s - lo_s) / 2u;
