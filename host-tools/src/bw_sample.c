@@ -53,6 +53,7 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
     t->cos_c = ab;
     memcpy(t->e, tc, sizeof t->e);
     t->area = bwh_solid_angle(a, b, c);
+    t->inv_area = 1.0 / t->area;
     t->proj = bwh_projected_solid_angle(a, b, c);
 }
 
@@ -93,9 +94,16 @@ void bwh_sample_cosine(double u1, double u2, double out[3])
 void bwh_sampler_free(bwh_sampler_t *s)
 {
     free(s->theta);
+    free(s->trig);
+    free(s->inv_total);
     free(s->node);
     free(s->leaf);
     memset(s, 0, sizeof *s);
+}
+
+static double tree_total(const double *node)
+{
+    return node[0] + node[1] + node[2] + node[3];
 }
 
 /* sub-triangle centres and projected solid angles of every leaf */
@@ -164,10 +172,13 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
     g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
-    if (kind == BWH_SAMPLER_ISO)
+    s->inv_total = malloc(n_tables * sizeof *s->inv_total);
+    if (kind == BWH_SAMPLER_ISO) {
         s->theta = malloc(n_tables * sizeof *s->theta);
-    if (!tri || !in_dir || !v || !s->leaf || !s->node || !g.dir || !g.proj ||
-        (kind == BWH_SAMPLER_ISO && !s->theta)) {
+        s->trig = malloc(2 * n_tables * sizeof *s->trig);
+    }
+    if (!tri || !in_dir || !v || !s->leaf || !s->node || !g.dir || !g.proj || !s->inv_total ||
+        (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
         free(in_dir);
         free(v);
@@ -186,6 +197,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     if (kind == BWH_SAMPLER_ISO) {
         for (size_t i = 0; i < n_tables; i++) {
             s->theta[i] = theta[i];
+            s->trig[2 * i] = cos(theta[i]);
+            s->trig[2 * i + 1] = sin(theta[i]);
             in_dir[i][0] = sin(theta[i]);
             in_dir[i][1] = 0.0;
             in_dir[i][2] = cos(theta[i]);
@@ -228,6 +241,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
                     p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
             }
         }
+        s->inv_total[i] = 1.0 / tree_total(node);
     }
     free(in_dir);
     free(v);
@@ -259,32 +273,40 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
         sel->w[0] = 1.0;
         return sel->n = 1;
     }
-    double r = hypot(wi[0], wi[1]);
+    double r2 = wi[0] * wi[0] + wi[1] * wi[1], r = sqrt(r2);
     if (r > 1e-300) {
-        sel->c = wi[0] / r;
-        sel->s = wi[1] / r;
+        double inv = 1.0 / r;
+        sel->c = wi[0] * inv;
+        sel->s = wi[1] * inv;
     }
-    double th = atan2(r, wi[2]);
+    double inv_len = 1.0 / sqrt(r2 + wi[2] * wi[2]), z = wi[2] * inv_len;
+    r *= inv_len;
+    /* the tables around theta_i, by their cosines (no arc tangent) */
     size_t n = s->n_tables;
-    if (n == 1 || th <= s->theta[0]) {
+    const double *tr = s->trig;
+    if (n == 1 || z >= tr[0]) {
         sel->t[0] = 0;
         sel->w[0] = 1.0;
         return sel->n = 1;
     }
-    if (th >= s->theta[n - 1]) {
+    if (z <= tr[2 * (n - 1)]) {
         sel->t[0] = n - 1;
         sel->w[0] = 1.0;
         return sel->n = 1;
     }
-    size_t lo = 0, hi = n - 1; /* theta[lo] < th < theta[hi] */
+    size_t lo = 0, hi = n - 1; /* theta[lo] < theta_i < theta[hi] */
     while (hi - lo > 1) {
         size_t mid = (lo + hi) / 2;
-        if (s->theta[mid] <= th)
+        if (tr[2 * mid] >= z)
             lo = mid;
         else
             hi = mid;
     }
+    /* theta_i - theta[lo] = asin(d) with d = sin(theta_i - theta[lo]) */
+    double d = r * tr[2 * lo] - z * tr[2 * lo + 1];
+    double th = s->theta[lo] + asin(d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d);
     double t = (th - s->theta[lo]) / (s->theta[hi] - s->theta[lo]);
+    t = t > 1.0 ? 1.0 : t;
     sel->t[0] = lo;
     sel->w[0] = 1.0 - t;
     sel->t[1] = hi;
@@ -311,11 +333,6 @@ static void to_world(const select_t *sel, const double w[3], double out[3])
     out[2] = w[2];
 }
 
-static double tree_total(const double *node)
-{
-    return node[0] + node[1] + node[2] + node[3];
-}
-
 /* tree pdf of leaf k (local frame) */
 static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
 {
@@ -323,9 +340,9 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
     double p = 0.0;
     for (int i = 0; i < sel->n; i++) {
         const double *node = s->node + sel->t[i] * s->n_nodes;
-        p += sel->w[i] * node[off + k] / tree_total(node);
+        p += sel->w[i] * node[off + k] * s->inv_total[sel->t[i]];
     }
-    return p / s->leaf[k].area;
+    return p * s->leaf[k].inv_area;
 }
 
 /* Picks one of 4 children in proportion to v with *t in [0, sum of v):
@@ -333,7 +350,7 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
  * that child, so that it picks again below without a division. Rounding can
  * leave *t at or past the sum: then the last child with a positive value,
  * and *t moves inside it. */
-static unsigned pick4(const double *v, double *t)
+static inline unsigned pick4(const double *v, double *t)
 {
     double x = *t;
     for (unsigned m = 0; m < 4; m++) {

@@ -58,6 +58,7 @@ typedef struct {
     double cos_c;                       /* a . b */
     double e[3];                        /* unit, in the plane of a and c, normal to a */
     double area;                        /* solid angle */
+    double inv_area;                    /* 1 / area */
     double proj;                        /* integral of cos(theta) over it */
 } bwh_leaf_t;
 
@@ -69,6 +70,8 @@ typedef struct {
     size_t n_leaves;     /* 4 * 4^level */
     size_t n_nodes;      /* nodes per table, all levels */
     double *theta;       /* ISO: ascending zenith angles of the tables (radians) */
+    double *trig;        /* ISO: [n_tables][2] cos, sin of theta */
+    double *inv_total;   /* [n_tables] 1 / (integral over the hemisphere) */
     double *node;        /* [n_tables][n_nodes]; level l starts at 4 (4^l - 1) / 3 */
     bwh_leaf_t *leaf;    /* [n_leaves] */
     double mix;          /* weight of the cosine lobe, 0 .. 1 */
