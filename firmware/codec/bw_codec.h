@@ -112,7 +112,17 @@ typedef struct {
  *   values, value = exp(offset + scale * sample); a uniform error in the
  *   samples is then a uniform relative error in the values. */
 #define BW_FLAG_LOG_VALUE 0x08u
-#define BW_FLAGS_KNOWN 0x0Fu
+/* MIRROR: before the transform, every sample of the half y < 0 of the
+ *   outgoing hemisphere (base triangles 2 and 3) becomes its difference from
+ *   the sample at the mirror direction (x, -y, z) (for a full BRDF, with the
+ *   incoming direction mirrored too). An isotropic BRDF whose incidence
+ *   plane is the x-z plane, and an anisotropic one whose axes are x and y,
+ *   is symmetric so: that half then codes almost nothing. Not for SPECTRA
+ *   and not offered by the streaming encoder (the partner of a direction
+ *   may arrive after it); the differences must stay within +-BW_SAMPLE_MAX
+ *   (after the max-error prequantiser), else BW_ERR_RANGE. */
+#define BW_FLAG_MIRROR 0x10u
+#define BW_FLAGS_KNOWN 0x1Fu
 
 /* ---- sizes -------------------------------------------------------------- */
 

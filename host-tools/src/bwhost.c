@@ -296,6 +296,50 @@ static int status_fail(int st)
     return fail("%s", bw_strerror(st));
 }
 
+static double sse_of(const int32_t *x, const int32_t *y, size_t n)
+{
+    double e = 0.0;
+    for (size_t i = 0; i < n; i++)
+        e += ((double)y[i] - x[i]) * ((double)y[i] - x[i]);
+    return e;
+}
+
+/* The same encode with BW_FLAG_MIRROR; keeps whichever payload is smaller
+ * (a byte budget: whichever decodes closer, then the smaller). *buf holds
+ * the payload of status st0 and ver its decoded samples. */
+static int try_mirror(const bw_dims_t *dims, const bw_params_t *p0, const int32_t *x, size_t n,
+                      int32_t *work, int32_t *ver, uint8_t **buf, size_t cap, size_t *len,
+                      int st0)
+{
+    bw_params_t p = *p0;
+    p.flags |= BW_FLAG_MIRROR;
+    double e0 = st0 == BW_OK ? sse_of(x, ver, n) : 0.0;
+    uint8_t *alt = malloc(cap);
+    size_t alen = 0;
+    if (!alt)
+        return st0;
+    int st = bw_encode(dims, &p, x, work, ver, alt, cap, &alen);
+    int take = 0;
+    if (st == BW_OK) {
+        if (st0 != BW_OK)
+            take = 1;
+        else if (p.mode == BW_MODE_BYTES) {
+            double e = sse_of(x, ver, n);
+            take = e < e0 || (e == e0 && alen < *len);
+        } else {
+            take = alen < *len;
+        }
+    }
+    if (take) {
+        free(*buf);
+        *buf = alt;
+        *len = alen;
+        return BW_OK;
+    }
+    free(alt);
+    return st0;
+}
+
 int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
                    float scale, float offset, uint8_t **out, size_t *out_len)
 {
@@ -311,7 +355,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.basis = (uint8_t)o->basis;
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
-    p.flags = (uint8_t)o->flags;
+    p.flags = (uint8_t)(o->flags & BW_FLAGS_KNOWN);
     if (o->mode == BW_MODE_MAX_ERROR) {
         if (!(o->max_error >= 1.0) || o->max_error > BW_SAMPLE_MAX)
             return fail("max error must be at least 1 sample unit (and below %d)", BW_SAMPLE_MAX);
@@ -336,6 +380,20 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         return fail("out of memory");
     }
     size_t len = 0;
+    bool auto_mirror = !(o->flags & (BW_FLAG_MIRROR | BWH_NO_MIRROR)) &&
+                       dims->shape != BW_SHAPE_SPECTRA && !(o->flags & BW_FLAG_STREAM_ORDER);
+    if (o->device && auto_mirror) {
+        /* the host makes the choice, so that the device's payload is the
+         * host's: it encodes both ways here, then the device with that flag */
+        int st0 = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
+        if ((st0 == BW_OK || st0 == BW_ERR_BUDGET) &&
+            try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st0) == BW_OK) {
+            bw_header_t hh;
+            if (bw_header_read(buf, len, &hh) == BW_OK && (hh.flags & BW_FLAG_MIRROR))
+                p.flags |= BW_FLAG_MIRROR;
+        }
+        len = 0;
+    }
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */
         bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0};
@@ -368,6 +426,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
             st = BW_ERR_VERIFY;
     } else {
         st = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
+        if (auto_mirror && (st == BW_OK || st == BW_ERR_BUDGET))
+            st = try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st);
     }
     free(work);
     free(ver);

@@ -34,13 +34,20 @@ int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **w
 
 typedef enum { BWH_FMT_F32 = 0, BWH_FMT_U16 = 1, BWH_FMT_I32 = 2 } bwh_format_t;
 
+/* Encoder options' flags beside the header's: without BW_FLAG_MIRROR or
+ * this, a host encode of directional data tries BW_FLAG_MIRROR as well and
+ * keeps it when the payload is smaller (for a byte budget: when the
+ * decoded samples are closer); with this it never mirrors. */
+#define BWH_NO_MIRROR 0x100u
+
 typedef struct {
     bw_mode_t mode;     /* LOSSLESS, MAX_ERROR or BYTES */
     double max_error;   /* MAX_ERROR, in value units */
     size_t byte_budget; /* BYTES */
     unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
     double scale;       /* > 0: force the integer step of float input */
-    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE) */
+    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE, BW_FLAG_MIRROR: always
+                         * mirror), and BWH_NO_MIRROR */
     /* encode on a device instead of the host: NULL or "qemu" (the emulated
      * co-processor); the host then decodes and checks the payload */
     const char *device;

@@ -55,7 +55,7 @@ static const char encode_help[] =
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--basis haar|53|97|auto] [--scale S] [--relative]\n"
-    "                       [--coder range|rice]\n"
+    "                       [--coder range|rice] [--symmetry auto|mirror|none]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
     "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
@@ -85,7 +85,12 @@ static const char encode_help[] =
     "                    so the budget buys relative rather than absolute accuracy\n"
     "  --coder C         entropy coder: range (default, the smallest payload) or rice\n"
     "                    (adaptive Rice strips: a few times fewer instructions per\n"
-    "                    sample on the device, a few percent more bytes)\n";
+    "                    sample on the device, a few percent more bytes)\n"
+    "  --symmetry S      directional data: code the half y < 0 of each hemisphere as\n"
+    "                    differences from its mirror image (x, -y, z), for BRDFs\n"
+    "                    symmetric about the incidence plane x-z: mirror, none, or\n"
+    "                    auto (default: both on the host, the smaller payload, or\n"
+    "                    for a byte budget the smaller error)\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -100,7 +105,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"device", required_argument, 0, 'D'},     {"firmware", required_argument, 0, 'F'},
         {"drop-chunk", required_argument, 0, 'K'}, {"stream", no_argument, 0, 'S'},
         {"relative", no_argument, 0, 'R'},         {"coder", required_argument, 0, 'C'},
-        {0, 0, 0, 0}};
+        {"symmetry", required_argument, 0, 'Y'},   {0, 0, 0, 0}};
     const char *C = "encode";
     const char *in[4096];
     int nin = 0;
@@ -184,6 +189,12 @@ int bw_cmd_encode(int argc, char **argv)
             else return usage_err(C, "--coder must be range or rice");
             break;
         case 'R': o.flags |= BW_FLAG_LOG_VALUE; break;
+        case 'Y':
+            o.flags &= ~(BW_FLAG_MIRROR | BWH_NO_MIRROR);
+            if (!strcmp(optarg, "mirror")) o.flags |= BW_FLAG_MIRROR;
+            else if (!strcmp(optarg, "none")) o.flags |= BWH_NO_MIRROR;
+            else if (strcmp(optarg, "auto")) return usage_err(C, "--symmetry must be auto, mirror or none");
+            break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
             uint32_t k;
@@ -480,6 +491,7 @@ int bw_cmd_info(int argc, char **argv)
     printf("mode: %s\n", bwh_mode_name(h.mode));
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     printf("coder: %s\n", h.flags & BW_FLAG_RICE ? "rice" : "range");
+    printf("symmetry: %s\n", h.flags & BW_FLAG_MIRROR ? "mirror" : "none");
     printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
                                                        : "offset + scale * sample");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);

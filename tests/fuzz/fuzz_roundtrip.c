@@ -101,6 +101,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pa.basis = (uint8_t)basis;
     pa.vec_thresh_q8 = (uint32_t)(data[8] >> 2) * 16u;
     pa.scale_bits = 0x3F800000u;
+    /* the mirror of directional data (bit 7 of the n_in byte) */
+    int mirror = (data[4] & 0x80u) && d.shape != BW_SHAPE_SPECTRA;
+    if (mirror)
+        pa.flags = BW_FLAG_MIRROR;
     if (mode == BW_MODE_MAX_ERROR)
         pa.max_error = p < 0xF000u ? 1u + p % 1000u
                                    : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
@@ -151,6 +155,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     require(st == st2, "encoding with and without verify differ in status", st2);
     if (st == BW_ERR_BUDGET && mode == BW_MODE_BYTES)
         goto done;
+    if (st == BW_ERR_RANGE && mirror) {
+        /* a difference left the range: only possible with samples beyond
+         * half of it */
+        int32_t big = 0;
+        for (size_t i = 0; i < n; i++)
+            big |= x[i] > SMAX / 2 || x[i] < -(SMAX / 2);
+        require(big, "the mirror refuses samples within half the range", st);
+        goto done;
+    }
     require(st == BW_OK, "valid input refused (or its verify failed)", st);
     /* the same bytes with and without the verify buffer, except for AUTO in
      * byte-budget mode, which ranks the bases by decoded error when it can

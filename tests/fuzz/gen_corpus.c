@@ -44,23 +44,26 @@ typedef struct {
     uint32_t n_in, bands;
     uint8_t mode, basis;
     uint32_t param;
+    uint8_t flags; /* BW_FLAG_MIRROR */
 } seed_t;
 
 static const seed_t seeds[] = {
-    {"spectra_1x1_lossless_haar", 0, 0, 0, 1, 1, 0, 0, 0},
-    {"spectra_3x17_maxerr2_97", 0, 0, 0, 3, 17, 1, 2, 2},
-    {"spectra_2x81_bytes_53", 0, 0, 0, 2, 81, 2, 1, 300},
-    {"spectra_4x9_step_haar", 0, 0, 0, 4, 9, 3, 0, 2048},
-    {"refl_l0x5_lossless_53", 1, 0, 0, 1, 5, 0, 1, 0},
-    {"refl_l1x3_maxerr1_haar", 1, 1, 0, 1, 3, 1, 0, 1},
-    {"refl_l2x1_lossless_97", 1, 2, 0, 1, 1, 0, 2, 0},
-    {"refl_l1x12_bytes_97", 1, 1, 0, 1, 12, 2, 2, 400},
-    {"refl_l1x8_auto", 1, 1, 0, 1, 8, 0, 255, 0},
-    {"iso_2xl1x4_step_53", 2, 1, 0, 2, 4, 3, 1, 4096},
-    {"iso_3xl0x7_maxerr16_97", 2, 0, 0, 3, 7, 1, 2, 16},
-    {"full_l0l0x3_lossless_haar", 3, 0, 0, 0, 3, 0, 0, 0},
-    {"full_l1l0x2_bytes_53", 3, 1, 0, 0, 2, 2, 1, 250},
-    {"full_l0l1x2_maxerr4_97", 3, 0, 1, 0, 2, 1, 2, 4},
+    {"spectra_1x1_lossless_haar", 0, 0, 0, 1, 1, 0, 0, 0, 0},
+    {"spectra_3x17_maxerr2_97", 0, 0, 0, 3, 17, 1, 2, 2, 0},
+    {"spectra_2x81_bytes_53", 0, 0, 0, 2, 81, 2, 1, 300, 0},
+    {"spectra_4x9_step_haar", 0, 0, 0, 4, 9, 3, 0, 2048, 0},
+    {"refl_l0x5_lossless_53", 1, 0, 0, 1, 5, 0, 1, 0, 0},
+    {"refl_l1x3_maxerr1_haar", 1, 1, 0, 1, 3, 1, 0, 1, 0},
+    {"refl_l2x1_lossless_97", 1, 2, 0, 1, 1, 0, 2, 0, 0},
+    {"refl_l1x12_bytes_97", 1, 1, 0, 1, 12, 2, 2, 400, 0},
+    {"refl_l1x8_auto", 1, 1, 0, 1, 8, 0, 255, 0, 0},
+    {"iso_2xl1x4_step_53", 2, 1, 0, 2, 4, 3, 1, 4096, 0},
+    {"iso_3xl0x7_maxerr16_97", 2, 0, 0, 3, 7, 1, 2, 16, 0},
+    {"full_l0l0x3_lossless_haar", 3, 0, 0, 0, 3, 0, 0, 0, 0},
+    {"full_l1l0x2_bytes_53", 3, 1, 0, 0, 2, 2, 1, 250, 0},
+    {"full_l0l1x2_maxerr4_97", 3, 0, 1, 0, 2, 1, 2, 4, 0},
+    {"iso_3xl2x5_mirror_lossless_53", 2, 2, 0, 3, 5, 0, 1, 0, BW_FLAG_MIRROR},
+    {"full_l1l1x2_mirror_maxerr2_haar", 3, 1, 1, 0, 2, 1, 0, 2, BW_FLAG_MIRROR},
 };
 
 int main(int argc, char **argv)
@@ -106,6 +109,7 @@ int main(int argc, char **argv)
         p.byte_budget = sd->mode == BW_MODE_BYTES ? sd->param : 0u;
         p.step_q8 = sd->mode == BW_MODE_STEP ? sd->param : 0u;
         p.scale_bits = 0x3727C5ACu;
+        p.flags = sd->flags;
         size_t len;
         st = bw_encode(&d, &p, x, work, NULL, out, cap, &len);
         if (st != BW_OK) {
@@ -128,7 +132,7 @@ int main(int argc, char **argv)
         in[1] = (uint8_t)(sd->level_out | sd->level_in << 2);
         in[2] = (uint8_t)bands_field;
         in[3] = (uint8_t)(bands_field >> 8);
-        in[4] = (uint8_t)(sd->n_in ? sd->n_in - 1u : 0u);
+        in[4] = (uint8_t)((sd->n_in ? sd->n_in - 1u : 0u) | (sd->flags & BW_FLAG_MIRROR ? 0x80u : 0u));
         in[5] = (uint8_t)(sd->mode | (sd->basis == 255 ? 3u : sd->basis) << 2);
         in[6] = (uint8_t)param;
         in[7] = (uint8_t)(param >> 8);

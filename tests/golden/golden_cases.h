@@ -18,7 +18,8 @@ typedef struct {
     uint32_t n_in, bands;
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
-    uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too */
+    uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too;
+                     * BW_FLAG_RICE, BW_FLAG_MIRROR */
 } golden_case_t;
 
 static const golden_case_t golden_cases[] = {
@@ -56,6 +57,12 @@ static const golden_case_t golden_cases[] = {
      BW_BASIS_53, 0, BW_FLAG_STREAM_ORDER | BW_FLAG_RICE},
     {"spectra8x1024_stream_maxerr2_53_rice", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_MAX_ERROR,
      BW_BASIS_53, 2, BW_FLAG_STREAM_ORDER | BW_FLAG_RICE},
+    {"iso4x2x17_maxerr1_53_mirror", BW_SHAPE_BRDF_ISO, 2, 0, 4, 17, BW_MODE_MAX_ERROR, BW_BASIS_53,
+     1, BW_FLAG_MIRROR},
+    {"full1x1x9_bytes600_97_mirror", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97,
+     600, BW_FLAG_MIRROR},
+    {"refl3x81_lossless_53_mirror_rice", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS,
+     BW_BASIS_53, 0, BW_FLAG_MIRROR | BW_FLAG_RICE},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

@@ -23,6 +23,7 @@
 #include <cmocka.h>
 
 #include <dirent.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +37,7 @@
 #include "bw_rc.h"
 #include "bw_spectral.h"
 #include "bwhost.h"
+#include "geodesic.h"
 
 #define ARRAY_LEN(a) (sizeof(a) / sizeof((a)[0]))
 #define SMAX ((int32_t)BW_SAMPLE_MAX)
@@ -2095,6 +2097,202 @@ static void a_max_error_header_whose_bound_wraps_is_refused(void **state)
     free_payload(&me);
 }
 
+/* ---- mirror symmetry (BW_FLAG_MIRROR) ---------------------------------------- */
+
+/* The partner of every direction from the geometry: the triangle holding the
+ * mirror image (x, -y, z) of its centre. */
+static uint32_t *mirror_partners(unsigned level)
+{
+    size_t n = bwh_grid_count(level);
+    double(*c)[3] = xmalloc(n * sizeof *c);
+    uint32_t *m = xmalloc(n * sizeof *m);
+    assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+    for (size_t o = 0; o < n; o++) {
+        double v[3] = {c[o][0], -c[o][1], c[o][2]};
+        long k = bwh_grid_locate(level, v);
+        assert_true(k >= 0 && (size_t)k < n);
+        m[o] = (uint32_t)k;
+    }
+    free(c);
+    return m;
+}
+
+/* a smooth, non-symmetric integer signal of (incoming, outgoing, band) */
+static int32_t wavy(uint32_t i, double x, double y, double z, uint32_t k)
+{
+    return (int32_t)(20000.0 + 9000.0 * z * z + 4000.0 * x * (1.0 + 0.1 * i) + 2500.0 * y +
+                     700.0 * (double)k + 300.0 * (double)((i * 7u + k * 3u) % 5u));
+}
+
+static size_t payload_size(const bw_dims_t *d, bw_params_t p, const int32_t *x)
+{
+    uint8_t *out;
+    size_t len;
+    bw_status_t st = encode_new(d, &p, x, true, &out, &len);
+    if (st != BW_OK)
+        fail_msg("encode with flags %#x: %s", p.flags, bw_strerror(st));
+    int32_t *y;
+    bw_header_t h;
+    assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
+    assert_int_equal(h.flags & BW_FLAG_MIRROR, p.flags & BW_FLAG_MIRROR);
+    if (p.mode == BW_MODE_LOSSLESS) {
+        size_t bad = first_mismatch(x, y, bw_dims_samples(d));
+        if (bad < bw_dims_samples(d))
+            fail_msg("flags %#x: sample %zu decodes to %d, was %d", p.flags, bad, y[bad], x[bad]);
+    }
+    free(y);
+    free(out);
+    return len;
+}
+
+static void mirror_halves_a_brdf_symmetric_about_the_incidence_plane(void **state)
+{
+    (void)state;
+    for (unsigned level = 1; level <= 4; level++) {
+        size_t n_out = bwh_grid_count(level);
+        uint32_t *m = mirror_partners(level);
+        double(*c)[3] = xmalloc(n_out * sizeof *c);
+        assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+        for (int full = 0; full < 2; full++) {
+            unsigned level_in = full ? 1u : 0u;
+            uint32_t n_in = full ? (uint32_t)bwh_grid_count(level_in) : 3u, bands = 2;
+            bw_dims_t d = dims_of(full ? BW_SHAPE_BRDF_FULL : BW_SHAPE_BRDF_ISO, level, level_in,
+                                  n_in, bands);
+            uint32_t *mi = full ? mirror_partners(level_in) : NULL;
+            double(*ci)[3] = full ? xmalloc(n_in * sizeof *ci) : NULL;
+            if (full)
+                assert_int_equal(bwh_grid_centres(level_in, ci, NULL), 0);
+            size_t n = bw_dims_samples(&d);
+            int32_t *x = xmalloc(n * sizeof *x);
+            /* symmetric: the same value at (i, o) and at the mirror pair */
+            for (uint32_t i = 0; i < n_in; i++)
+                for (size_t o = 0; o < n_out; o++)
+                    for (uint32_t k = 0; k < bands; k++) {
+                        /* ISO: even in y; full: in y_i * y_o, even under both flipped */
+                        double yy = full ? ci[i][1] * c[o][1] : fabs(c[o][1]);
+                        uint32_t ii = full ? (uint32_t)(900.0 * ci[i][2] + 400.0 * ci[i][0] + 400.0) : i;
+                        x[((size_t)i * n_out + o) * bands + k] = wavy(ii, c[o][0], yy, c[o][2], k);
+                    }
+            for (uint32_t i = 0; i < n_in; i++)
+                for (size_t o = 0; o < n_out; o++) {
+                    uint32_t pi = full ? mi[i] : i;
+                    for (uint32_t k = 0; k < bands; k++)
+                        if (x[((size_t)i * n_out + o) * bands + k] !=
+                            x[((size_t)pi * n_out + m[o]) * bands + k])
+                            fail_msg("test data not symmetric at %u, %zu", i, o);
+                }
+            bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+            size_t plain = payload_size(&d, p, x);
+            p.flags = BW_FLAG_MIRROR;
+            size_t mirrored = payload_size(&d, p, x);
+            print_message("level %u %s: %zu bytes, mirrored %zu\n", level, full ? "full" : "iso",
+                          plain, mirrored);
+            if (level >= 2 && mirrored * 10u > plain * 6u)
+                fail_msg("level %u %s: mirrored %zu bytes, not under 0.6 x %zu", level,
+                         full ? "full" : "iso", mirrored, plain);
+            /* one sample off the symmetry: still exact */
+            x[n - 1] += 77;
+            payload_size(&d, p, x);
+            free(x);
+            free(mi);
+            free(ci);
+        }
+        free(m);
+        free(c);
+    }
+}
+
+static void mirror_keeps_every_guarantee_on_asymmetric_data(void **state)
+{
+    (void)state;
+    static const unsigned shapes[] = {BW_SHAPE_REFLECTANCE, BW_SHAPE_BRDF_ISO, BW_SHAPE_BRDF_FULL};
+    for (size_t s = 0; s < ARRAY_LEN(shapes); s++) {
+        bw_dims_t d = dims_of(shapes[s], 2, shapes[s] == BW_SHAPE_BRDF_FULL ? 1u : 0u,
+                              shapes[s] == BW_SHAPE_BRDF_ISO ? 3u : 1u, 9);
+        if (shapes[s] == BW_SHAPE_BRDF_FULL)
+            d = dims_of(BW_SHAPE_BRDF_FULL, 2, 1, 16, 9);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9100u + s, 40);
+        for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++)
+            for (unsigned rice = 0; rice < 2; rice++) {
+                bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
+                p.flags = BW_FLAG_MIRROR | (rice ? BW_FLAG_RICE : 0u);
+                payload_size(&d, p, x); /* exact, checked inside */
+                p.mode = BW_MODE_MAX_ERROR;
+                p.max_error = 3;
+                uint8_t *out;
+                size_t len;
+                assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+                int32_t *y;
+                assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
+                for (size_t i = 0; i < n; i++)
+                    if (y[i] - x[i] > 3 || x[i] - y[i] > 3)
+                        fail_msg("max-error 3 with the mirror: sample %zu off by %d", i, y[i] - x[i]);
+                free(y);
+                free(out);
+                p.mode = BW_MODE_BYTES;
+                p.byte_budget = 700;
+                assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+                assert_true(len <= 700);
+                free(out);
+            }
+        free(x);
+    }
+}
+
+static void mirror_refuses_what_it_cannot_do(void **state)
+{
+    (void)state;
+    /* differences beyond the sample range */
+    bw_dims_t d = dims_of(BW_SHAPE_REFLECTANCE, 1, 0, 1, 1);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    uint32_t *m = mirror_partners(1);
+    for (size_t o = 0; o < n; o++)
+        x[o] = o < n / 2 ? BW_SAMPLE_MAX : -BW_SAMPLE_MAX;
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+    free(out);
+    p.flags = BW_FLAG_MIRROR;
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_ERR_RANGE);
+    free(out);
+    /* half the range each way is fine */
+    for (size_t o = 0; o < n; o++)
+        x[o] = o < n / 2 ? BW_SAMPLE_MAX / 2 : -(BW_SAMPLE_MAX / 2);
+    payload_size(&d, p, x);
+    (void)m;
+    free(m);
+    /* spectra have no directions; the streaming encoder does not mirror */
+    bw_dims_t sp = dims_of(BW_SHAPE_SPECTRA, 0, 0, 4, 1);
+    assert_int_equal(encode_new(&sp, &p, x, false, &out, &len), BW_ERR_SHAPE);
+    free(out);
+    bw_stream_t s;
+    static int32_t mem[4096];
+    static uint8_t buf[4096];
+    assert_int_equal(bw_stream_init(&s, &d, &p, mem, sizeof mem / sizeof *mem, buf, sizeof buf),
+                     BW_ERR_ARG);
+    /* a header claiming the mirror for spectra */
+    payload_t pl;
+    make_payload(&robust_cases[0], 9300, &pl);
+    wire_hdr_t w = wire_of(pl.buf, pl.len);
+    const uint8_t *body;
+    size_t blen;
+    body_of(&pl, &body, &blen);
+    uint8_t *q = xmalloc(blen + 64u);
+    w.b3 = (uint8_t)((w.b3 & ~3u) | BW_SHAPE_SPECTRA);
+    w.b4 = 0;
+    w.flags |= BW_FLAG_MIRROR;
+    size_t qlen = wire_payload(q, &w, body, blen);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(q, qlen, &h), BW_ERR_HEADER);
+    free(q);
+    free_payload(&pl);
+    free(x);
+}
+
 /* ---- bad encoder input ------------------------------------------------------ */
 
 static void encoder_refuses_bad_input(void **state)
@@ -2205,13 +2403,18 @@ static void encoder_refuses_bad_input(void **state)
     assert_int_equal(len, good);
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
     assert_int_equal(first_mismatch(x, ver, n), n);
-    /* every known flag together: recorded, and the decode is still exact */
+    /* every known flag together: recorded, and the decode is still exact
+     * (on samples of half the range, so that the mirror's differences fit) */
+    int32_t *half = xmalloc(n * sizeof *half);
+    for (size_t i = 0; i < n; i++)
+        half[i] = x[i] / 2;
     q = p, q.flags = BW_FLAGS_KNOWN;
-    assert_int_equal(bw_encode(&d, &q, x, work, NULL, out, cap, &len), BW_OK);
+    assert_int_equal(bw_encode(&d, &q, half, work, NULL, out, cap, &len), BW_OK);
     assert_int_equal(bw_header_read(out, len, &h), BW_OK);
     assert_int_equal(h.flags, BW_FLAGS_KNOWN);
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
-    assert_int_equal(first_mismatch(x, ver, n), n);
+    assert_int_equal(first_mismatch(half, ver, n), n);
+    free(half);
 
     free(x);
     free(work);
@@ -2473,6 +2676,9 @@ int main(void)
         cmocka_unit_test(a_bad_magic_or_version_is_refused),
         cmocka_unit_test(out_of_range_header_fields_are_refused_after_recomputing_the_crc),
         cmocka_unit_test(a_max_error_header_whose_bound_wraps_is_refused),
+        cmocka_unit_test(mirror_halves_a_brdf_symmetric_about_the_incidence_plane),
+        cmocka_unit_test(mirror_keeps_every_guarantee_on_asymmetric_data),
+        cmocka_unit_test(mirror_refuses_what_it_cannot_do),
         cmocka_unit_test(encoder_refuses_bad_input),
         cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),
