@@ -111,7 +111,11 @@ def decode_of_a_full_brdf_has_both_direction_sets():
 def encode_equals_the_cli_payload_byte_for_byte():
     x = np.fromfile(tmp("phong.f32"), dtype="<f4").reshape(5, 256, 1)
     for opts, kw in ((["--max-error", "0.002"], {"max_error": 0.002}),
-                     (["--ratio", "20", "--basis", "haar"], {"ratio": 20, "basis": "haar"})):
+                     (["--ratio", "20", "--basis", "haar"], {"ratio": 20, "basis": "haar"}),
+                     (["--max-error", "0.002", "--symmetry", "none"],
+                      {"max_error": 0.002, "symmetry": "none"}),
+                     (["--max-error", "0.002", "--symmetry", "mirror"],
+                      {"max_error": 0.002, "symmetry": "mirror"})):
         bw("encode", "-i", tmp("phong.f32"), "-o", tmp("cli.bwv"), "--bands", "1", "--level",
            "3", "--incoming", "5", *opts)
         p = brdfwave.encode(x, level=3, incoming=True, path=tmp("py.bwv"), **kw)
@@ -164,7 +168,7 @@ def bad_input_raises_a_clear_error():
         raise AssertionError("missing file decoded")
     except brdfwave.BrdfwaveError as e:
         assert "missing.bwv" in str(e)
-    for kw in ({"level": 3}, {"level": 9}, {"max_error": -1}):
+    for kw in ({"level": 3}, {"level": 9}, {"max_error": -1}, {"symmetry": "rotate"}):
         try:
             brdfwave.encode(np.zeros((2, 5), np.float32), **kw)
             raise AssertionError("encode accepted %r" % kw)

@@ -135,14 +135,17 @@ def decode(path, wavelengths=None, integers=False):
 
 
 def encode(values, level=None, incoming=False, level_in=None, lossless=None, max_error=None,
-           nbytes=None, ratio=None, basis="auto", scale=None, stream=False, path=None):
+           nbytes=None, ratio=None, basis="auto", scale=None, stream=False, symmetry="auto",
+           path=None):
     """Encodes float values to a payload (bytes; also written to `path` if given),
     as `brdfwave encode` does with float32 input:
       level=None                 a set of spectra, values (n_spectra, bands)
       level=L                    a spectral reflectance, values (4*4^L, bands)
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
-    One of lossless (default), max_error=E, nbytes=N, ratio=R."""
+    One of lossless (default), max_error=E, nbytes=N, ratio=R. symmetry: "auto" (try
+    the mirror image (x, -y, z) for directional data, keep it when it pays), "mirror"
+    or "none"."""
     L = lib()
     x = np.ascontiguousarray(values, dtype=np.float32)
     if x.ndim < 2:
@@ -190,6 +193,9 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
         o.scale = float(scale)
     if stream:
         o.flags |= 0x02
+    if symmetry not in ("auto", "mirror", "none"):
+        raise BrdfwaveError("symmetry must be auto, mirror or none")
+    o.flags |= {"auto": 0, "mirror": 0x10, "none": 0x100}[symmetry]
     out = ctypes.POINTER(ctypes.c_uint8)()
     n = ctypes.c_size_t()
     if L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
