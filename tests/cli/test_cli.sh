@@ -157,6 +157,27 @@ printf '\000\000\000\000' | cat - "$T/p.f32" | head -c 65536 >"$T/p0.f32"
 expect_error "relative with a zero value" "$BW" encode -i "$T/p0.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --ratio 64 --relative
 expect_ok "encode bytes" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --bytes 3000
 [ "$(stat -c %s "$T/p.bwv")" -le 3000 ] && ok || bad "bytes 3000 exceeded"
+# --symmetry: the Phong set is symmetric about its plane of incidence, so auto
+# keeps the mirror, and the mirrored payload is the smaller
+for S in auto mirror none; do
+    expect_ok "encode max-error symmetry $S" "$BW" encode -i "$T/p.f32" -o "$T/ps_$S.bwv" --bands 1 \
+        --level 4 --incoming 16 --max-error 0.001 --symmetry $S
+    expect_ok "info symmetry $S" "$BW" info "$T/ps_$S.bwv"
+    cp "$T/out" "$T/info_$S"
+done
+[ "$(key symmetry "$T/info_auto")" = mirror ] && [ "$(key symmetry "$T/info_mirror")" = mirror ] &&
+    [ "$(key symmetry "$T/info_none")" = none ] && ok || bad "info symmetry: $(cat "$T/info_auto")"
+cmp -s "$T/ps_auto.bwv" "$T/ps_mirror.bwv" && ok || bad "symmetry auto differs from mirror"
+[ "$(stat -c %s "$T/ps_mirror.bwv")" -lt "$(stat -c %s "$T/ps_none.bwv")" ] && ok ||
+    bad "mirrored payload not smaller: $(stat -c %s "$T/ps_mirror.bwv") vs $(stat -c %s "$T/ps_none.bwv")"
+expect_ok "decode mirrored" "$BW" decode -i "$T/ps_mirror.bwv" -o "$T/ps.f32"
+expect_ok "compare mirrored" "$BW" compare "$T/p.f32" "$T/ps.f32"
+awk -v e="$(key max_abs_error "$T/out")" 'BEGIN { exit !(e <= 0.001) }' && ok ||
+    bad "mirrored max error $(key max_abs_error "$T/out")"
+expect_error "symmetry bad value" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 \
+    --incoming 16 --symmetry rotate
+expect_error "symmetry mirror of spectra" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1024 \
+    --symmetry mirror
 expect_ok "compare identical" "$BW" compare "$T/p.f32" "$T/p.f32"
 [ "$(key max_abs_error "$T/out")" = 0 ] && [ "$(key psnr_db "$T/out")" = inf ] && ok || bad "compare identical: $(cat "$T/out")"
 
