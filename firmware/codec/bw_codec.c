@@ -901,13 +901,15 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
     if (!p || !h)
         return BW_ERR_ARG;
     memset(h, 0, sizeof *h);
+    /* a wrong magic or version, or too short for a header, comes first;
+     * then the CRC; then the fields the CRC vouches for */
     bw_status_t st = bw_header_parse_fields(p, len, h);
-    if (st == BW_ERR_MAGIC || st == BW_ERR_VERSION || len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
+    if (st == BW_ERR_MAGIC || st == BW_ERR_VERSION || st == BW_ERR_TRUNCATED)
         return st;
     h->crc = bw_get_u32(p + len - BW_TRAILER_SIZE);
     if (bw_crc32(p, len - BW_TRAILER_SIZE) != h->crc)
         return BW_ERR_CRC;
-    return st == BW_ERR_TRUNCATED ? BW_ERR_HEADER : st; /* the CRC holds: a bad header */
+    return st;
 }
 
 bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)

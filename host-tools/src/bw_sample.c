@@ -106,6 +106,17 @@ static double tree_total(const double *node)
     return node[0] + node[1] + node[2] + node[3];
 }
 
+/* every node above the leaves: the sum of its children, finest to coarsest */
+static void sum_up(double *node, unsigned level)
+{
+    for (unsigned l = level; l-- > 0;) {
+        double *p = node + level_offset(l), *c = node + level_offset(l + 1);
+        size_t n = bwh_grid_count(l);
+        for (size_t k = 0; k < n; k++)
+            p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
+    }
+}
+
 /* sub-triangle centres and projected solid angles of every leaf */
 typedef struct {
     double (*dir)[3];
@@ -199,9 +210,9 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             s->theta[i] = theta[i];
             s->trig[2 * i] = cos(theta[i]);
             s->trig[2 * i + 1] = sin(theta[i]);
-            in_dir[i][0] = sin(theta[i]);
+            in_dir[i][0] = s->trig[2 * i + 1];
             in_dir[i][1] = 0.0;
-            in_dir[i][2] = cos(theta[i]);
+            in_dir[i][2] = s->trig[2 * i];
         }
     } else {
         bwh_grid_centres(level_in, in_dir, NULL);
@@ -221,25 +232,13 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             }
             lv[k] = sum;
         }
-        /* sums of children, finest to coarsest */
-        double total = 0.0;
-        for (unsigned l = level; l-- > 0;) {
-            double *p = node + level_offset(l), *c = node + level_offset(l + 1);
-            size_t n = bwh_grid_count(l);
-            for (size_t k = 0; k < n; k++)
-                p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
-        }
-        total = node[0] + node[1] + node[2] + node[3];
+        sum_up(node, level);
+        double total = tree_total(node);
         if (!(total > 0.0) || !isfinite(total)) {
             /* nothing to follow: the projected solid angle (the cosine lobe) */
             for (size_t k = 0; k < s->n_leaves; k++)
                 lv[k] = s->leaf[k].proj;
-            for (unsigned l = level; l-- > 0;) {
-                double *p = node + level_offset(l), *c = node + level_offset(l + 1);
-                size_t n = bwh_grid_count(l);
-                for (size_t k = 0; k < n; k++)
-                    p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
-            }
+            sum_up(node, level);
         }
         s->inv_total[i] = 1.0 / tree_total(node);
     }
@@ -304,8 +303,7 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
     }
     /* theta_i - theta[lo] = asin(d) with d = sin(theta_i - theta[lo]) */
     double d = r * tr[2 * lo] - z * tr[2 * lo + 1];
-    double th = s->theta[lo] + asin(d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d);
-    double t = (th - s->theta[lo]) / (s->theta[hi] - s->theta[lo]);
+    double t = asin(d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d) / (s->theta[hi] - s->theta[lo]);
     t = t > 1.0 ? 1.0 : t;
     sel->t[0] = lo;
     sel->w[0] = 1.0 - t;

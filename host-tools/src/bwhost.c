@@ -305,9 +305,10 @@ static double sse_of(const int32_t *x, const int32_t *y, size_t n)
 }
 
 /* The same encode with BW_FLAG_MIRROR; keeps whichever payload is smaller
- * (a byte budget: whichever decodes closer, then the smaller). *buf holds
- * the payload of status st0 and ver its decoded samples. */
-static int try_mirror(const bw_dims_t *dims, const bw_params_t *p0, const int32_t *x, size_t n,
+ * (a byte budget: whichever decodes closer, then the smaller), and sets the
+ * flag in *p0 when it keeps the mirrored one. *buf holds the payload of
+ * status st0 and ver its decoded samples. */
+static int try_mirror(const bw_dims_t *dims, bw_params_t *p0, const int32_t *x, size_t n,
                       int32_t *work, int32_t *ver, uint8_t **buf, size_t cap, size_t *len,
                       int st0)
 {
@@ -334,6 +335,7 @@ static int try_mirror(const bw_dims_t *dims, const bw_params_t *p0, const int32_
         free(*buf);
         *buf = alt;
         *len = alen;
+        p0->flags = p.flags;
         return BW_OK;
     }
     free(alt);
@@ -382,17 +384,12 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     size_t len = 0;
     bool auto_mirror = !(o->flags & (BW_FLAG_MIRROR | BWH_NO_MIRROR)) &&
                        dims->shape != BW_SHAPE_SPECTRA && !(o->flags & BW_FLAG_STREAM_ORDER);
-    if (o->device && auto_mirror) {
-        /* the host makes the choice, so that the device's payload is the
-         * host's: it encodes both ways here, then the device with that flag */
-        int st0 = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
-        if ((st0 == BW_OK || st0 == BW_ERR_BUDGET) &&
-            try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st0) == BW_OK) {
-            bw_header_t hh;
-            if (bw_header_read(buf, len, &hh) == BW_OK && (hh.flags & BW_FLAG_MIRROR))
-                p.flags |= BW_FLAG_MIRROR;
-        }
-        len = 0;
+    if (!o->device || auto_mirror) {
+        /* the host's encode (with auto, both ways); before a device encode it
+         * only makes the choice, so that the device's payload is the host's */
+        st = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
+        if (auto_mirror && (st == BW_OK || st == BW_ERR_BUDGET))
+            st = try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st);
     }
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */
@@ -424,10 +421,6 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         }
         if (st == BW_OK && o->mode == BW_MODE_BYTES && len > o->byte_budget)
             st = BW_ERR_VERIFY;
-    } else {
-        st = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
-        if (auto_mirror && (st == BW_OK || st == BW_ERR_BUDGET))
-            st = try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st);
     }
     free(work);
     free(ver);
