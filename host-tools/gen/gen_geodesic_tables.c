@@ -110,8 +110,8 @@ static int emit(void)
            " * Bio-Haar weights {L1, L2, L3} in Q16 for base triangle 0's subtree,\n"
            " * L_m = round(65536 * a_m / a_parent) with a the spherical solid angles;\n"
            " * L0 = 65536 - (L1 + L2 + L3) is the largest. Levels 0..2 whole, levels\n"
-           " * 3..4 as 16384 - L_m in a byte, level 5 as 16384 - L_m in a nibble (see\n"
-           " * bw_geodesic.h).\n"
+           " * 3..4 as 16384 - L_m in a byte, level 5 as 16384 - L_m in a nibble for\n"
+           " * the parents whose first non-zero digit is 1 (see bw_geodesic.h).\n"
            " */\n"
            "#include \"bw_geodesic.h\"\n"
            "\n"
@@ -122,20 +122,55 @@ static int emit(void)
         if (j == COARSE_LEVELS)
             printf("};\n\nconst uint8_t bw_geo_weight_fine[BW_GEO_FINE][3] = {\n");
         if (j == TABLE_LEVELS - 1u) {
-            /* the finest level: two differences a byte, low nibble first */
-            printf("};\n\nconst uint8_t bw_geo_weight_finest[BW_GEO_FINEST_BYTES] = {\n");
-            printf("    /* level %u: entries %u..%u, 3 nibbles each */\n", j, (unsigned)first,
-                   (unsigned)(first + n - 1));
-            for (uint32_t i = 0; i < 3u * n; i += 2u) {
-                unsigned lo = 16384u - table[first + i / 3u][i % 3u];
-                unsigned hi = 16384u - table[first + (i + 1u) / 3u][(i + 1u) % 3u];
-                if (lo > 15u || hi > 15u) {
-                    fprintf(stderr, "gen_geodesic_tables: level %u weight differs from 16384 by "
-                                    "more than 15\n", j);
-                    return 1;
+            /* the finest level: only the parents whose first non-zero digit
+             * is 1 (or that have none), in ascending order; every other
+             * parent is the rotation of one of them that cycles the corner
+             * digits 1 -> 2 -> 3, with the weights cycled alike (checked
+             * here); two differences a byte, low nibble first */
+            uint32_t nib[3u * 342u], cnt = 0;
+            for (uint32_t p = 0; p < n; p++) {
+                unsigned top = 0;
+                for (unsigned k = 0; k < j; k++)
+                    if ((p >> (2u * k)) & 3u)
+                        top = k;
+                unsigned first_digit = (p >> (2u * top)) & 3u;
+                for (unsigned r = 1; r <= 2; r++) { /* the rotations of p */
+                    uint32_t q = 0;
+                    for (unsigned k = 0; k < j; k++) {
+                        unsigned x = (p >> (2u * k)) & 3u;
+                        q |= (uint32_t)(x ? (x - 1u + r) % 3u + 1u : 0u) << (2u * k);
+                    }
+                    for (unsigned m = 0; m < 3; m++)
+                        if (table[first + q][(m + r) % 3u] != table[first + p][m]) {
+                            fprintf(stderr, "gen_geodesic_tables: level %u parent %u is not "
+                                            "symmetric\n", j, (unsigned)p);
+                            return 1;
+                        }
                 }
+                if (p && first_digit != 1u)
+                    continue;
+                for (unsigned m = 0; m < 3; m++) {
+                    unsigned d = 16384u - table[first + p][m];
+                    if (d > 15u) {
+                        fprintf(stderr, "gen_geodesic_tables: level %u weight differs from "
+                                        "16384 by more than 15\n", j);
+                        return 1;
+                    }
+                    nib[cnt++] = d;
+                }
+            }
+            if (cnt != 3u * 342u) {
+                fprintf(stderr, "gen_geodesic_tables: %u stored parents at level %u\n",
+                        (unsigned)(cnt / 3u), j);
+                return 1;
+            }
+            printf("};\n\nconst uint8_t bw_geo_weight_finest[BW_GEO_FINEST_BYTES] = {\n");
+            printf("    /* level %u: the 342 parents 0, 1, 4..7, 16..31, 64..127, 256..511 "
+                   "(entries %u..), 3 nibbles each */\n", j, (unsigned)first);
+            for (uint32_t i = 0; i < cnt; i += 2u) {
+                unsigned lo = nib[i], hi = i + 1u < cnt ? nib[i + 1u] : 0u;
                 printf("%s0x%02x,%s", i % 24u == 0 ? "    " : "", lo | (hi << 4),
-                       (i + 2u) % 24u == 0 || i + 2u >= 3u * n ? "\n" : " ");
+                       (i + 2u) % 24u == 0 || i + 2u >= cnt ? "\n" : " ");
             }
             continue;
         }
