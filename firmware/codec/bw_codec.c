@@ -28,7 +28,7 @@
 #include "bw_rice.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 3u
+#define BW_VERSION 4u
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
@@ -148,13 +148,27 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->stream = false;
 }
 
+/* spec_cls[k] packs the context class of spectral coefficient k (bits 0-1)
+ * and 1 + the index of its spectral parent (above; 0: none). */
+#define SPEC_CLS(v) ((unsigned)(v) & 3u)
+#define SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
+
+/* The spectral parent of a detail coefficient (Mallat order) is the one at
+ * the same place in the next coarser detail band; the coarsest details and
+ * the approximation have none. */
 static void plan_tables(plan_t *pl)
 {
     uint32_t b = pl->dims.bands;
     for (uint32_t k = 0; k < b; k++) {
         unsigned sb = bw_spec_subband(b, pl->spec_levels, k);
         /* 0 finest details, 1 next, 2 coarser details, 3 approximation */
-        pl->spec_cls[k] = sb == 0u ? 3 : (int32_t)(sb >= 3u ? 2u : sb - 1u);
+        uint32_t cls = sb == 0u ? 3u : (sb >= 3u ? 2u : sb - 1u), par = 0;
+        if (sb != 0u && sb < pl->spec_levels) {
+            uint32_t lo = bw_spec_approx_len(b, sb), plo = (lo + 1u) / 2u;
+            uint32_t i = (k - lo) / 2u;
+            par = 1u + plo + (i < lo - plo ? i : lo - plo - 1u);
+        }
+        pl->spec_cls[k] = (int32_t)(cls | par << 2);
         pl->spec_gain[k] = (int32_t)bw_spec_inv_gain_q16(pl->basis, pl->spec_levels, sb);
     }
 }
@@ -512,6 +526,8 @@ typedef struct {
     int32_t *x;
     uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
     int32_t *vec;
+    const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
+    const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
     unsigned cls_dir;
     uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
     unsigned qi;
@@ -537,8 +553,14 @@ static void iter_vec(iter_t *it)
             pos_out = walk_next(&it->w, pl->dims.level_out, &level);
         }
     }
-    size_t pos = (size_t)in_pos(pl, it->i) * pl->dims.n_out + pos_out;
-    it->vec = it->x + pos * pl->dims.bands;
+    size_t b = pl->dims.bands, base = (size_t)in_pos(pl, it->i) * pl->dims.n_out;
+    it->prev = pl->stream || b == 1u ? NULL : it->vec;
+    it->vec = it->x + (base + pos_out) * b;
+    /* the parent: the vector at the position with this level's digit cleared
+     * (coded before, at a coarser level) */
+    it->par = level < 0 || pl->stream
+                  ? NULL
+                  : it->x + (base + (pos_out & ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) * b;
     it->cls_dir = level_cls(pl, level);
 }
 
@@ -550,6 +572,7 @@ static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
     it->leaf = 0;
     it->qi = it->q.n = 0;
     walk_init(&it->w);
+    it->vec = NULL;
     iter_vec(it);
 }
 
@@ -568,19 +591,20 @@ static void iter_next_vec(iter_t *it)
         iter_vec(it);
 }
 
-static inline int32_t *iter_next(iter_t *it, unsigned *cls)
+/* The next coefficient, its class and where its contexts come from: the
+ * parent (directional, else spectral) and the same band of the previous
+ * vector (NULL: none). */
+static inline int32_t *iter_next(iter_t *it, unsigned *cls, const int32_t **par,
+                                 const int32_t **prv)
 {
-    int32_t *p = it->vec + it->k;
-    *cls = (unsigned)it->pl->spec_cls[it->k] * 3u + it->cls_dir;
+    uint32_t k = it->k;
+    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k], sp = SPEC_PAR(sc);
+    *par = it->par ? it->par + k : sp >= 0 ? it->vec + sp : NULL;
+    *prv = it->prev ? it->prev + k : NULL;
+    *cls = SPEC_CLS(sc) * 3u + it->cls_dir;
     if (++it->k == it->pl->dims.bands)
         iter_next_vec(it);
     return p;
-}
-
-static inline unsigned nb_ctx(unsigned left, unsigned above)
-{
-    unsigned c = (left + above + 1u) >> 1;
-    return c < NB_CTX ? c : NB_CTX - 1u;
 }
 
 /* The strip encoder, fed one coefficient at a time: a strip is coded when
@@ -600,6 +624,26 @@ static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
     memset(se->e_above, 0, sizeof se->e_above);
     se->prev_mask = 0;
     se->e_left = 0;
+}
+
+/* Contexts of a coefficient from the bit lengths of its neighbours
+ * (NO_CTX: no such neighbour): its parent pe, the previous coefficient in
+ * the strip and the one above it (the same band of the previous vector
+ * when there is one, else the same place in the previous strip). */
+#define NO_CTX 0xFFu
+
+static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
+
+/* significance: the bit above, and whether the parent is zero, small or not */
+static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
+{
+    return above_bit + (pe == 0u || pe == NO_CTX ? 0u : pe <= 2u ? 2u : 4u);
+}
+
+static inline unsigned mag_ctx(unsigned left, unsigned above, unsigned pe)
+{
+    unsigned c = pe == NO_CTX ? (left + above + 1u) >> 1 : (left + above + 2u * pe + 2u) >> 2;
+    return c < NB_CTX ? c : NB_CTX - 1u;
 }
 
 static void strip_code(strip_enc_t *se)
@@ -629,23 +673,23 @@ static void strip_code(strip_enc_t *se)
     unsigned prev_bit = 0;
     for (unsigned b = 0; b < cnt; b++) {
         unsigned bit = (mask >> b) & 1u;
-        bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][(se->prev_mask >> b) & 1u], bit);
+        unsigned pe = se->pe[b];
+        bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((se->prev_mask >> b) & 1u, pe)], bit);
         prev_bit = bit;
-    }
-    for (unsigned b = 0; b < cnt; b++) {
-        if (!((mask >> b) & 1u)) {
+        if (!bit) {
             se->e_above[b] = 0;
             se->e_left = 0;
             continue;
         }
         uint32_t a = bw_abs32(v[b]);
         unsigned e = bw_bitlen(a); /* 1..32 */
-        bw_prob_t *tree = m->mag[cls[b]][nb_ctx(se->e_left, se->e_above[b])];
+        unsigned above = se->pv[b] != NO_CTX ? se->pv[b] : se->e_above[b];
+        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(se->e_left, above, pe)];
         unsigned node = 1, sym = e - 1u;
         for (int sh = 4; sh >= 0; sh--) {
-            unsigned bit = (sym >> sh) & 1u;
-            bw_rc_enc_bit(rc, &tree[node], bit);
-            node = node * 2u + bit;
+            unsigned bt = (sym >> sh) & 1u;
+            bw_rc_enc_bit(rc, &tree[node], bt);
+            node = node * 2u + bt;
         }
         if (e >= 2u) {
             bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
@@ -659,10 +703,14 @@ static void strip_code(strip_enc_t *se)
     se->prev_mask = mask;
 }
 
-static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls)
+/* pe, pv: bit lengths of the parent and of the same band in the previous
+ * vector (NO_CTX: none) */
+static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls, unsigned pe, unsigned pv)
 {
     se->v[se->cnt] = v;
     se->cls[se->cnt] = (uint8_t)cls;
+    se->pe[se->cnt] = (uint8_t)pe;
+    se->pv[se->cnt] = (uint8_t)pv;
     if (++se->cnt == BW_STRIP)
         strip_code(se);
 }
@@ -745,8 +793,12 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
             rice_vector(se, v, b);
         } else {
             unsigned cd = it.cls_dir;
-            for (uint32_t k = 0; k < b; k++)
-                strip_put(se, v[k], (unsigned)pl->spec_cls[k] * 3u + cd);
+            for (uint32_t k = 0; k < b; k++) {
+                int32_t sc = pl->spec_cls[k], sp = SPEC_PAR(sc);
+                const int32_t *par = it.par ? it.par + k : sp >= 0 ? v + sp : NULL;
+                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, ctx_len(par),
+                          ctx_len(it.prev ? it.prev + k : NULL));
+            }
         }
         iter_next_vec(&it);
     }
@@ -766,7 +818,8 @@ static bw_status_t decode_body_rice(const plan_t *pl, int32_t *x, const uint8_t 
             return BW_ERR_CORRUPT;
         for (unsigned b = 0; b < cnt; b++) {
             unsigned cls;
-            *iter_next(&it, &cls) = v[b];
+            const int32_t *par, *prv;
+            *iter_next(&it, &cls, &par, &prv) = v[b];
         }
     }
     return BW_OK;
@@ -782,10 +835,11 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
     for (size_t base = 0; base < pl->n; base += BW_STRIP) {
         unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
         int32_t *dst[BW_STRIP];
+        const int32_t *par[BW_STRIP], *prv[BW_STRIP];
         unsigned cls[BW_STRIP];
         cls[0] = 0;
         for (unsigned b = 0; b < cnt; b++)
-            dst[b] = iter_next(&it, &cls[b]);
+            dst[b] = iter_next(&it, &cls[b], &par[b], &prv[b]);
         if (!bw_rc_dec_bit(rc, &m->present[cls[0]][prev_mask != 0])) {
             for (unsigned b = 0; b < cnt; b++)
                 *dst[b] = 0;
@@ -797,20 +851,19 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
         uint32_t mask = 0;
         unsigned prev_bit = 0;
         for (unsigned b = 0; b < cnt; b++) {
-            unsigned bit = bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][(prev_mask >> b) & 1u]);
+            unsigned pe = ctx_len(par[b]);
+            unsigned bit =
+                bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((prev_mask >> b) & 1u, pe)]);
             mask |= (uint32_t)bit << b;
             prev_bit = bit;
-        }
-        if (!mask)
-            return BW_ERR_CORRUPT; /* a present strip holds at least one value */
-        for (unsigned b = 0; b < cnt; b++) {
-            if (!((mask >> b) & 1u)) {
+            if (!bit) {
                 *dst[b] = 0;
                 e_above[b] = 0;
                 e_left = 0;
                 continue;
             }
-            bw_prob_t *tree = m->mag[cls[b]][nb_ctx(e_left, e_above[b])];
+            unsigned above = prv[b] ? ctx_len(prv[b]) : e_above[b];
+            bw_prob_t *tree = m->mag[cls[b]][mag_ctx(e_left, above, pe)];
             unsigned node = 1;
             for (int s = 0; s < 5; s++)
                 node = node * 2u + bw_rc_dec_bit(rc, &tree[node]);
@@ -827,6 +880,8 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
             e_above[b] = (uint8_t)e;
             e_left = e;
         }
+        if (!mask)
+            return BW_ERR_CORRUPT; /* a present strip holds at least one value */
         prev_mask = mask;
         if (rc->overrun)
             return BW_ERR_CORRUPT;
@@ -1366,8 +1421,12 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
         else
             vec_quant(&sb, steps, v, true);
     }
-    for (uint32_t k = 0; k < b; k++)
-        strip_put(&s->se, v[k], (unsigned)s->cls[k] * 3u + cd);
+    /* stream order: no directional parent, no previous vector */
+    for (uint32_t k = 0; k < b; k++) {
+        int32_t sp = SPEC_PAR(s->cls[k]);
+        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd, ctx_len(sp >= 0 ? v + sp : NULL),
+                  NO_CTX);
+    }
 }
 
 bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)

@@ -16,7 +16,7 @@
 
 typedef struct {
     bw_prob_t present[BW_CODER_CLASSES][2];
-    bw_prob_t valid[BW_CODER_CLASSES][2][2];
+    bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* [previous bit][above bit + 2 parent] */
     bw_prob_t mag[BW_CODER_CLASSES][BW_CODER_NB_CTX][32];
     bw_prob_t mant[BW_CODER_CLASSES][32];
 } bw_models_t;
@@ -29,6 +29,8 @@ typedef struct {
     bw_models_t m;
     int32_t v[32];
     uint8_t cls[32];
+    uint8_t pe[32]; /* bit lengths of the parent and of the same band in */
+    uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
     unsigned cnt;
     uint8_t e_above[32];
     uint32_t prev_mask;
