@@ -9,6 +9,27 @@
 #include "bw_fixed.h"
 #include "bw_geodesic.h"
 
+void bw_geo_weights_finest(uint32_t parent_in_base, uint16_t w[3])
+{
+    /* rotate the digits until the first non-zero one is 1: the stored
+     * parent c, r the rotation; its rank among the stored parents is
+     * c - 2 (4^t - 1) / 3 for the digit t after its first non-zero one */
+    uint32_t c = 0, rank = 0;
+    unsigned r = 0;
+    for (int k = 2 * (int)BW_GEO_TABLE_LEVELS - 4; k >= 0; k -= 2) {
+        unsigned x = (parent_in_base >> k) & 3u;
+        if (x && !c) {
+            r = x - 1u;
+            rank = 2u * ((1u << k) - 1u) / 3u;
+        }
+        c = c << 2 | (x ? (x + 2u - r) % 3u + 1u : 0u);
+    }
+    uint32_t i = 3u * (c - rank);
+    for (unsigned m = 0; m < 3u; m++, i++)
+        w[(m + r) % 3u] =
+            (uint16_t)(16384u - ((bw_geo_weight_finest[i >> 1] >> (4u * (i & 1u))) & 15u));
+}
+
 static inline int32_t update_term(const uint16_t *w, int32_t d1, int32_t d2, int32_t d3)
 {
     int64_t acc = (int64_t)w[0] * d1 + (int64_t)w[1] * d2 + (int64_t)w[2] * d3;

@@ -158,18 +158,25 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
  * the approximation have none. */
 static void plan_tables(plan_t *pl)
 {
-    uint32_t b = pl->dims.bands;
-    for (uint32_t k = 0; k < b; k++) {
-        unsigned sb = bw_spec_subband(b, pl->spec_levels, k);
+    unsigned L = pl->spec_levels;
+    /* band sb = 1..L (1 finest) is [len_sb, len_sb-1), len_0 = bands and
+     * len_sb = (len_sb-1 + 1) / 2; then the approximation [0, len_L) */
+    for (uint32_t end = pl->dims.bands, sb = 1;; sb++) {
+        bool approx = sb > L;
+        uint32_t lo = approx ? 0u : (end + 1u) / 2u, plo = (lo + 1u) / 2u;
         /* 0 finest details, 1 next, 2 coarser details, 3 approximation */
-        uint32_t cls = sb == 0u ? 3u : (sb >= 3u ? 2u : sb - 1u), par = 0;
-        if (sb != 0u && sb < pl->spec_levels) {
-            uint32_t lo = bw_spec_approx_len(b, sb), plo = (lo + 1u) / 2u;
-            uint32_t i = (k - lo) / 2u;
-            par = 1u + plo + (i < lo - plo ? i : lo - plo - 1u);
+        uint32_t cls = approx ? 3u : sb >= 3u ? 2u : sb - 1u;
+        int32_t gain = (int32_t)bw_spec_inv_gain_q16(pl->basis, L, approx ? 0u : sb);
+        for (uint32_t k = lo; k < end; k++) {
+            uint32_t par = 0, i = (k - lo) / 2u;
+            if (sb < L)
+                par = 1u + plo + (i < lo - plo ? i : lo - plo - 1u);
+            pl->spec_cls[k] = (int32_t)(cls | par << 2);
+            pl->spec_gain[k] = gain;
         }
-        pl->spec_cls[k] = (int32_t)(cls | par << 2);
-        pl->spec_gain[k] = (int32_t)bw_spec_inv_gain_q16(pl->basis, pl->spec_levels, sb);
+        if (approx)
+            return;
+        end = lo;
     }
 }
 

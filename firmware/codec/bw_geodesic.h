@@ -59,6 +59,9 @@ static inline uint32_t bw_geo_area(unsigned level, uint32_t index)
     return bw_geo_area_q31[((1u << (2u * level)) - 1u) / 3u + (index & ((1u << (2u * level)) - 1u))];
 }
 
+/* The weights of a level-5 parent (out of line: only level-6 grids use it). */
+void bw_geo_weights_finest(uint32_t parent_in_base, uint16_t w[3]);
+
 /* The weights {L1, L2, L3} (Q16) of parent p (within its base) at level j. */
 static inline void bw_geo_weights(unsigned level, uint32_t parent_in_base, uint16_t w[3])
 {
@@ -68,23 +71,7 @@ static inline void bw_geo_weights(unsigned level, uint32_t parent_in_base, uint1
         w[1] = bw_geo_weight_coarse_q16[e][1];
         w[2] = bw_geo_weight_coarse_q16[e][2];
     } else if (e >= BW_GEO_FINEST_FIRST) {
-        /* rotate the digits until the first non-zero one is 1: the stored
-         * parent c, r the rotation; its rank among the stored parents is
-         * c - 2 (4^t - 1) / 3 for the digit t after its first non-zero one */
-        uint32_t c = 0, rank = 0;
-        unsigned r = 0;
-        for (int k = 2 * (int)BW_GEO_TABLE_LEVELS - 4; k >= 0; k -= 2) {
-            unsigned x = (parent_in_base >> k) & 3u;
-            if (x && !c) {
-                r = x - 1u;
-                rank = 2u * ((1u << k) - 1u) / 3u;
-            }
-            c = c << 2 | (x ? (x + 2u - r) % 3u + 1u : 0u);
-        }
-        uint32_t i = 3u * (c - rank);
-        for (unsigned m = 0; m < 3u; m++, i++)
-            w[(m + r) % 3u] =
-                (uint16_t)(16384u - ((bw_geo_weight_finest[i >> 1] >> (4u * (i & 1u))) & 15u));
+        bw_geo_weights_finest(parent_in_base, w);
     } else {
         const uint8_t *f = bw_geo_weight_fine[e - BW_GEO_COARSE];
         w[0] = (uint16_t)(16384u - f[0]);
