@@ -153,6 +153,16 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
 #define SPEC_CLS(v) ((unsigned)(v) & 3u)
 #define SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
 
+/* The parent of band k of vector v (sc = spec_cls[k]): band k of the parent
+ * vector pv (coarse-to-fine order), else the spectral parent in v; NULL for
+ * none. */
+static inline const int32_t *parent_of(const int32_t *pv, const int32_t *v, int32_t sc,
+                                       uint32_t k)
+{
+    int32_t sp = SPEC_PAR(sc);
+    return pv ? pv + k : sp >= 0 ? v + sp : NULL;
+}
+
 /* The spectral parent of a detail coefficient (Mallat order) is the one at
  * the same place in the next coarser detail band; the coarsest details and
  * the approximation have none. */
@@ -605,8 +615,8 @@ static inline int32_t *iter_next(iter_t *it, unsigned *cls, const int32_t **par,
                                  const int32_t **prv)
 {
     uint32_t k = it->k;
-    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k], sp = SPEC_PAR(sc);
-    *par = it->par ? it->par + k : sp >= 0 ? it->vec + sp : NULL;
+    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
+    *par = parent_of(it->par, it->vec, sc, k);
     *prv = it->prev ? it->prev + k : NULL;
     *cls = SPEC_CLS(sc) * 3u + it->cls_dir;
     if (++it->k == it->pl->dims.bands)
@@ -801,9 +811,8 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
         } else {
             unsigned cd = it.cls_dir;
             for (uint32_t k = 0; k < b; k++) {
-                int32_t sc = pl->spec_cls[k], sp = SPEC_PAR(sc);
-                const int32_t *par = it.par ? it.par + k : sp >= 0 ? v + sp : NULL;
-                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, ctx_len(par),
+                int32_t sc = pl->spec_cls[k];
+                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, ctx_len(parent_of(it.par, v, sc, k)),
                           ctx_len(it.prev ? it.prev + k : NULL));
             }
         }
@@ -1429,11 +1438,9 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
             vec_quant(&sb, steps, v, true);
     }
     /* stream order: no directional parent, no previous vector */
-    for (uint32_t k = 0; k < b; k++) {
-        int32_t sp = SPEC_PAR(s->cls[k]);
-        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd, ctx_len(sp >= 0 ? v + sp : NULL),
-                  NO_CTX);
-    }
+    for (uint32_t k = 0; k < b; k++)
+        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd,
+                  ctx_len(parent_of(NULL, v, s->cls[k], k)), NO_CTX);
 }
 
 bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
