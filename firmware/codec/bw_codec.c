@@ -1050,6 +1050,7 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
 {
     uint32_t bad = 0;
     if (!BW_SMALL && q == 1u) {
+        BW_UNROLL8
         for (size_t i = 0; i < n; i++) {
             int32_t x = in[i];
             bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
@@ -1058,6 +1059,7 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
     } else {
         /* |x| <= 2^24 and q <= 2^25 + 1: x + bias fits 32 bits */
         uint32_t k = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k * q;
+        BW_UNROLL8
         for (size_t i = 0; i < n; i++) {
             int32_t x = in[i];
             bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;

@@ -1,13 +1,12 @@
 /*
  * Adaptive Rice strip coder: see bw_rice.h for the bit stream.
  *
- * The encoder looks at a strip once to sum its zigzag values, count its zeros
- * and negative values and OR its codes; it picks the Rice parameter from the
- * mean (rice_k). For a strip with many zeros it chooses between the sparse
- * and dense codes as their exact sizes would: bounds on both sizes from those
- * counts settle most strips, and only when the bounds overlap (or a code may
- * escape) are the sizes counted. The codes are then written with the bit
- * writer held in locals.
+ * The encoder looks at a strip once: it forms the zigzag codes, their sum,
+ * OR, zeros and negative values, and picks the Rice parameter from the mean
+ * (rice_k). For a strip with many zeros it chooses between the sparse and
+ * dense codes from bounds on both sizes that those counts give
+ * (choose_sparse), without another pass. The codes are then written with
+ * the bit writer held in locals.
  */
 #include "bw_rice.h"
 
@@ -102,22 +101,28 @@ static inline int32_t unzigzag(uint32_t u) { return (int32_t)((u >> 1) ^ (0u - (
 
 /* Smallest k (<= kmax) with 1.75 n 2^k >= sum: for a geometric source with
  * mean sum / n the best Rice parameter is near log2(mean ln 2), one below
- * LOCO-I's rule n 2^k >= sum in most strips. The answer is at most the bit
- * length of the mean, and at least two below it. */
-static unsigned rice_k(uint64_t sum, uint32_t n, unsigned kmax)
+ * LOCO-I's rule n 2^k >= sum in most strips. n is 1..33. */
+static inline unsigned rice_k(uint64_t sum, uint32_t n, unsigned kmax)
 {
-    uint32_t mean = sum >> 32 ? 0xFFFFFFFFu : (uint32_t)sum / n;
-    unsigned k = bw_bitlen(mean);
-    k = k > 2u ? k - 2u : 0u;
-    if (k > kmax)
-        return kmax;
-    /* 1.75 m < sum as 7 m < 4 sum; sum < 2^38, m < 2^39: no overflow */
-    uint64_t m = (uint64_t)n << k;
-    while (k < kmax && m * 7u < sum * 4u) {
-        k++;
-        m <<= 1;
+    unsigned k;
+    if (!RICE_SMALL && sum < (1u << 29)) {
+        /* 2^k >= t = ceil(4 sum / 7 n): k = bitlen(t - 1), or 0 for t <= 1 */
+        uint32_t t = ((uint32_t)sum * 4u + 7u * n - 1u) / (7u * n);
+        k = t > 1u ? bw_bitlen(t - 1u) : 0u;
+    } else {
+        /* the answer is at most the bit length of the mean, and at least
+         * two below it */
+        uint32_t mean = sum >> 32 ? 0xFFFFFFFFu : (uint32_t)sum / n;
+        k = bw_bitlen(mean);
+        k = k > 2u ? k - 2u : 0u;
+        /* 1.75 m < sum as 7 m < 4 sum; sum < 2^38, m < 2^39: no overflow */
+        uint64_t m = (uint64_t)n << k;
+        while (k < kmax && m * 7u < sum * 4u) {
+            k++;
+            m <<= 1;
+        }
     }
-    return k;
+    return k < kmax ? k : kmax;
 }
 
 void bw_rice_enc_init(bw_rice_enc_t *e, uint8_t *out, size_t cap)
@@ -131,7 +136,7 @@ void bw_rice_enc_init(bw_rice_enc_t *e, uint8_t *out, size_t cap)
     e->mode = MODE_ZERO;
 }
 
-static void put_mode(bw_rice_enc_t *e, unsigned mode)
+static inline void put_mode(bw_rice_enc_t *e, unsigned mode)
 {
     uint32_t zz = zigzag((int32_t)mode - (int32_t)e->mode);
     if (zz < MODE_ESC) {
@@ -158,19 +163,20 @@ static sparse_t sparse_params(uint64_t msum, unsigned n, unsigned nz)
     return sp;
 }
 
-/* The exact choice: whether the sparse code with the parameters of sp is
- * smaller than the dense code with parameter k. */
-static bool sparse_smaller(const int32_t *v, unsigned cnt, unsigned k, const sparse_t *sp)
+/* The exact sizes: whether the sparse code with the parameters of sp is
+ * smaller than the dense code with parameter k (strips where a code may
+ * escape, which the estimate below does not cover). */
+static bool sparse_smaller(const uint32_t *u, unsigned cnt, unsigned k, const sparse_t *sp)
 {
     uint32_t dense = 0, sparse = 5u, gap = 0;
     for (unsigned b = 0; b < cnt; b++) {
-        int32_t x = v[b];
-        dense += rice_bits(zigzag(x), k);
+        uint32_t x = u[b];
+        dense += rice_bits(x, k);
         if (!x) {
             gap++;
             continue;
         }
-        sparse += rice_bits(gap, sp->kg) + rice_bits(bw_abs32(x) - 1u, sp->km) + 1u;
+        sparse += rice_bits(gap, sp->kg) + rice_bits((x - 1u) >> 1, sp->km) + 1u;
         gap = 0;
     }
     if (gap)
@@ -178,39 +184,35 @@ static bool sparse_smaller(const int32_t *v, unsigned cnt, unsigned k, const spa
     return sparse < dense;
 }
 
-/* Bounds of sum over m values x of floor(x / 2^k), from their sum s:
- * [floor((s - m (2^k - 1)) / 2^k), floor(s / 2^k)]. */
-static inline uint32_t shifted_lo(uint32_t s, uint32_t m, unsigned k)
+/* The sum over m values x of floor(x / 2^k) lies within
+ * [floor((s - m (2^k - 1)) / 2^k), floor(s / 2^k)] for their sum s: the sum
+ * of the two bounds. */
+static uint32_t quot_bounds2(uint32_t s, uint32_t m, unsigned k)
 {
     uint32_t r = m * low_mask(k);
-    return s > r ? (s - r) >> k : 0u;
+    return (s > r ? (s - r) >> k : 0u) + (s >> k);
 }
 
 /*
- * Sparse or dense, decided as the exact sizes would decide (sparse when its
- * size is below the dense size), from bounds on both sizes that the strip's
- * counts give; only when the bounds overlap are the sizes computed. Every
- * value's zigzag code is below 2^26 (`any` is their OR), so no sum
- * overflows and no code escapes unless the checks below say so.
- * Returns 1 sparse, 0 dense, -1 undecided.
+ * Sparse or dense. Without escapes the size of either code lies within
+ * bounds that the strip's counts give (quot_bounds2); the choice is sparse
+ * when the sum of its two bounds is below the dense code's. That needs no
+ * second pass over the strip, and where the bounds do not overlap it is the
+ * choice the exact sizes would make. When a code may escape (or a sum may
+ * wrap) the exact sizes decide.
  */
-static int sparse_by_bounds(uint32_t sum, uint32_t any, unsigned cnt, unsigned nz, unsigned k,
-                            uint64_t msum, const sparse_t *sp)
+static bool choose_sparse(const uint32_t *u, uint32_t sum, uint32_t any, unsigned cnt,
+                          unsigned nz, unsigned k, uint64_t msum, bool wide, const sparse_t *sp)
 {
-    unsigned n = cnt - nz;
-    if ((any >> k) >= QMAX || ((any >> 1) >> sp->km) >= QMAX || (nz >> sp->kg) >= QMAX)
-        return -1; /* an escape may occur */
-    uint32_t d_base = cnt * (k + 1u);
-    uint32_t d_lo = d_base + shifted_lo(sum, cnt, k), d_hi = d_base + (sum >> k);
-    uint32_t m = (uint32_t)msum;
-    uint32_t s_base = 5u + n + n * (1u + sp->km) + n * (1u + sp->kg);
-    uint32_t s_lo = s_base + shifted_lo(m, n, sp->km) + shifted_lo(nz, n + 1u, sp->kg);
-    uint32_t s_hi = s_base + 1u + sp->kg + (m >> sp->km) + (nz >> sp->kg);
-    if (s_hi < d_lo)
-        return 1;
-    if (d_hi <= s_lo)
-        return 0;
-    return -1;
+    unsigned n = cnt - nz, km = sp->km, kg = sp->kg;
+    if (wide || (any >> k) >= QMAX || ((any >> 1) >> km) >= QMAX || (nz >> kg) >= QMAX)
+        return sparse_smaller(u, cnt, k, sp);
+    /* dense: cnt (k + 1) + quotients; sparse: 5 + n (3 + km + kg) +
+     * quotients, and at most 1 + kg for a final gap */
+    uint32_t dense2 = 2u * cnt * (k + 1u) + quot_bounds2(sum, cnt, k);
+    uint32_t sparse2 = 2u * (5u + n * (3u + km + kg)) + 1u + kg +
+                       quot_bounds2((uint32_t)msum, n, km) + quot_bounds2(nz, n + 1u, kg);
+    return sparse2 < dense2;
 }
 
 /* The writer in locals, so that the loops below keep it in registers. */
@@ -233,20 +235,22 @@ static int sparse_by_bounds(uint32_t sum, uint32_t any, unsigned cnt, unsigned n
         }                                                           \
     } while (0)
 
-static void code_sparse(bw_bitw_t *w, const int32_t *v, unsigned cnt, const sparse_t *sp)
+/* u: the zigzag codes; a value v != 0 has |v| - 1 = (u - 1) / 2 and its
+ * sign in the low bit of u */
+static void code_sparse(bw_bitw_t *w, const uint32_t *u, unsigned cnt, const sparse_t *sp)
 {
     unsigned km = sp->km, kg = sp->kg;
     put(w, km | (kg << 2), 5u);
     if (RICE_SMALL) {
         uint32_t gap = 0;
         for (unsigned b = 0; b < cnt; b++) {
-            if (!v[b]) {
+            if (!u[b]) {
                 gap++;
                 continue;
             }
             put_rice(w, gap, kg);
-            put_rice(w, bw_abs32(v[b]) - 1u, km);
-            put(w, v[b] < 0, 1u);
+            put_rice(w, (u[b] - 1u) >> 1, km);
+            put(w, u[b] & 1u, 1u);
             gap = 0;
         }
         if (gap)
@@ -256,22 +260,22 @@ static void code_sparse(bw_bitw_t *w, const int32_t *v, unsigned cnt, const spar
     W_LOAD(w);
     uint32_t gap = 0, gbit = 1u << kg, gmask = gbit - 1u, mbit = 1u << km, mmask = mbit - 1u;
     for (unsigned b = 0; b < cnt; b++) {
-        int32_t x = v[b];
+        uint32_t x = u[b];
         if (!x) {
             gap++;
             continue;
         }
-        uint32_t a = bw_abs32(x) - 1u, qg = gap >> kg, qm = a >> km;
+        uint32_t a = (x - 1u) >> 1, qg = gap >> kg, qm = a >> km;
         if (qg >= QMAX || qm >= QMAX) { /* an escape: the general writer */
             W_STORE(w);
             put_rice(w, gap, kg);
             put_rice(w, a, km);
-            put(w, x < 0, 1u);
+            put(w, x & 1u, 1u);
             W_RELOAD(w);
         } else {
             /* gap code, then magnitude code and sign: each at most 15 + 1 + 7 bits */
             W_PUT(w, (gap & gmask) | gbit, qg + 1u + kg);
-            W_PUT(w, (((a & mmask) | mbit) << 1) | ((uint32_t)x >> 31), qm + 2u + km);
+            W_PUT(w, (((a & mmask) | mbit) << 1) | (x & 1u), qm + 2u + km);
         }
         gap = 0;
     }
@@ -280,41 +284,120 @@ static void code_sparse(bw_bitw_t *w, const int32_t *v, unsigned cnt, const spar
         put_rice(w, gap, kg);
 }
 
-static void code_dense(bw_bitw_t *w, const int32_t *v, unsigned cnt, unsigned k)
+/* The dense codes of a strip without escapes (k < 16, every quotient below
+ * QMAX) into o, which has room for every word; returns the new end. */
+static inline uint8_t *dense_words(const uint32_t *u, unsigned cnt, unsigned k, uint8_t *o,
+                                   uint32_t *buf_p, unsigned *left_p)
+{
+    uint32_t buf = *buf_p, bitk = 1u << k, mask = bitk - 1u, k1 = k + 1u;
+    unsigned left = *left_p;
+    BW_UNROLL8
+    for (unsigned b = 0; b < cnt; b++) {
+        uint32_t x = u[b], c = (x & mask) | bitk;
+        unsigned len = (x >> k) + k1;
+        if (len < left) {
+            buf = (buf << len) | c;
+            left -= len;
+        } else {
+            unsigned sp = len - left;
+            uint32_t word = (buf << left) | (c >> sp);
+            o[0] = (uint8_t)(word >> 24);
+            o[1] = (uint8_t)(word >> 16);
+            o[2] = (uint8_t)(word >> 8);
+            o[3] = (uint8_t)word;
+            o += 4;
+            left = 32u - sp;
+            buf = c;
+        }
+    }
+    *buf_p = buf;
+    *left_p = left;
+    return o;
+}
+
+/* esc: some code may escape (or k >= 16) */
+static void code_dense(bw_bitw_t *w, const uint32_t *u, unsigned cnt, unsigned k, bool esc)
 {
     if (RICE_SMALL || k >= 16u) {
         for (unsigned b = 0; b < cnt; b++)
-            put_rice(w, zigzag(v[b]), k);
+            put_rice(w, u[b], k);
         return;
     }
     /* every code is at most 15 + 1 + 15 bits */
     W_LOAD(w);
-    uint32_t bitk = 1u << k, mask = bitk - 1u;
+    uint32_t bitk = 1u << k, mask = bitk - 1u, k1 = k + 1u;
+    if (!esc && w->out && w->pos <= w->cap && w->cap - w->pos >= 4u * cnt) {
+        /* no escape, at most 31 bits a value: room for every word, so the
+         * words go out through a local pointer without checks */
+        uint8_t *o = w->out + w->pos;
+        if (cnt == BW_RICE_STRIP_MAX)
+            o = dense_words(u, BW_RICE_STRIP_MAX, k, o, &buf, &left); /* a fixed count */
+        else
+            o = dense_words(u, cnt, k, o, &buf, &left);
+        w->pos = (size_t)(o - w->out);
+        W_STORE(w);
+        return;
+    }
+    if (!esc) {
+        BW_UNROLL8
+        for (unsigned b = 0; b < cnt; b++) {
+            uint32_t x = u[b];
+            W_PUT(w, (x & mask) | bitk, (x >> k) + k1);
+        }
+        W_STORE(w);
+        return;
+    }
     for (unsigned b = 0; b < cnt; b++) {
-        uint32_t u = zigzag(v[b]), q = u >> k;
+        uint32_t x = u[b], q = x >> k;
         if (q >= QMAX) {
             W_STORE(w);
-            put_rice(w, u, k);
+            put_rice(w, x, k);
             W_RELOAD(w);
             continue;
         }
-        W_PUT(w, (u & mask) | bitk, q + 1u + k);
+        W_PUT(w, (x & mask) | bitk, q + k1);
     }
     W_STORE(w);
 }
 
-void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
+/* The zigzag codes of a strip and their sum, OR, zeros and negative values.
+ * A zero is counted as (u - 1) >> 31, right for u <= 2^31 (a wider strip is
+ * counted again by the caller). */
+typedef struct {
+    uint32_t sum, neg, any, nz;
+} strip_stats_t;
+
+static inline void strip_stats(const int32_t *v, uint32_t *u, unsigned cnt, strip_stats_t *st)
 {
-    uint32_t sum32 = 0, neg = 0, any = 0;
-    unsigned nz = 0;
+    uint32_t sum = 0, neg = 0, any = 0, nz = 0;
+    BW_UNROLL8
     for (unsigned b = 0; b < cnt; b++) {
         int32_t x = v[b];
-        uint32_t u = zigzag(x);
-        sum32 += u;
+        uint32_t z = zigzag(x);
+        u[b] = z;
+        sum += z;
         neg += (uint32_t)x >> 31;
-        any |= u;
-        nz += u == 0u;
+        any |= z;
+        nz += (z - 1u) >> 31;
     }
+    st->sum = sum;
+    st->neg = neg;
+    st->any = any;
+    st->nz = nz;
+}
+
+void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
+{
+    uint32_t u[BW_RICE_STRIP_MAX];
+    strip_stats_t st;
+    if (cnt > BW_RICE_STRIP_MAX)
+        cnt = BW_RICE_STRIP_MAX;
+    if (!RICE_SMALL && cnt == BW_RICE_STRIP_MAX)
+        strip_stats(v, u, BW_RICE_STRIP_MAX, &st); /* a whole strip: a fixed count */
+    else
+        strip_stats(v, u, cnt, &st);
+    uint32_t sum32 = st.sum, neg = st.neg, any = st.any;
+    unsigned nz = st.nz;
     if (any == 0u) {
         put_mode(e, MODE_ZERO);
         return;
@@ -323,8 +406,11 @@ void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
     bool wide = (any >> 26) != 0u;
     if (wide) { /* the sum may have wrapped: again in 64 bits */
         sum = 0;
-        for (unsigned b = 0; b < cnt; b++)
-            sum += zigzag(v[b]);
+        nz = 0;
+        for (unsigned b = 0; b < cnt; b++) {
+            sum += u[b];
+            nz += u[b] == 0u;
+        }
     }
     unsigned k = rice_k(sum, cnt, 31u);
     if (nz >= cnt / 4u) {
@@ -332,17 +418,14 @@ void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
         /* sum of |v| is (sum + neg) / 2: a negative v has an odd code */
         uint64_t msum = (sum + neg) / 2u - n;
         sparse_t sp = sparse_params(msum, n, nz);
-        int pick = RICE_SMALL || wide ? -1 : sparse_by_bounds(sum32, any, cnt, nz, k, msum, &sp);
-        if (pick < 0)
-            pick = sparse_smaller(v, cnt, k, &sp);
-        if (pick) {
+        if (choose_sparse(u, sum32, any, cnt, nz, k, msum, wide, &sp)) {
             put_mode(e, MODE_SPARSE);
-            code_sparse(&e->w, v, cnt, &sp);
+            code_sparse(&e->w, u, cnt, &sp);
             return;
         }
     }
     put_mode(e, MODE_DENSE + k);
-    code_dense(&e->w, v, cnt, k);
+    code_dense(&e->w, u, cnt, k, wide || (any >> k) >= QMAX);
 }
 
 size_t bw_rice_enc_finish(bw_rice_enc_t *e)

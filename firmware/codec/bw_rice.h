@@ -61,8 +61,10 @@ typedef struct {
     unsigned mode;
 } bw_rice_dec_t;
 
+#define BW_RICE_STRIP_MAX 32u
+
 void bw_rice_enc_init(bw_rice_enc_t *e, uint8_t *out, size_t cap);
-/* Codes one strip of cnt (1..32) values. */
+/* Codes one strip of cnt (1..BW_RICE_STRIP_MAX) values. */
 void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt);
 /* Pads to a byte; returns the number of bytes produced. */
 size_t bw_rice_enc_finish(bw_rice_enc_t *e);

@@ -344,19 +344,19 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
 }
 
 /* Picks one of 4 children in proportion to v with *t in [0, sum of v):
- * the first child whose running sum passes *t; *t becomes the offset inside
- * that child, so that it picks again below without a division. Rounding can
- * leave *t at or past the sum: then the last child with a positive value,
- * and *t moves inside it. */
+ * the child whose running sum is the first to pass *t (compared without
+ * branches); *t becomes the offset inside that child, so that it picks
+ * again below without a division. A child with value 0 is never picked.
+ * Rounding can leave *t at or past the sum: then the last child with a
+ * positive value, and *t moves inside it. */
 static inline unsigned pick4(const double *v, double *t)
 {
-    double x = *t;
-    for (unsigned m = 0; m < 4; m++) {
-        if (x < v[m]) {
-            *t = x;
-            return m;
-        }
-        x -= v[m];
+    double x = *t, c1 = v[0], c2 = c1 + v[1], c3 = c2 + v[2];
+    if (x < c3 + v[3]) {
+        unsigned m = (unsigned)(x >= c1) + (unsigned)(x >= c2) + (unsigned)(x >= c3);
+        double below[4] = {0.0, c1, c2, c3};
+        *t = x - below[m];
+        return m;
     }
     unsigned last = 3;
     while (last > 0 && !(v[last] > 0.0))

@@ -1296,6 +1296,32 @@ static void crc32_of_the_check_string_is_cbf43926(void **state)
     assert_int_equal(bw_crc32(&a, 1), 0xE8B7BE43u);
 }
 
+/* the core's table-driven CRC (four bytes a step where built for speed)
+ * against the CRC computed bit by bit, at every length and offset, in one
+ * piece and split anywhere */
+static void crc32_matches_the_bitwise_crc(void **state)
+{
+    (void)state;
+    uint8_t buf[300];
+    rng_t r;
+    rng_seed(&r, 5);
+    for (size_t i = 0; i < sizeof buf; i++)
+        buf[i] = (uint8_t)rng_u32(&r);
+    for (size_t off = 0; off < 4; off++)
+        for (size_t n = 0; off + n <= sizeof buf; n += 1 + n / 16) {
+            uint32_t c = 0xFFFFFFFFu;
+            for (size_t i = 0; i < n; i++) {
+                c ^= buf[off + i];
+                for (int b = 0; b < 8; b++)
+                    c = c & 1u ? (c >> 1) ^ 0xEDB88320u : c >> 1;
+            }
+            c = ~c;
+            assert_int_equal(bw_crc32(buf + off, n), c);
+            size_t cut = n / 3;
+            assert_int_equal(bw_crc32_update(bw_crc32(buf + off, cut), buf + off + cut, n - cut), c);
+        }
+}
+
 /* ---- max-error mode ----------------------------------------------------- */
 
 static const uint32_t error_bounds[] = {1, 2, 4, 8, 16, 100};
@@ -2643,6 +2669,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(crc32_of_the_check_string_is_cbf43926),
+        cmocka_unit_test(crc32_matches_the_bitwise_crc),
         cmocka_unit_test(status_codes_have_messages),
         cmocka_unit_test(range_coder_round_trips_adaptive_and_direct_bits),
         cmocka_unit_test(range_decoder_flags_reading_past_its_input),
