@@ -33,6 +33,8 @@
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
 #define STEP_REFINE 16384u   /* then bisection on the step to 1/16384 of it */
+#define ROUND_MAX_Q8 32u     /* then the rounding offset, up to 1/8 of a step */
+#define ROUND_FILL 128u      /* when the payload is more than 1/128 under */
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 
 static const uint8_t magic[2] = {'B', 'W'};
@@ -120,6 +122,7 @@ typedef struct {
     uint32_t prequant;
     uint32_t step_q8;
     uint32_t vec_thresh_q8;
+    uint32_t round_q8;  /* encoder: rounding offset of the quantiser, Q8 */
     bool mirror;        /* BW_FLAG_MIRROR */
     bool stream;        /* coding order: streamed (post-order) instead of coarse-to-fine */
     int32_t *spec_cls;  /* [bands] context class of each spectral coefficient */
@@ -144,6 +147,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->prequant = 1u;
     pl->step_q8 = STEP_ONE_Q8;
     pl->vec_thresh_q8 = VEC_THRESH_Q8;
+    pl->round_q8 = 0;
     pl->mirror = false;
     pl->stream = false;
 }
@@ -404,11 +408,20 @@ static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const 
     return e;
 }
 
-static inline int32_t quant(int32_t c, uint64_t st)
+/* floor(|c| / step + round / 256) with the sign of c; off = step_q8 *
+ * round / 256 (0: the dead-zone quantiser, floor(|c| / step)). */
+static inline int32_t quant(int32_t c, uint64_t st, uint64_t off)
 {
     if (st <= STEP_ONE_Q8)
         return c;
-    uint32_t q = (uint32_t)div_q8(bw_abs32(c), st);
+    uint32_t a = bw_abs32(c), q;
+    if (off == 0u)
+        q = (uint32_t)div_q8(a, st);
+    else if (a < (1u << 23) && st <= (1u << 31)) /* 256 a + off < 2^32 */
+        q = ((a << 8) + (uint32_t)off) / (uint32_t)st;
+    else /* floor((256 a + off) / st) = floor(256 a / st) + (carry of the remainders) */
+        q = (uint32_t)div_q8(a, st) +
+            ((((uint64_t)a << 8) - div_q8(a, st) * st + off) >= st ? 1u : 0u);
     return c < 0 ? -(int32_t)q : (int32_t)q;
 }
 
@@ -424,8 +437,10 @@ static inline int32_t dequant(int32_t q, uint64_t st)
     return q < 0 ? -(int32_t)m : (int32_t)m;
 }
 
-/* Quantises (forward) or reconstructs one vector with its subband steps. */
-static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v, bool forward)
+/* Quantises (forward, rounding offset round_q8) or reconstructs one vector
+ * with its subband steps. */
+static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v, bool forward,
+                      uint32_t round_q8)
 {
     for (unsigned i = 0; i < sb->count; i++) {
         uint64_t st = steps[i];
@@ -433,8 +448,9 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
             continue;
         uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
         if (forward) {
+            uint64_t off = (st * round_q8) >> 8;
             for (; k < end; k++)
-                v[k] = quant(v[k], st);
+                v[k] = quant(v[k], st, off);
         } else {
             for (; k < end; k++)
                 v[k] = dequant(v[k], st);
@@ -483,7 +499,7 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
                     /* outgoing space: drop the spectral vector */
                     memset(v, 0, (size_t)b * sizeof *v);
                 } else {
-                    vec_quant(&sb, steps, v, forward);
+                    vec_quant(&sb, steps, v, forward, pl->round_q8);
                 }
             }
             if (!pass && e < thr) {
@@ -1208,6 +1224,29 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
             lo_s = mid;
     }
     pl->step_q8 = hi_s;
+    /* then the quantiser's rounding offset, 0 .. 1/8 of a step: the size
+     * jumps at some steps (similar coefficients cross a power of two
+     * together), and rounding up more of them fills the budget by smaller
+     * amounts. Within 1/8 of a step every coefficient it rounds up ends
+     * nearer its reconstruction (at 3/8 of the interval above) than before. */
+    st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+    if (st != BW_OK)
+        return st;
+    if (sz < budget - budget / ROUND_FILL) {
+        unsigned lo_r = 0, hi_r = ROUND_MAX_Q8 + 1u; /* lo_r fits, hi_r does not */
+        while (hi_r - lo_r > 1u) {
+            unsigned mid = (lo_r + hi_r) / 2u;
+            pl->round_q8 = mid;
+            st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+            if (st != BW_OK)
+                return st;
+            if (sz <= budget)
+                lo_r = mid;
+            else
+                hi_r = mid;
+        }
+        pl->round_q8 = lo_r;
+    }
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
 }
 
@@ -1437,7 +1476,7 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
         if (b > 1u && vec_energy(&sb, steps, v, thr) < thr)
             memset(v, 0, (size_t)b * sizeof *v);
         else
-            vec_quant(&sb, steps, v, true);
+            vec_quant(&sb, steps, v, true, 0u);
     }
     /* stream order: no directional parent, no previous vector */
     for (uint32_t k = 0; k < b; k++)
