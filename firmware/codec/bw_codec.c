@@ -36,6 +36,7 @@
 #define ROUND_MAX_Q8 32u     /* then the rounding offset, up to 1/8 of a step */
 #define ROUND_FILL 128u      /* when the payload is more than 1/128 under */
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
+#define VEC_THRESH_MAX_LOG2 16u /* a budget may raise it up to 2^16 steps     */
 
 static const uint8_t magic[2] = {'B', 'W'};
 
@@ -292,16 +293,18 @@ static uint64_t elem_step(uint32_t step_q8, uint32_t g_in, uint32_t g_out, uint3
     return s;
 }
 
-/* floor(256 a / st): a 32-bit division (one instruction on Cortex-M4) when
- * the operands fit, which they do for every coefficient of valid input. */
-static inline uint64_t div_q8(uint32_t a, uint64_t st)
+/* floor((256 a + off) / st): a 32-bit division (one instruction on
+ * Cortex-M4) when the operands fit, which they do for every coefficient of
+ * valid input. */
+BW_SMALL_NOINLINE static uint64_t div_q8_off(uint32_t a, uint64_t st, uint64_t off)
 {
-    if (a < (1u << 24) && st <= UINT32_MAX)
-        return (a << 8) / (uint32_t)st;
+    uint64_t num = ((uint64_t)a << 8) + off;
+    if (num <= UINT32_MAX && st <= UINT32_MAX)
+        return (uint32_t)num / (uint32_t)st;
     /* a coefficient beyond 2^24 or a step beyond 2^24: long division
      * (rare, and it keeps the 64-bit division helper out of the image) */
-    uint64_t num = (uint64_t)a << 8, q = 0, r = 0;
-    for (int bit = 39; bit >= 0; bit--) {
+    uint64_t q = 0, r = 0;
+    for (int bit = 40; bit >= 0; bit--) {
         r = (r << 1) | ((num >> bit) & 1u);
         if (r >= st) {
             r -= st;
@@ -310,6 +313,9 @@ static inline uint64_t div_q8(uint32_t a, uint64_t st)
     }
     return q;
 }
+
+/* floor(256 a / st) */
+static inline uint64_t div_q8(uint32_t a, uint64_t st) { return div_q8_off(a, st, 0u); }
 
 /* The outgoing coefficients in coarse-to-fine order (the order of
  * bw_biohaar_pos) without a division per step: the next one is child m of
@@ -376,6 +382,14 @@ static void spec_bands(const plan_t *pl, spec_bands_t *sb)
     }
 }
 
+/* The threshold on a vector's energy in steps (vec_energy): the square of
+ * vec_thresh_q8 / 256, at least 1. */
+static uint64_t vec_thr(const plan_t *pl)
+{
+    uint64_t t = ((uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8) >> 16;
+    return t ? t : 1u;
+}
+
 /* Per subband, the step of a vector whose incoming x outgoing gain is gio. */
 static void vec_steps(const plan_t *pl, const spec_bands_t *sb, uint32_t gio, uint64_t *st)
 {
@@ -383,9 +397,10 @@ static void vec_steps(const plan_t *pl, const spec_bands_t *sb, uint32_t gio, ui
         st[i] = elem_step(pl->step_q8, gio, 65536u, sb->gain[i]);
 }
 
-/* Normalised energy of a vector: sum of (c / step)^2 in Q16, saturating; it
- * stops once the sum reaches limit (the callers only compare it with a
- * threshold), so for most vectors after a few elements. */
+/* Energy of a vector in steps: the sum of floor(|c| / step)^2 (the squares
+ * of the indices the dead-zone quantiser gives), saturating; it stops once
+ * the sum reaches limit (the callers only compare it with a threshold), so
+ * for most vectors after a few elements. */
 static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const int32_t *x,
                            uint64_t limit)
 {
@@ -414,14 +429,7 @@ static inline int32_t quant(int32_t c, uint64_t st, uint64_t off)
 {
     if (st <= STEP_ONE_Q8)
         return c;
-    uint32_t a = bw_abs32(c), q;
-    if (off == 0u)
-        q = (uint32_t)div_q8(a, st);
-    else if (a < (1u << 23) && st <= (1u << 31)) /* 256 a + off < 2^32 */
-        q = ((a << 8) + (uint32_t)off) / (uint32_t)st;
-    else /* floor((256 a + off) / st) = floor(256 a / st) + (carry of the remainders) */
-        q = (uint32_t)div_q8(a, st) +
-            ((((uint64_t)a << 8) - div_q8(a, st) * st + off) >= st ? 1u : 0u);
+    uint32_t q = (uint32_t)div_q8_off(bw_abs32(c), st, off);
     return c < 0 ? -(int32_t)q : (int32_t)q;
 }
 
@@ -466,7 +474,7 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
     unsigned L = d->level_out;
-    uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
+    uint64_t thr = vec_thr(pl);
     spec_bands_t sb;
     uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
     uint32_t steps_gio = 0; /* no vector has gain 0: the first one computes */
@@ -1173,6 +1181,13 @@ static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
+/* The size of the BYTES payload at the plan's current settings. */
+static bw_status_t count_bytes(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                               int32_t *work, size_t *sz)
+{
+    return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, sz);
+}
+
 static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                 int32_t *work, uint8_t *out, size_t cap, size_t *len)
 {
@@ -1192,15 +1207,35 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         return encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, out, budget, len);
     unsigned lo = 0, hi = STEP_T_MAX;
     pl->step_q8 = step_of(hi);
-    st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+    st = count_bytes(pl, pa, samples, work, &sz);
     if (st != BW_OK)
         return st;
-    if (sz > budget)
-        return BW_ERR_BUDGET;
+    if (sz > budget) {
+        /* even the coarsest step leaves too much: then, at that step, the
+         * smallest vector threshold (2, 4, .. 65536 steps) that fits; the
+         * largest drops every vector with more than one band */
+        uint32_t vt0 = pl->vec_thresh_q8;
+        unsigned lo_i = 0, hi_i = VEC_THRESH_MAX_LOG2 + 1u; /* hi_i fits (if any does) */
+        while (hi_i - lo_i > 1u) {
+            unsigned mid = (lo_i + hi_i) / 2u;
+            pl->vec_thresh_q8 = vt0 > (UINT32_MAX >> mid) ? UINT32_MAX : vt0 << mid;
+            st = count_bytes(pl, pa, samples, work, &sz);
+            if (st != BW_OK)
+                return st;
+            if (sz <= budget)
+                hi_i = mid;
+            else
+                lo_i = mid;
+        }
+        if (hi_i > VEC_THRESH_MAX_LOG2)
+            return BW_ERR_BUDGET;
+        pl->vec_thresh_q8 = vt0 > (UINT32_MAX >> hi_i) ? UINT32_MAX : vt0 << hi_i;
+        return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
+    }
     while (hi - lo > 1u) {
         unsigned mid = (lo + hi) / 2u;
         pl->step_q8 = step_of(mid);
-        st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+        st = count_bytes(pl, pa, samples, work, &sz);
         if (st != BW_OK)
             return st;
         if (sz <= budget)
@@ -1215,7 +1250,7 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
     while (hi_s - lo_s > 1u && (uint64_t)(hi_s - lo_s) * STEP_REFINE > hi_s) {
         uint32_t mid = lo_s + (hi_s - lo_s) / 2u;
         pl->step_q8 = mid;
-        st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+        st = count_bytes(pl, pa, samples, work, &sz);
         if (st != BW_OK)
             return st;
         if (sz <= budget)
@@ -1229,7 +1264,7 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
      * together), and rounding up more of them fills the budget by smaller
      * amounts. Within 1/8 of a step every coefficient it rounds up ends
      * nearer its reconstruction (at 3/8 of the interval above) than before. */
-    st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+    st = count_bytes(pl, pa, samples, work, &sz);
     if (st != BW_OK)
         return st;
     if (sz < budget - budget / ROUND_FILL) {
@@ -1237,7 +1272,7 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         while (hi_r - lo_r > 1u) {
             unsigned mid = (lo_r + hi_r) / 2u;
             pl->round_q8 = mid;
-            st = encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, &sz);
+            st = count_bytes(pl, pa, samples, work, &sz);
             if (st != BW_OK)
                 return st;
             if (sz <= budget)
@@ -1468,7 +1503,7 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
     uint32_t gio = has_out(&s->dims) ? bw_biohaar_inv_gain_q16(s->dims.level_out, j) : 65536u;
     unsigned cd = level_cls(pl, j);
     if (s->step_q8 > STEP_ONE_Q8) {
-        uint64_t thr = (uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8;
+        uint64_t thr = vec_thr(pl);
         spec_bands_t sb;
         uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
         spec_bands(pl, &sb);

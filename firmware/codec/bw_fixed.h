@@ -41,6 +41,13 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 #define BW_SMALL 0
 #endif
 
+/* A helper kept out of line in a build for size. */
+#if BW_SMALL && defined(__GNUC__)
+#define BW_SMALL_NOINLINE __attribute__((noinline))
+#else
+#define BW_SMALL_NOINLINE
+#endif
+
 /* Before a hot loop: unrolled 8 times where built for speed. */
 #if !BW_SMALL && defined(__GNUC__)
 #define BW_PRAGMA_(x) _Pragma(#x)

@@ -81,6 +81,7 @@ CASES = [  # set, mode arguments, extra layout arguments
     ("field20", ["--max-error", "8"], []),
     ("field20", ["--max-error", "4"], ["--stream", "--basis", "53"]),
     ("field20", ["--ratio", "32"], []),
+    ("field20", ["--ratio", "128"], []),
     ("rgl_paper", ["--lossless"], []),
     ("rgl_paper", ["--max-error", "4"], []),
     ("rgl_paper", ["--ratio", "64"], []),

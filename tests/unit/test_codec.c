@@ -1415,6 +1415,43 @@ static void max_error_mode_keeps_every_sample_within_the_bound_on_field_spectra(
         }
 }
 
+/* The default vector threshold is one step: a spectrum is dropped whole only
+ * when none of its coefficients reaches a step (when the quantiser would
+ * zero it anyway). Spectra with values of 3, 10 and 40 steps, coded with a
+ * fixed step, come back; only the flat spectrum at 0 stays zero. */
+static void vector_threshold_keeps_every_spectrum_with_a_coefficient_above_a_step(void **state)
+{
+    (void)state;
+    const uint32_t bands = 64, step = 1000;
+    static const int32_t level[4] = {0, 3, 10, 40};
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 4, bands);
+    int32_t x[4 * 64];
+    for (uint32_t s = 0; s < 4; s++)
+        for (uint32_t k = 0; k < bands; k++)
+            x[s * bands + k] = level[s] * (int32_t)step + (int32_t)(k % 5u) * 7;
+    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+        bw_params_t p = params_of(BW_MODE_STEP, basis);
+        p.step_q8 = step * 256u;
+        uint8_t *out;
+        size_t len;
+        assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_OK);
+        int32_t *y;
+        bw_header_t h;
+        assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
+        for (uint32_t s = 1; s < 4; s++) {
+            int64_t sum = 0;
+            for (uint32_t k = 0; k < bands; k++)
+                sum += y[s * bands + k];
+            double mean = (double)sum / bands, want = (double)level[s] * step;
+            if (!(fabs(mean - want) < 0.25 * want))
+                fail_msg("%s: spectrum at %d steps decoded with mean %.0f, want %.0f",
+                         basis_name(basis), level[s], mean, want);
+        }
+        free(y);
+        free(out);
+    }
+}
+
 /* ---- byte-budget mode ----------------------------------------------------- */
 
 static void check_budgets(const bw_dims_t *d, const int32_t *x, unsigned basis, const char *what)
@@ -2728,6 +2765,7 @@ int main(void)
         cmocka_unit_test(byte_budget_too_small_is_refused),
         cmocka_unit_test(byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_small_budgets_within_2_percent_on_field_spectra),
+        cmocka_unit_test(vector_threshold_keeps_every_spectrum_with_a_coefficient_above_a_step),
         cmocka_unit_test(every_truncation_of_a_valid_payload_is_rejected),
         cmocka_unit_test(every_single_bit_flip_is_rejected_by_the_crc_or_the_header_checks),
         cmocka_unit_test(unchecked_decoding_of_garbage_bodies_returns_a_status),
