@@ -125,6 +125,7 @@ typedef struct {
     uint32_t vec_thresh_q8;
     uint32_t round_q8;  /* encoder: rounding offset of the quantiser, Q8 */
     bool mirror;        /* BW_FLAG_MIRROR */
+    bool recip;         /* BW_FLAG_RECIPROCAL */
     bool stream;        /* coding order: streamed (post-order) instead of coarse-to-fine */
     int32_t *spec_cls;  /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain; /* [bands] its inverse gain, Q16                      */
@@ -150,6 +151,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->vec_thresh_q8 = VEC_THRESH_Q8;
     pl->round_q8 = 0;
     pl->mirror = false;
+    pl->recip = false;
     pl->stream = false;
 }
 
@@ -248,29 +250,60 @@ static void transform_inv(const plan_t *pl, int32_t *x)
 /* The direction index of the mirror image (x, -y, z) of direction o at a
  * level: base triangle b goes to 3 - b, and in every child digit the
  * corners 2 and 3 trade places (0, 1, 2, 3 -> 0, 1, 3, 2). */
-static uint32_t mirror_index(uint32_t o, unsigned level)
+BW_SMALL_NOINLINE static uint32_t mirror_index(uint32_t o, unsigned level)
 {
     unsigned sh = 2u * level;
     uint32_t r = o & ((1u << sh) - 1u);
     return (3u - (o >> sh)) << sh | (r ^ ((r >> 1) & 0x55555555u));
 }
 
-/* BW_FLAG_MIRROR: forward, each sample of the mirrored half minus its
- * partner (BW_ERR_RANGE if a difference leaves +-BW_SAMPLE_MAX); inverse,
- * plus its partner (in 32-bit wrapping arithmetic: a corrupt body decodes
- * to wrong samples, never to undefined behaviour). The partners lie in the
- * other half, which neither direction changes. */
-static bw_status_t mirror(const plan_t *pl, int32_t *x, bool forward)
+/* The symmetry steps, on whole vectors of samples; a vector whose partner
+ * comes first in [incoming][outgoing] order is coded as its difference
+ * from the partner:
+ *   BW_FLAG_MIRROR      the mirrored half, each vector against its mirror
+ *                       image: (i, m(o)), or for a full BRDF (m(i), m(o))
+ *                       for the incoming half i >= n_in / 2;
+ *   BW_FLAG_RECIPROCAL  then, in the rows MIRROR leaves (all, or i < n / 2),
+ *                       (i, o) against (o, i), or with MIRROR and o in the
+ *                       mirrored half against (m(o), m(i)).
+ * Forward runs the steps in that order and each backwards (every partner
+ * still holds its samples); inverse the other way round. In 32-bit wrapping
+ * arithmetic: a corrupt body decodes to wrong samples, never to undefined
+ * behaviour; forward, BW_ERR_RANGE if a difference leaves +-BW_SAMPLE_MAX. */
+static bw_status_t symmetry(const plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
-    size_t b = d->bands, blk = (size_t)d->n_out * b;
+    unsigned lo = d->level_out, li = d->level_in, sh = 2u * lo + 2u;
+    uint32_t ni = d->n_in, no = d->n_out, rows = pl->mirror ? ni / 2u : ni;
     bool full = has_in(d);
+    size_t b = d->bands, total = (size_t)ni << sh;
     uint32_t neg = forward ? ~0u : 0u, bad = 0; /* p ^ neg - neg: -p or p */
-    for (uint32_t i = full ? d->n_in / 2u : 0u; i < d->n_in; i++) {
-        uint32_t pi = full ? mirror_index(i, d->level_in) : i;
-        for (uint32_t o = full ? 0u : d->n_out / 2u; o < d->n_out; o++) {
-            uint32_t *v = (uint32_t *)x + i * blk + o * b;
-            const uint32_t *p = (const uint32_t *)x + pi * blk + mirror_index(o, d->level_out) * b;
+    for (unsigned step = 0; step < 2u; step++) {
+        bool rec = (step == 0u) != forward;
+        if (rec ? !pl->recip : !pl->mirror)
+            continue;
+        for (size_t t = 0; t < total; t++) {
+            size_t s = forward ? total - 1u - t : t;
+            uint32_t i = (uint32_t)(s >> sh), o = (uint32_t)s & (no - 1u), a = i, c = o;
+            if (rec) {
+                if (i < rows) {
+                    a = o;
+                    c = i;
+                    if (o >= rows) {
+                        a = mirror_index(o, lo);
+                        c = mirror_index(i, lo);
+                    }
+                }
+            } else if (full ? i >= ni / 2u : o >= no / 2u) {
+                if (full)
+                    a = mirror_index(i, li);
+                c = mirror_index(o, lo);
+            }
+            size_t ps = ((size_t)a << sh) + c;
+            if (ps >= s)
+                continue;
+            uint32_t *v = (uint32_t *)x + s * b;
+            const uint32_t *p = (const uint32_t *)x + ps * b;
             for (size_t k = 0; k < b; k++) {
                 uint32_t r = v[k] + ((p[k] ^ neg) - neg);
                 bad |= r + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
@@ -1058,6 +1091,8 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
         h->spectral_levels != bw_spec_levels(d->bands) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
         ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL) ||
         ((h->flags & BW_FLAG_MIRROR) && d->shape == BW_SHAPE_SPECTRA) ||
+        ((h->flags & BW_FLAG_RECIPROCAL) &&
+         (d->shape != BW_SHAPE_BRDF_FULL || d->level_in != d->level_out)) ||
         (me ? e - 1u >= (uint32_t)BW_SAMPLE_MAX : e > UINT32_MAX - STEP_ONE_Q8))
         return BW_ERR_HEADER;
     return BW_OK;
@@ -1100,8 +1135,8 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                size_t cap, size_t *len)
 {
     bw_status_t st = load_samples(work, samples, pl->n, pl->prequant);
-    if (st == BW_OK && pl->mirror)
-        st = mirror(pl, work, true);
+    if (st == BW_OK && (pl->mirror || pl->recip))
+        st = symmetry(pl, work, true);
     if (st != BW_OK)
         return st;
     transform_fwd(pl, work);
@@ -1178,6 +1213,7 @@ static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw
         pl->vec_thresh_q8 = pa->vec_thresh_q8;
     pl->stream = (pa->flags & BW_FLAG_STREAM_ORDER) != 0u;
     pl->mirror = (pa->flags & BW_FLAG_MIRROR) != 0u;
+    pl->recip = (pa->flags & BW_FLAG_RECIPROCAL) != 0u;
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
@@ -1302,6 +1338,9 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         return BW_ERR_SHAPE; /* the incoming transform needs every hemisphere at once */
     if ((pa->flags & BW_FLAG_MIRROR) && dims->shape == BW_SHAPE_SPECTRA)
         return BW_ERR_SHAPE; /* no directions to mirror */
+    if ((pa->flags & BW_FLAG_RECIPROCAL) &&
+        (dims->shape != BW_SHAPE_BRDF_FULL || dims->level_in != dims->level_out))
+        return BW_ERR_SHAPE; /* incoming and outgoing on different grids */
     if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
         return BW_ERR_ARG;
     if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
@@ -1371,6 +1410,7 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     pl.step_q8 = h->step_q8;
     pl.stream = (h->flags & BW_FLAG_STREAM_ORDER) != 0u;
     pl.mirror = (h->flags & BW_FLAG_MIRROR) != 0u;
+    pl.recip = (h->flags & BW_FLAG_RECIPROCAL) != 0u;
     plan_tables(&pl);
 
     bw_status_t st;
@@ -1388,8 +1428,8 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     if (pl.step_q8 > STEP_ONE_Q8)
         quantise(&pl, work, false);
     transform_inv(&pl, work);
-    if (pl.mirror)
-        mirror(&pl, work, false);
+    if (pl.mirror || pl.recip)
+        symmetry(&pl, work, false);
     for (size_t i = 0; i < n; i++) {
         int64_t v = (int64_t)work[i] * pl.prequant;
         samples[i] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
@@ -1457,7 +1497,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
         return BW_ERR_SHAPE;
     if ((pa->mode != BW_MODE_LOSSLESS && pa->mode != BW_MODE_MAX_ERROR &&
          pa->mode != BW_MODE_STEP) ||
-        pa->basis >= BW_BASIS_COUNT || (pa->flags & (~BW_FLAGS_KNOWN | BW_FLAG_MIRROR)) != 0u)
+        pa->basis >= BW_BASIS_COUNT || (pa->flags & (~BW_FLAGS_KNOWN | BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL)) != 0u)
         return BW_ERR_ARG;
     if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
         return BW_ERR_ARG;

@@ -122,7 +122,16 @@ typedef struct {
  *   may arrive after it); the differences must stay within +-BW_SAMPLE_MAX
  *   (after the max-error prequantiser), else BW_ERR_RANGE. */
 #define BW_FLAG_MIRROR 0x10u
-#define BW_FLAGS_KNOWN 0x1Fu
+/* Reciprocity, f(wi, wo) = f(wo, wi): for a full BRDF whose incoming and
+ *   outgoing grids are the same level, each sample whose reciprocal partner
+ *   (the sample with the two directions swapped, or that sample's mirror
+ *   image in the half MIRROR codes as differences) comes first in
+ *   [incoming][outgoing] order is coded as the difference from it: a
+ *   reciprocal BRDF then codes about half its samples. Only for
+ *   BW_SHAPE_BRDF_FULL with level_in == level_out; the differences must stay
+ *   within +-BW_SAMPLE_MAX, else BW_ERR_RANGE. */
+#define BW_FLAG_RECIPROCAL 0x20u
+#define BW_FLAGS_KNOWN 0x3Fu
 
 /* ---- sizes -------------------------------------------------------------- */
 

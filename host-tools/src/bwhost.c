@@ -304,37 +304,39 @@ static double sse_of(const int32_t *x, const int32_t *y, size_t n)
     return e;
 }
 
-/* The same encode with BW_FLAG_MIRROR; keeps whichever payload is smaller
- * (a byte budget: whichever decodes closer, then the smaller), and sets the
- * flag in *p0 when it keeps the mirrored one. *buf holds the payload of
- * status st0 and ver its decoded samples. */
-static int try_mirror(const bw_dims_t *dims, bw_params_t *p0, const int32_t *x, size_t n,
-                      int32_t *work, int32_t *ver, uint8_t **buf, size_t cap, size_t *len,
-                      int st0)
+#define SYM_FLAGS (BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL)
+
+/* The same encode with the symmetry flags sym instead of *p0's; keeps
+ * whichever payload is smaller (a byte budget: whichever decodes closer,
+ * then the smaller), and sets the flags in *p0 when it keeps the new one.
+ * *buf holds the payload of status st0 and *e0 the squared error of its
+ * decoded samples; ver is scratch. */
+static int try_symmetry(const bw_dims_t *dims, bw_params_t *p0, unsigned sym, const int32_t *x,
+                        size_t n, int32_t *work, int32_t *ver, uint8_t **buf, size_t cap,
+                        size_t *len, int st0, double *e0)
 {
     bw_params_t p = *p0;
-    p.flags |= BW_FLAG_MIRROR;
-    double e0 = st0 == BW_OK ? sse_of(x, ver, n) : 0.0;
+    p.flags = (uint8_t)((p.flags & ~SYM_FLAGS) | sym);
     uint8_t *alt = malloc(cap);
     size_t alen = 0;
     if (!alt)
         return st0;
     int st = bw_encode(dims, &p, x, work, ver, alt, cap, &alen);
     int take = 0;
+    double e = st == BW_OK ? sse_of(x, ver, n) : 0.0;
     if (st == BW_OK) {
         if (st0 != BW_OK)
             take = 1;
-        else if (p.mode == BW_MODE_BYTES) {
-            double e = sse_of(x, ver, n);
-            take = e < e0 || (e == e0 && alen < *len);
-        } else {
+        else if (p.mode == BW_MODE_BYTES)
+            take = e < *e0 || (e == *e0 && alen < *len);
+        else
             take = alen < *len;
-        }
     }
     if (take) {
         free(*buf);
         *buf = alt;
         *len = alen;
+        *e0 = e;
         p0->flags = p.flags;
         return BW_OK;
     }
@@ -382,14 +384,20 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         return fail("out of memory");
     }
     size_t len = 0;
-    bool auto_mirror = !(o->flags & (BW_FLAG_MIRROR | BWH_NO_MIRROR)) &&
-                       dims->shape != BW_SHAPE_SPECTRA && !(o->flags & BW_FLAG_STREAM_ORDER);
-    if (!o->device || auto_mirror) {
-        /* the host's encode (with auto, both ways); before a device encode it
-         * only makes the choice, so that the device's payload is the host's */
+    bool auto_sym = !(o->flags & (SYM_FLAGS | BWH_NO_MIRROR)) &&
+                    dims->shape != BW_SHAPE_SPECTRA && !(o->flags & BW_FLAG_STREAM_ORDER);
+    if (!o->device || auto_sym) {
+        /* the host's encode (with auto, every symmetry that applies); before
+         * a device encode it only makes the choice, so that the device's
+         * payload is the host's */
         st = bw_encode(dims, &p, x, work, ver, buf, cap, &len);
-        if (auto_mirror && (st == BW_OK || st == BW_ERR_BUDGET))
-            st = try_mirror(dims, &p, x, n, work, ver, &buf, cap, &len, st);
+        double e0 = st == BW_OK ? sse_of(x, ver, n) : 0.0;
+        bool recip = dims->shape == BW_SHAPE_BRDF_FULL && dims->level_in == dims->level_out;
+        static const unsigned syms[3] = {BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL,
+                                         BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL};
+        for (unsigned k = 0; auto_sym && k < (recip ? 3u : 1u); k++)
+            if (st == BW_OK || st == BW_ERR_BUDGET)
+                st = try_symmetry(dims, &p, syms[k], x, n, work, ver, &buf, cap, &len, st, &e0);
     }
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */

@@ -34,10 +34,11 @@ int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **w
 
 typedef enum { BWH_FMT_F32 = 0, BWH_FMT_U16 = 1, BWH_FMT_I32 = 2 } bwh_format_t;
 
-/* Encoder options' flags beside the header's: without BW_FLAG_MIRROR or
- * this, a host encode of directional data tries BW_FLAG_MIRROR as well and
- * keeps it when the payload is smaller (for a byte budget: when the
- * decoded samples are closer); with this it never mirrors. */
+/* Encoder options' flags beside the header's: without BW_FLAG_MIRROR,
+ * BW_FLAG_RECIPROCAL or this, a host encode of directional data also tries
+ * BW_FLAG_MIRROR (and for a full BRDF on one grid level BW_FLAG_RECIPROCAL
+ * and both) and keeps the smallest payload (for a byte budget: the one that
+ * decodes closest); with this it uses the symmetry flags given, if any. */
 #define BWH_NO_MIRROR 0x100u
 
 typedef struct {
@@ -46,8 +47,8 @@ typedef struct {
     size_t byte_budget; /* BYTES */
     unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
     double scale;       /* > 0: force the integer step of float input */
-    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE, BW_FLAG_MIRROR: always
-                         * mirror), and BWH_NO_MIRROR */
+    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE, BW_FLAG_MIRROR and
+                         * BW_FLAG_RECIPROCAL: always), and BWH_NO_MIRROR */
     /* encode on a device instead of the host: NULL or "qemu" (the emulated
      * co-processor); the host then decodes and checks the payload */
     const char *device;

@@ -55,7 +55,8 @@ static const char encode_help[] =
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--basis haar|53|97|auto] [--scale S] [--relative]\n"
-    "                       [--coder range|rice] [--symmetry auto|mirror|none]\n"
+    "                       [--coder range|rice]\n"
+    "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
     "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
@@ -86,11 +87,14 @@ static const char encode_help[] =
     "  --coder C         entropy coder: range (default, the smallest payload) or rice\n"
     "                    (adaptive Rice strips: a few times fewer instructions per\n"
     "                    sample on the device, a few percent more bytes)\n"
-    "  --symmetry S      directional data: code the half y < 0 of each hemisphere as\n"
-    "                    differences from its mirror image (x, -y, z), for BRDFs\n"
-    "                    symmetric about the incidence plane x-z: mirror, none, or\n"
-    "                    auto (default: both on the host, the smaller payload, or\n"
-    "                    for a byte budget the smaller error)\n";
+    "  --symmetry S      directional data: mirror codes the half y < 0 of each\n"
+    "                    hemisphere as differences from its mirror image (x, -y, z),\n"
+    "                    for BRDFs symmetric about the incidence plane x-z;\n"
+    "                    reciprocal (a full BRDF, --level-in equal to --level) codes\n"
+    "                    f(wi, wo) as its difference from f(wo, wi) where that comes\n"
+    "                    first, for reciprocal BRDFs; both; none; or auto (default:\n"
+    "                    every one that applies, on the host, and the smallest\n"
+    "                    payload, or for a byte budget the smallest error)\n";
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -190,10 +194,14 @@ int bw_cmd_encode(int argc, char **argv)
             break;
         case 'R': o.flags |= BW_FLAG_LOG_VALUE; break;
         case 'Y':
-            o.flags &= ~(BW_FLAG_MIRROR | BWH_NO_MIRROR);
-            if (!strcmp(optarg, "mirror")) o.flags |= BW_FLAG_MIRROR;
+            o.flags &= ~(BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL | BWH_NO_MIRROR);
+            if (!strcmp(optarg, "mirror")) o.flags |= BW_FLAG_MIRROR | BWH_NO_MIRROR;
+            else if (!strcmp(optarg, "reciprocal")) o.flags |= BW_FLAG_RECIPROCAL | BWH_NO_MIRROR;
+            else if (!strcmp(optarg, "both"))
+                o.flags |= BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL | BWH_NO_MIRROR;
             else if (!strcmp(optarg, "none")) o.flags |= BWH_NO_MIRROR;
-            else if (strcmp(optarg, "auto")) return usage_err(C, "--symmetry must be auto, mirror or none");
+            else if (strcmp(optarg, "auto"))
+                return usage_err(C, "--symmetry must be auto, mirror, reciprocal, both or none");
             break;
         case 'F': o.firmware = optarg; break;
         case 'K': {
@@ -491,7 +499,9 @@ int bw_cmd_info(int argc, char **argv)
     printf("mode: %s\n", bwh_mode_name(h.mode));
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     printf("coder: %s\n", h.flags & BW_FLAG_RICE ? "rice" : "range");
-    printf("symmetry: %s\n", h.flags & BW_FLAG_MIRROR ? "mirror" : "none");
+    static const char *const sym[4] = {"none", "mirror", "reciprocal", "both"};
+    printf("symmetry: %s\n", sym[(h.flags & BW_FLAG_MIRROR ? 1 : 0) +
+                                 (h.flags & BW_FLAG_RECIPROCAL ? 2 : 0)]);
     printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
                                                        : "offset + scale * sample");
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);

@@ -178,6 +178,28 @@ expect_error "symmetry bad value" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --ban
     --incoming 16 --symmetry rotate
 expect_error "symmetry mirror of spectra" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1024 \
     --symmetry mirror
+# a Ward BRDF with both grids at level 3 is reciprocal and symmetric about
+# x-z: auto keeps both steps, and both give the smallest payload
+expect_ok "synth ward level 3 x 3" "$BW" synth --model ward --ax 0.35 --ay 0.05 --kd 0.75 --ks 0.25 \
+    --level 3 --level-in 3 -o "$T/w.f32"
+for S in auto mirror reciprocal both none; do
+    expect_ok "encode ward symmetry $S" "$BW" encode -i "$T/w.f32" -o "$T/ws_$S.bwv" --bands 1 \
+        --level 3 --level-in 3 --max-error 0.0005 --symmetry $S
+    expect_ok "info ward symmetry $S" "$BW" info "$T/ws_$S.bwv"
+    cp "$T/out" "$T/winfo_$S"
+done
+[ "$(key symmetry "$T/winfo_auto")" = both ] && [ "$(key symmetry "$T/winfo_reciprocal")" = reciprocal ] &&
+    [ "$(key symmetry "$T/winfo_both")" = both ] && ok || bad "info ward symmetry: $(cat "$T/winfo_auto")"
+cmp -s "$T/ws_auto.bwv" "$T/ws_both.bwv" && ok || bad "ward symmetry auto differs from both"
+[ "$(stat -c %s "$T/ws_both.bwv")" -lt "$(stat -c %s "$T/ws_mirror.bwv")" ] &&
+    [ "$(stat -c %s "$T/ws_reciprocal.bwv")" -lt "$(stat -c %s "$T/ws_none.bwv")" ] && ok ||
+    bad "reciprocity does not pay: $(stat -c %s "$T/ws_both.bwv") vs $(stat -c %s "$T/ws_mirror.bwv")"
+expect_ok "decode both" "$BW" decode -i "$T/ws_both.bwv" -o "$T/ws.f32"
+expect_ok "compare both" "$BW" compare "$T/w.f32" "$T/ws.f32"
+awk -v e="$(key max_abs_error "$T/out")" 'BEGIN { exit !(e <= 0.0005) }' && ok ||
+    bad "reciprocal max error $(key max_abs_error "$T/out")"
+expect_error "symmetry reciprocal of an isotropic BRDF" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" \
+    --bands 1 --level 4 --incoming 16 --symmetry reciprocal
 expect_ok "compare identical" "$BW" compare "$T/p.f32" "$T/p.f32"
 [ "$(key max_abs_error "$T/out")" = 0 ] && [ "$(key psnr_db "$T/out")" = inf ] && ok || bad "compare identical: $(cat "$T/out")"
 

@@ -19,7 +19,7 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
     uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too;
-                     * BW_FLAG_RICE, BW_FLAG_MIRROR */
+                     * BW_FLAG_RICE, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL */
 } golden_case_t;
 
 static const golden_case_t golden_cases[] = {
@@ -63,6 +63,10 @@ static const golden_case_t golden_cases[] = {
      600, BW_FLAG_MIRROR},
     {"refl3x81_lossless_53_mirror_rice", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS,
      BW_BASIS_53, 0, BW_FLAG_MIRROR | BW_FLAG_RICE},
+    {"full1x1x9_lossless_haar_reciprocal", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_LOSSLESS,
+     BW_BASIS_HAAR, 0, BW_FLAG_RECIPROCAL},
+    {"full1x1x9_maxerr2_53_mirror_reciprocal", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_MAX_ERROR,
+     BW_BASIS_53, 2, BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

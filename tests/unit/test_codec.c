@@ -2229,7 +2229,8 @@ static size_t payload_size(const bw_dims_t *d, bw_params_t p, const int32_t *x)
     int32_t *y;
     bw_header_t h;
     assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
-    assert_int_equal(h.flags & BW_FLAG_MIRROR, p.flags & BW_FLAG_MIRROR);
+    assert_int_equal(h.flags & (BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL),
+                     p.flags & (BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL));
     if (p.mode == BW_MODE_LOSSLESS) {
         size_t bad = first_mismatch(x, y, bw_dims_samples(d));
         if (bad < bw_dims_samples(d))
@@ -2388,6 +2389,154 @@ static void mirror_refuses_what_it_cannot_do(void **state)
     free(x);
 }
 
+/* ---- reciprocity (BW_FLAG_RECIPROCAL) ------------------------------------- */
+
+/* A full BRDF on one grid level, reciprocal (f(i, o) = f(o, i)) and
+ * symmetric under the mirror of both directions, bands channels. */
+static int32_t *reciprocal_brdf(unsigned level, uint32_t bands, bw_dims_t *d)
+{
+    *d = dims_of(BW_SHAPE_BRDF_FULL, level, level, 0, bands);
+    size_t n_dir = bwh_grid_count(level), n = bw_dims_samples(d);
+    double(*c)[3] = xmalloc(n_dir * sizeof *c);
+    assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+    int32_t *x = xmalloc(n * sizeof *x);
+    for (size_t i = 0; i < n_dir; i++)
+        for (size_t o = 0; o < n_dir; o++) {
+            /* symmetric in i, o and even under y -> -y of both */
+            double h[3] = {c[i][0] + c[o][0], c[i][1] + c[o][1], c[i][2] + c[o][2]};
+            double hz = h[2] / sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            double lobe = exp(-(1.0 - hz) * (12.0 + 30.0 * h[0] * h[0]));
+            for (uint32_t k = 0; k < bands; k++)
+                x[(i * n_dir + o) * bands + k] =
+                    (int32_t)(3000.0 + 800.0 * k + 50000.0 * lobe * (1.0 + 0.2 * k));
+        }
+    for (size_t i = 0; i < n_dir; i++)
+        for (size_t o = 0; o < n_dir; o++)
+            if (x[(i * n_dir + o) * bands] != x[(o * n_dir + i) * bands])
+                fail_msg("test data not reciprocal at %zu, %zu", i, o);
+    free(c);
+    return x;
+}
+
+static void reciprocity_halves_a_reciprocal_brdf_again(void **state)
+{
+    (void)state;
+    for (unsigned level = 1; level <= 3; level++) {
+        bw_dims_t d;
+        int32_t *x = reciprocal_brdf(level, 2, &d);
+        size_t n = bw_dims_samples(&d), sz[4];
+        static const unsigned flags[4] = {0, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL,
+                                          BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL};
+        for (unsigned f = 0; f < 4; f++) {
+            bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+            p.flags = (uint8_t)flags[f];
+            sz[f] = payload_size(&d, p, x); /* exact, checked inside */
+        }
+        print_message("level %u: %zu bytes, mirror %zu, reciprocal %zu, both %zu\n", level,
+                      sz[0], sz[1], sz[2], sz[3]);
+        if (level >= 2 && (sz[2] * 4u > sz[0] * 3u || sz[3] * 4u > sz[1] * 3u))
+            fail_msg("level %u: reciprocity does not pay (%zu / %zu, %zu / %zu bytes)", level,
+                     sz[2], sz[0], sz[3], sz[1]);
+        /* one sample off the symmetry: still exact */
+        x[n / 3] += 91;
+        bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_53);
+        p.flags = BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL;
+        payload_size(&d, p, x);
+        free(x);
+    }
+}
+
+static void reciprocity_keeps_every_guarantee_on_data_that_is_not_reciprocal(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_BRDF_FULL, 2, 2, 0, 5);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9400u, 40);
+    for (unsigned f = 0; f < 2; f++)
+        for (unsigned rice = 0; rice < 2; rice++) {
+            bw_params_t p = params_of(BW_MODE_LOSSLESS, f ? BW_BASIS_97 : BW_BASIS_HAAR);
+            p.flags = (uint8_t)(BW_FLAG_RECIPROCAL | (f ? BW_FLAG_MIRROR : 0u) |
+                                (rice ? BW_FLAG_RICE : 0u));
+            payload_size(&d, p, x); /* exact, checked inside */
+            p.mode = BW_MODE_MAX_ERROR;
+            p.max_error = 2;
+            uint8_t *out;
+            size_t len;
+            assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+            int32_t *y;
+            assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
+            for (size_t i = 0; i < n; i++)
+                if (y[i] - x[i] > 2 || x[i] - y[i] > 2)
+                    fail_msg("max-error 2 with reciprocity: sample %zu off by %d", i, y[i] - x[i]);
+            free(y);
+            free(out);
+            p.mode = BW_MODE_BYTES;
+            p.byte_budget = 900;
+            assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+            assert_true(len <= 900);
+            free(out);
+        }
+    free(x);
+}
+
+static void reciprocity_refuses_what_it_cannot_do(void **state)
+{
+    (void)state;
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+    p.flags = BW_FLAG_RECIPROCAL;
+    static const shape_case_t bad[] = {
+        {BW_SHAPE_BRDF_FULL, 2, 1, 0, 1}, /* two grid levels */
+        {BW_SHAPE_BRDF_ISO, 1, 0, 3, 1},
+        {BW_SHAPE_REFLECTANCE, 1, 0, 1, 3},
+        {BW_SHAPE_SPECTRA, 0, 0, 4, 8},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(bad); c++) {
+        bw_dims_t d = dims_of(bad[c].shape, bad[c].level_out, bad[c].level_in, bad[c].n_in,
+                              bad[c].bands);
+        int32_t *x = xmalloc(bw_dims_samples(&d) * sizeof *x);
+        fill_full(x, bw_dims_samples(&d), 9500u + (unsigned)c);
+        uint8_t *out;
+        size_t len;
+        assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_ERR_SHAPE);
+        free(out);
+        free(x);
+    }
+    /* differences beyond the sample range */
+    bw_dims_t d = dims_of(BW_SHAPE_BRDF_FULL, 1, 1, 0, 1);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    for (size_t s = 0; s < n; s++)
+        x[s] = s % 17u < 8u ? BW_SAMPLE_MAX : -BW_SAMPLE_MAX;
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_ERR_RANGE);
+    free(out);
+    free(x);
+    /* the streaming encoder does not offer it */
+    bw_dims_t r = dims_of(BW_SHAPE_REFLECTANCE, 1, 0, 1, 1);
+    bw_stream_t s;
+    static int32_t mem[4096];
+    static uint8_t buf[4096];
+    assert_int_equal(bw_stream_init(&s, &r, &p, mem, sizeof mem / sizeof *mem, buf, sizeof buf),
+                     BW_ERR_ARG);
+    /* a header claiming reciprocity for a BRDF with one incoming grid level
+     * less than the outgoing, and for an isotropic BRDF */
+    payload_t pl;
+    make_payload(&robust_cases[2], 9600, &pl); /* iso 2 x level 1 */
+    wire_hdr_t w = wire_of(pl.buf, pl.len);
+    const uint8_t *body;
+    size_t blen;
+    body_of(&pl, &body, &blen);
+    uint8_t *q = xmalloc(blen + 64u);
+    w.flags |= BW_FLAG_RECIPROCAL;
+    size_t qlen = wire_payload(q, &w, body, blen);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(q, qlen, &h), BW_ERR_HEADER);
+    free(q);
+    free_payload(&pl);
+}
+
 /* ---- bad encoder input ------------------------------------------------------ */
 
 static void encoder_refuses_bad_input(void **state)
@@ -2498,15 +2647,16 @@ static void encoder_refuses_bad_input(void **state)
     assert_int_equal(len, good);
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
     assert_int_equal(first_mismatch(x, ver, n), n);
-    /* every known flag together: recorded, and the decode is still exact
-     * (on samples of half the range, so that the mirror's differences fit) */
+    /* every known flag together but reciprocity (full BRDFs only; tested
+     * above): recorded, and the decode is still exact (on samples of half
+     * the range, so that the mirror's differences fit) */
     int32_t *half = xmalloc(n * sizeof *half);
     for (size_t i = 0; i < n; i++)
         half[i] = x[i] / 2;
-    q = p, q.flags = BW_FLAGS_KNOWN;
+    q = p, q.flags = BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL;
     assert_int_equal(bw_encode(&d, &q, half, work, NULL, out, cap, &len), BW_OK);
     assert_int_equal(bw_header_read(out, len, &h), BW_OK);
-    assert_int_equal(h.flags, BW_FLAGS_KNOWN);
+    assert_int_equal(h.flags, BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL);
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
     assert_int_equal(first_mismatch(half, ver, n), n);
     free(half);
@@ -2777,6 +2927,9 @@ int main(void)
         cmocka_unit_test(mirror_halves_a_brdf_symmetric_about_the_incidence_plane),
         cmocka_unit_test(mirror_keeps_every_guarantee_on_asymmetric_data),
         cmocka_unit_test(mirror_refuses_what_it_cannot_do),
+        cmocka_unit_test(reciprocity_halves_a_reciprocal_brdf_again),
+        cmocka_unit_test(reciprocity_keeps_every_guarantee_on_data_that_is_not_reciprocal),
+        cmocka_unit_test(reciprocity_refuses_what_it_cannot_do),
         cmocka_unit_test(encoder_refuses_bad_input),
         cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),

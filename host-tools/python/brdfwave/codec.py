@@ -144,8 +144,8 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
     One of lossless (default), max_error=E, nbytes=N, ratio=R. symmetry: "auto" (try
-    the mirror image (x, -y, z) for directional data, keep it when it pays), "mirror"
-    or "none"."""
+    the mirror image (x, -y, z) for directional data, and reciprocity for a full BRDF
+    with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none"."""
     L = lib()
     x = np.ascontiguousarray(values, dtype=np.float32)
     if x.ndim < 2:
@@ -193,9 +193,10 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
         o.scale = float(scale)
     if stream:
         o.flags |= 0x02
-    if symmetry not in ("auto", "mirror", "none"):
-        raise BrdfwaveError("symmetry must be auto, mirror or none")
-    o.flags |= {"auto": 0, "mirror": 0x10, "none": 0x100}[symmetry]
+    sym = {"auto": 0, "mirror": 0x110, "reciprocal": 0x120, "both": 0x130, "none": 0x100}
+    if symmetry not in sym:
+        raise BrdfwaveError("symmetry must be auto, mirror, reciprocal, both or none")
+    o.flags |= sym[symmetry]
     out = ctypes.POINTER(ctypes.c_uint8)()
     n = ctypes.c_size_t()
     if L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
