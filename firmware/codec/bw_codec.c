@@ -217,13 +217,16 @@ static uint32_t in_gain(const plan_t *pl, uint32_t i)
                              : 65536u;
 }
 
-static void transform_fwd(const plan_t *pl, int32_t *x)
+/* done: the first spectral level is already applied (load_haar1) */
+static void transform_fwd(const plan_t *pl, int32_t *x, bool done)
 {
     const bw_dims_t *d = &pl->dims;
     size_t vectors = (size_t)d->n_in * d->n_out;
-    if (pl->spec_levels)
+    uint32_t n = done ? (d->bands + 1u) / 2u : d->bands;
+    unsigned levels = pl->spec_levels - (done ? 1u : 0u);
+    if (levels)
         for (size_t v = 0; v < vectors; v++)
-            bw_spec_fwd(x + v * d->bands, d->bands, pl->basis, pl->spec_levels, pl->tmp);
+            bw_spec_fwd(x + v * d->bands, n, pl->basis, levels, pl->tmp);
     if (has_out(d))
         for (uint32_t i = 0; i < d->n_in; i++)
             bw_biohaar_fwd(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
@@ -1128,18 +1131,47 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
     return bad ? BW_ERR_RANGE : BW_OK;
 }
 
+/* load_samples and the first level of the Haar lifting (fwd_haar) in one
+ * pass: from the caller's samples the approximation and the details go
+ * straight to their places in out, with no scratch. Same values. */
+static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
+{
+    size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
+    uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, q = pl->prequant, bad = 0;
+    uint32_t k0 = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k0 * q;
+#define LOAD1(x)                                                                        \
+    (bad |= (uint32_t)(x) + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX,                         \
+     q == 1u ? (x) : (int32_t)(((uint32_t)(x) + bias) / q - k0))
+    for (size_t v = 0; v < vectors; v++, in += b, out += b) {
+        BW_UNROLL8
+        for (uint32_t k = 0; k < nd; k++) {
+            int32_t e = LOAD1(in[2u * k]), o = LOAD1(in[2u * k + 1u]), d = bw_wsub(o, e);
+            out[k] = bw_wadd(e, bw_asr32(d, 1));
+            out[ns + k] = d;
+        }
+        if (ns > nd)
+            out[nd] = LOAD1(in[2u * nd]);
+    }
+#undef LOAD1
+    return bad ? BW_ERR_RANGE : BW_OK;
+}
+
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
  * (count only). */
 static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
-    bw_status_t st = load_samples(work, samples, pl->n, pl->prequant);
+    /* Haar spectra without a symmetry step: load and the first level at once */
+    bool fused = !BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u &&
+                 !pl->mirror && !pl->recip;
+    bw_status_t st = fused ? load_haar1(pl, work, samples)
+                           : load_samples(work, samples, pl->n, pl->prequant);
     if (st == BW_OK && (pl->mirror || pl->recip))
         st = symmetry(pl, work, true);
     if (st != BW_OK)
         return st;
-    transform_fwd(pl, work);
+    transform_fwd(pl, work, fused);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
         quantise(pl, work, true);
