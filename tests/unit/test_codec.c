@@ -2298,6 +2298,34 @@ static void mirror_halves_a_brdf_symmetric_about_the_incidence_plane(void **stat
     }
 }
 
+/* With the flags of p (a lossless p): the lossless payload is exact, a
+ * max-error payload keeps every sample within max_error, a byte budget's
+ * payload stays within it. */
+static void check_guarantees_with(const bw_dims_t *d, const int32_t *x, bw_params_t p,
+                                  uint32_t max_error, uint32_t budget)
+{
+    size_t n = bw_dims_samples(d);
+    payload_size(d, p, x); /* exact, checked inside */
+    p.mode = BW_MODE_MAX_ERROR;
+    p.max_error = max_error;
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(d, &p, x, true, &out, &len), BW_OK);
+    int32_t *y;
+    assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
+    for (size_t i = 0; i < n; i++)
+        if (y[i] - x[i] > (int32_t)max_error || x[i] - y[i] > (int32_t)max_error)
+            fail_msg("max-error %u with flags %#x: sample %zu off by %d", max_error, p.flags, i,
+                     y[i] - x[i]);
+    free(y);
+    free(out);
+    p.mode = BW_MODE_BYTES;
+    p.byte_budget = budget;
+    assert_int_equal(encode_new(d, &p, x, true, &out, &len), BW_OK);
+    assert_true(len <= budget);
+    free(out);
+}
+
 static void mirror_keeps_every_guarantee_on_asymmetric_data(void **state)
 {
     (void)state;
@@ -2307,31 +2335,13 @@ static void mirror_keeps_every_guarantee_on_asymmetric_data(void **state)
                               shapes[s] == BW_SHAPE_BRDF_ISO ? 3u : 1u, 9);
         if (shapes[s] == BW_SHAPE_BRDF_FULL)
             d = dims_of(BW_SHAPE_BRDF_FULL, 2, 1, 16, 9);
-        size_t n = bw_dims_samples(&d);
-        int32_t *x = xmalloc(n * sizeof *x);
+        int32_t *x = xmalloc(bw_dims_samples(&d) * sizeof *x);
         fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9100u + s, 40);
         for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++)
             for (unsigned rice = 0; rice < 2; rice++) {
                 bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
                 p.flags = BW_FLAG_MIRROR | (rice ? BW_FLAG_RICE : 0u);
-                payload_size(&d, p, x); /* exact, checked inside */
-                p.mode = BW_MODE_MAX_ERROR;
-                p.max_error = 3;
-                uint8_t *out;
-                size_t len;
-                assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
-                int32_t *y;
-                assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
-                for (size_t i = 0; i < n; i++)
-                    if (y[i] - x[i] > 3 || x[i] - y[i] > 3)
-                        fail_msg("max-error 3 with the mirror: sample %zu off by %d", i, y[i] - x[i]);
-                free(y);
-                free(out);
-                p.mode = BW_MODE_BYTES;
-                p.byte_budget = 700;
-                assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
-                assert_true(len <= 700);
-                free(out);
+                check_guarantees_with(&d, x, p, 3, 700);
             }
         free(x);
     }
@@ -2450,32 +2460,14 @@ static void reciprocity_keeps_every_guarantee_on_data_that_is_not_reciprocal(voi
 {
     (void)state;
     bw_dims_t d = dims_of(BW_SHAPE_BRDF_FULL, 2, 2, 0, 5);
-    size_t n = bw_dims_samples(&d);
-    int32_t *x = xmalloc(n * sizeof *x);
+    int32_t *x = xmalloc(bw_dims_samples(&d) * sizeof *x);
     fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9400u, 40);
     for (unsigned f = 0; f < 2; f++)
         for (unsigned rice = 0; rice < 2; rice++) {
             bw_params_t p = params_of(BW_MODE_LOSSLESS, f ? BW_BASIS_97 : BW_BASIS_HAAR);
             p.flags = (uint8_t)(BW_FLAG_RECIPROCAL | (f ? BW_FLAG_MIRROR : 0u) |
                                 (rice ? BW_FLAG_RICE : 0u));
-            payload_size(&d, p, x); /* exact, checked inside */
-            p.mode = BW_MODE_MAX_ERROR;
-            p.max_error = 2;
-            uint8_t *out;
-            size_t len;
-            assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
-            int32_t *y;
-            assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
-            for (size_t i = 0; i < n; i++)
-                if (y[i] - x[i] > 2 || x[i] - y[i] > 2)
-                    fail_msg("max-error 2 with reciprocity: sample %zu off by %d", i, y[i] - x[i]);
-            free(y);
-            free(out);
-            p.mode = BW_MODE_BYTES;
-            p.byte_budget = 900;
-            assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
-            assert_true(len <= 900);
-            free(out);
+            check_guarantees_with(&d, x, p, 2, 900);
         }
     free(x);
 }
