@@ -28,7 +28,7 @@
 #include "bw_rice.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 4u
+#define BW_VERSION 5u
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
@@ -710,6 +710,8 @@ static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
 #define NO_CTX 0xFFu
 
 static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
+/* sign context of a value: 0 none or zero, 1 positive, 2 negative */
+static inline unsigned sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
 
 /* significance: the bit above, and whether the parent is zero, small or not */
 static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
@@ -773,21 +775,23 @@ static void strip_code(strip_enc_t *se)
             if (e >= 3u)
                 bw_rc_enc_direct(rc, a, e - 2u);
         }
-        bw_rc_enc_direct(rc, v[b] < 0, 1);
+        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + 3u * se->ps[b]], v[b] < 0);
         se->e_above[b] = (uint8_t)e;
         se->e_left = e;
     }
     se->prev_mask = mask;
 }
 
-/* pe, pv: bit lengths of the parent and of the same band in the previous
- * vector (NO_CTX: none) */
-static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls, unsigned pe, unsigned pv)
+/* par, prv: the parent and the same band in the previous vector (NULL:
+ * none); their bit lengths and signs are the contexts */
+static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
+                             const int32_t *prv)
 {
     se->v[se->cnt] = v;
     se->cls[se->cnt] = (uint8_t)cls;
-    se->pe[se->cnt] = (uint8_t)pe;
-    se->pv[se->cnt] = (uint8_t)pv;
+    se->pe[se->cnt] = (uint8_t)ctx_len(par);
+    se->ps[se->cnt] = (uint8_t)(sign_ctx(par) + 3u * sign_ctx(prv));
+    se->pv[se->cnt] = (uint8_t)ctx_len(prv);
     if (++se->cnt == BW_STRIP)
         strip_code(se);
 }
@@ -872,8 +876,8 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
             unsigned cd = it.cls_dir;
             for (uint32_t k = 0; k < b; k++) {
                 int32_t sc = pl->spec_cls[k];
-                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, ctx_len(parent_of(it.par, v, sc, k)),
-                          ctx_len(it.prev ? it.prev + k : NULL));
+                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, parent_of(it.par, v, sc, k),
+                          it.prev ? it.prev + k : NULL);
             }
         }
         iter_next_vec(&it);
@@ -952,7 +956,8 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
                 if (e >= 3u)
                     a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
             }
-            *dst[b] = bw_rc_dec_direct(rc, 1) ? -(int32_t)a : (int32_t)a;
+            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + 3u * (sign_ctx(par[b]) + 3u * sign_ctx(prv[b]));
+            *dst[b] = bw_rc_dec_bit(rc, &m->sign[sc]) ? -(int32_t)a : (int32_t)a;
             e_above[b] = (uint8_t)e;
             e_left = e;
         }
@@ -1587,8 +1592,8 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
     }
     /* stream order: no directional parent, no previous vector */
     for (uint32_t k = 0; k < b; k++)
-        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd,
-                  ctx_len(parent_of(NULL, v, s->cls[k], k)), NO_CTX);
+        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd, parent_of(NULL, v, s->cls[k], k),
+                  NULL);
 }
 
 bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)

@@ -19,6 +19,7 @@ typedef struct {
     bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* [previous bit][above bit + 2 parent] */
     bw_prob_t mag[BW_CODER_CLASSES][BW_CODER_NB_CTX][32];
     bw_prob_t mant[BW_CODER_CLASSES][32];
+    bw_prob_t sign[27]; /* [left + 3 parent + 9 above], each 0 none/zero, 1 +, 2 - */
 } bw_models_t;
 
 /* The strip encoder, fed one coefficient at a time. */
@@ -31,6 +32,7 @@ typedef struct {
     uint8_t cls[32];
     uint8_t pe[32]; /* bit lengths of the parent and of the same band in */
     uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
+    uint8_t ps[32]; /* sign ctx of parent + 3 above (0 none or zero, 1 +, 2 -) */
     unsigned cnt;
     uint8_t e_above[32];
     uint32_t prev_mask;

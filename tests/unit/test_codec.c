@@ -1772,7 +1772,7 @@ static size_t wire_payload(uint8_t *out, const wire_hdr_t *w, const uint8_t *bod
 {
     out[0] = 'B';
     out[1] = 'W';
-    out[2] = 4;
+    out[2] = 5;
     out[3] = w->b3;
     out[4] = w->b4;
     out[5] = w->flags;
@@ -2052,7 +2052,7 @@ static void a_bad_magic_or_version_is_refused(void **state)
         assert_int_equal(bw_decode(p, pl.len, y, n, work, wb, NULL), BW_ERR_MAGIC);
         assert_int_equal(bw_decode_unchecked(p, pl.len, y, n, work, wb), BW_ERR_MAGIC);
     }
-    static const uint8_t versions[] = {0, 1, 2, 3, 5, 255};
+    static const uint8_t versions[] = {0, 1, 2, 3, 4, 6, 255};
     for (size_t i = 0; i < sizeof versions; i++) {
         memcpy(p, pl.buf, pl.len);
         p[2] = versions[i];
