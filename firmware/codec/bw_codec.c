@@ -712,6 +712,12 @@ static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
 static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
 /* sign context of a value: 0 none or zero, 1 positive, 2 negative */
 static inline unsigned sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
+/* the sign model of a value is left + this, left the sign context of the
+ * previous value of the strip (0 for the first) */
+static inline unsigned sign_ctx_up(const int32_t *par, const int32_t *prv)
+{
+    return 3u * (sign_ctx(par) + 3u * sign_ctx(prv));
+}
 
 /* significance: the bit above, and whether the parent is zero, small or not */
 static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
@@ -775,7 +781,7 @@ static void strip_code(strip_enc_t *se)
             if (e >= 3u)
                 bw_rc_enc_direct(rc, a, e - 2u);
         }
-        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + 3u * se->ps[b]], v[b] < 0);
+        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], v[b] < 0);
         se->e_above[b] = (uint8_t)e;
         se->e_left = e;
     }
@@ -790,7 +796,7 @@ static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls, const int
     se->v[se->cnt] = v;
     se->cls[se->cnt] = (uint8_t)cls;
     se->pe[se->cnt] = (uint8_t)ctx_len(par);
-    se->ps[se->cnt] = (uint8_t)(sign_ctx(par) + 3u * sign_ctx(prv));
+    se->ps[se->cnt] = (uint8_t)sign_ctx_up(par, prv);
     se->pv[se->cnt] = (uint8_t)ctx_len(prv);
     if (++se->cnt == BW_STRIP)
         strip_code(se);
@@ -956,7 +962,7 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
                 if (e >= 3u)
                     a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
             }
-            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + 3u * (sign_ctx(par[b]) + 3u * sign_ctx(prv[b]));
+            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + sign_ctx_up(par[b], prv[b]);
             *dst[b] = bw_rc_dec_bit(rc, &m->sign[sc]) ? -(int32_t)a : (int32_t)a;
             e_above[b] = (uint8_t)e;
             e_left = e;
@@ -1113,25 +1119,43 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
  * the nearest multiple of q, error <= E, as an unsigned division of
  * x + E + K q, which is >= 0 for every valid x. Returns BW_ERR_RANGE, after
  * loading all, when a sample is out of range. */
+/* The max-error prequantiser of valid samples, floor((x + (q - 1) / 2) / q),
+ * as (x + bias) / q - k in unsigned arithmetic (|x| <= 2^24 and
+ * q <= 2^25 + 1: x + bias fits 32 bits). */
+typedef struct {
+    uint32_t q, k, bias;
+} prequant_t;
+
+static inline prequant_t prequant_of(uint32_t q)
+{
+    prequant_t pq;
+    pq.q = q;
+    pq.k = (uint32_t)BW_SAMPLE_MAX / q + 1u;
+    pq.bias = (q - 1u) / 2u + pq.k * q;
+    return pq;
+}
+
+/* One sample as loaded: its range check into *bad, then the prequantiser
+ * (none for q = 1). */
+static inline int32_t load1(int32_t x, const prequant_t *pq, uint32_t *bad)
+{
+    *bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+    return pq->q == 1u ? x : (int32_t)(((uint32_t)x + pq->bias) / pq->q - pq->k);
+}
+
 static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
     uint32_t bad = 0;
+    prequant_t pq = prequant_of(q);
     if (!BW_SMALL && q == 1u) {
+        /* the same loop, compiled knowing q = 1: no division */
         BW_UNROLL8
-        for (size_t i = 0; i < n; i++) {
-            int32_t x = in[i];
-            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-            out[i] = x;
-        }
+        for (size_t i = 0; i < n; i++)
+            out[i] = load1(in[i], &pq, &bad);
     } else {
-        /* |x| <= 2^24 and q <= 2^25 + 1: x + bias fits 32 bits */
-        uint32_t k = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k * q;
         BW_UNROLL8
-        for (size_t i = 0; i < n; i++) {
-            int32_t x = in[i];
-            bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-            out[i] = (int32_t)(((uint32_t)x + bias) / q - k);
-        }
+        for (size_t i = 0; i < n; i++)
+            out[i] = load1(in[i], &pq, &bad);
     }
     return bad ? BW_ERR_RANGE : BW_OK;
 }
@@ -1142,22 +1166,19 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
 static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
-    uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, q = pl->prequant, bad = 0;
-    uint32_t k0 = (uint32_t)BW_SAMPLE_MAX / q + 1u, bias = (q - 1u) / 2u + k0 * q;
-#define LOAD1(x)                                                                        \
-    (bad |= (uint32_t)(x) + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX,                         \
-     q == 1u ? (x) : (int32_t)(((uint32_t)(x) + bias) / q - k0))
+    uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, bad = 0;
+    prequant_t pq = prequant_of(pl->prequant);
     for (size_t v = 0; v < vectors; v++, in += b, out += b) {
         BW_UNROLL8
         for (uint32_t k = 0; k < nd; k++) {
-            int32_t e = LOAD1(in[2u * k]), o = LOAD1(in[2u * k + 1u]), d = bw_wsub(o, e);
+            int32_t e = load1(in[2u * k], &pq, &bad), o = load1(in[2u * k + 1u], &pq, &bad);
+            int32_t d = bw_wsub(o, e);
             out[k] = bw_wadd(e, bw_asr32(d, 1));
             out[ns + k] = d;
         }
         if (ns > nd)
-            out[nd] = LOAD1(in[2u * nd]);
+            out[nd] = load1(in[2u * nd], &pq, &bad);
     }
-#undef LOAD1
     return bad ? BW_ERR_RANGE : BW_OK;
 }
 

@@ -32,7 +32,7 @@ typedef struct {
     uint8_t cls[32];
     uint8_t pe[32]; /* bit lengths of the parent and of the same band in */
     uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
-    uint8_t ps[32]; /* sign ctx of parent + 3 above (0 none or zero, 1 +, 2 -) */
+    uint8_t ps[32]; /* their signs' part of the sign model (sign_ctx_up)    */
     unsigned cnt;
     uint8_t e_above[32];
     uint32_t prev_mask;
