@@ -217,13 +217,15 @@ static uint32_t in_gain(const plan_t *pl, uint32_t i)
                              : 65536u;
 }
 
-/* done: the first spectral level is already applied (load_haar1) */
-static void transform_fwd(const plan_t *pl, int32_t *x, bool done)
+/* done: the first spectral levels already applied (load_haar1, load_haar2) */
+static void transform_fwd(const plan_t *pl, int32_t *x, unsigned done)
 {
     const bw_dims_t *d = &pl->dims;
     size_t vectors = (size_t)d->n_in * d->n_out;
-    uint32_t n = done ? (d->bands + 1u) / 2u : d->bands;
-    unsigned levels = pl->spec_levels - (done ? 1u : 0u);
+    uint32_t n = d->bands;
+    for (unsigned l = 0; l < done; l++)
+        n = (n + 1u) / 2u;
+    unsigned levels = pl->spec_levels - done;
     if (levels)
         for (size_t v = 0; v < vectors; v++)
             bw_spec_fwd(x + v * d->bands, n, pl->basis, levels, pl->tmp);
@@ -1114,14 +1116,31 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
 
 /* ---- encoder ------------------------------------------------------------- */
 
-/* Loads n samples into out with the range check (|x| <= MAX as one unsigned
- * compare) and the prequantiser q = 2E + 1 (1: none): floor((x + E) / q),
- * the nearest multiple of q, error <= E, as an unsigned division of
- * x + E + K q, which is >= 0 for every valid x. Returns BW_ERR_RANGE, after
- * loading all, when a sample is out of range. */
-/* The max-error prequantiser of valid samples, floor((x + (q - 1) / 2) / q),
- * as (x + bias) / q - k in unsigned arithmetic (|x| <= 2^24 and
- * q <= 2^25 + 1: x + bias fits 32 bits). */
+/* The range check of the loads: the OR over the samples of
+ * x ^ (x >> 31) (x for x >= 0, |x| - 1 below) is below 2^24 exactly when
+ * every sample lies in [-2^24, 2^24 - 1], two instructions a sample. Of
+ * those only -2^24 is outside +-BW_SAMPLE_MAX; it sets all 24 low bits of
+ * the OR, so only an OR of 2^24 - 1 makes range_status look for it. */
+#define RANGE_BITS 24u
+_Static_assert(BW_SAMPLE_MAX == (1 << RANGE_BITS) - 1, "the range check needs 2^24 - 1");
+
+static inline uint32_t range_mag(int32_t x) { return (uint32_t)(x ^ bw_asr32(x, 31)); }
+
+static bw_status_t range_status(uint32_t acc, const int32_t *in, size_t n)
+{
+    if (acc >> RANGE_BITS)
+        return BW_ERR_RANGE;
+    if (acc == (1u << RANGE_BITS) - 1u)
+        for (size_t i = 0; i < n; i++)
+            if (in[i] == -BW_SAMPLE_MAX - 1)
+                return BW_ERR_RANGE;
+    return BW_OK;
+}
+
+/* The max-error prequantiser q = 2E + 1 (1: none) of valid samples,
+ * floor((x + E) / q), the nearest multiple of q, error <= E: as
+ * (x + bias) / q - k in unsigned arithmetic (x + bias >= 0 for every
+ * valid x; |x| <= 2^24 and q <= 2^25 + 1: x + bias fits 32 bits). */
 typedef struct {
     uint32_t q, k, bias;
 } prequant_t;
@@ -1135,51 +1154,127 @@ static inline prequant_t prequant_of(uint32_t q)
     return pq;
 }
 
-/* One sample as loaded: its range check into *bad, then the prequantiser
- * (none for q = 1). */
-static inline int32_t load1(int32_t x, const prequant_t *pq, uint32_t *bad)
+/* (x + bias) / q: the prequantised sample plus k */
+static inline uint32_t prequant_k(int32_t x, const prequant_t *pq)
 {
-    *bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
-    return pq->q == 1u ? x : (int32_t)(((uint32_t)x + pq->bias) / pq->q - pq->k);
+    return ((uint32_t)x + pq->bias) / pq->q;
 }
 
+/* Loads n samples into out, prequantised; BW_ERR_RANGE, after loading all,
+ * when a sample is out of range. */
 static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
-    uint32_t bad = 0;
+    uint32_t acc = 0;
     prequant_t pq = prequant_of(q);
-    if (!BW_SMALL && q == 1u) {
-        /* the same loop, compiled knowing q = 1: no division */
+    if (!BW_SMALL && q == 1u) { /* the general loop, without the division */
         BW_UNROLL8
-        for (size_t i = 0; i < n; i++)
-            out[i] = load1(in[i], &pq, &bad);
+        for (size_t i = 0; i < n; i++) {
+            int32_t x = in[i];
+            acc |= range_mag(x);
+            out[i] = x;
+        }
     } else {
         BW_UNROLL8
-        for (size_t i = 0; i < n; i++)
-            out[i] = load1(in[i], &pq, &bad);
+        for (size_t i = 0; i < n; i++) {
+            int32_t x = in[i];
+            acc |= range_mag(x);
+            out[i] = (int32_t)(prequant_k(x, &pq) - pq.k);
+        }
     }
-    return bad ? BW_ERR_RANGE : BW_OK;
+    return range_status(acc, in, n);
 }
 
 /* load_samples and the first level of the Haar lifting (fwd_haar) in one
  * pass: from the caller's samples the approximation and the details go
- * straight to their places in out, with no scratch. Same values. */
+ * straight to their places in out, with no scratch. Same values (the k of
+ * the prequantiser cancels in the details). */
 static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
-    uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, bad = 0;
+    uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, acc = 0;
     prequant_t pq = prequant_of(pl->prequant);
-    for (size_t v = 0; v < vectors; v++, in += b, out += b) {
-        BW_UNROLL8
-        for (uint32_t k = 0; k < nd; k++) {
-            int32_t e = load1(in[2u * k], &pq, &bad), o = load1(in[2u * k + 1u], &pq, &bad);
-            int32_t d = bw_wsub(o, e);
-            out[k] = bw_wadd(e, bw_asr32(d, 1));
-            out[ns + k] = d;
+    const int32_t *x = in;
+    int32_t *o = out;
+    if (pq.q == 1u) {
+        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+            BW_UNROLL8
+            for (uint32_t k = 0; k < nd; k++) {
+                int32_t e = x[2u * k], d = bw_wsub(x[2u * k + 1u], e);
+                acc |= range_mag(e) | range_mag(x[2u * k + 1u]);
+                o[k] = bw_wadd(e, bw_asr32(d, 1));
+                o[ns + k] = d;
+            }
+            if (ns > nd) {
+                acc |= range_mag(x[2u * nd]);
+                o[nd] = x[2u * nd];
+            }
         }
-        if (ns > nd)
-            out[nd] = load1(in[2u * nd], &pq, &bad);
+    } else {
+        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+            BW_UNROLL8
+            for (uint32_t k = 0; k < nd; k++) {
+                int32_t e0 = x[2u * k], o0 = x[2u * k + 1u];
+                acc |= range_mag(e0) | range_mag(o0);
+                uint32_t e = prequant_k(e0, &pq);
+                int32_t d = (int32_t)(prequant_k(o0, &pq) - e);
+                o[k] = (int32_t)(e - pq.k + (uint32_t)bw_asr32(d, 1));
+                o[ns + k] = d;
+            }
+            if (ns > nd) {
+                acc |= range_mag(x[2u * nd]);
+                o[nd] = (int32_t)(prequant_k(x[2u * nd], &pq) - pq.k);
+            }
+        }
     }
-    return bad ? BW_ERR_RANGE : BW_OK;
+    return range_status(acc, in, vectors * b);
+}
+
+/* load_haar1 and the second Haar level in one pass, for bands divisible by
+ * 4: each 4 samples give two level-1 details, one level-2 detail and one
+ * approximation, written to their places in out. Same values. */
+static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
+{
+    size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
+    uint32_t b = pl->dims.bands, n1 = b / 2u, n2 = b / 4u, acc = 0;
+    prequant_t pq = prequant_of(pl->prequant);
+    const int32_t *x = in;
+    int32_t *o = out;
+    if (pq.q == 1u) {
+        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+            BW_UNROLL8
+            for (uint32_t j = 0; j < n2; j++) {
+                int32_t e0 = x[4u * j], o0 = x[4u * j + 1u];
+                int32_t e1 = x[4u * j + 2u], o1 = x[4u * j + 3u];
+                acc |= range_mag(e0) | range_mag(o0) | range_mag(e1) | range_mag(o1);
+                int32_t d0 = bw_wsub(o0, e0), d1 = bw_wsub(o1, e1);
+                int32_t s0 = bw_wadd(e0, bw_asr32(d0, 1)), s1 = bw_wadd(e1, bw_asr32(d1, 1));
+                int32_t dd = bw_wsub(s1, s0);
+                o[j] = bw_wadd(s0, bw_asr32(dd, 1));
+                o[n2 + j] = dd;
+                o[n1 + 2u * j] = d0;
+                o[n1 + 2u * j + 1u] = d1;
+            }
+        }
+    } else {
+        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+            BW_UNROLL8
+            for (uint32_t j = 0; j < n2; j++) {
+                int32_t e0 = x[4u * j], o0 = x[4u * j + 1u];
+                int32_t e1 = x[4u * j + 2u], o1 = x[4u * j + 3u];
+                acc |= range_mag(e0) | range_mag(o0) | range_mag(e1) | range_mag(o1);
+                uint32_t qe0 = prequant_k(e0, &pq), qe1 = prequant_k(e1, &pq);
+                int32_t d0 = (int32_t)(prequant_k(o0, &pq) - qe0);
+                int32_t d1 = (int32_t)(prequant_k(o1, &pq) - qe1);
+                uint32_t s0 = qe0 + (uint32_t)bw_asr32(d0, 1);
+                int32_t dd = (int32_t)(qe1 + (uint32_t)bw_asr32(d1, 1) - s0);
+                o[j] = (int32_t)(s0 - pq.k + (uint32_t)bw_asr32(dd, 1)); /* k cancels in dd */
+                o[n2 + j] = dd;
+                o[n1 + 2u * j] = d0;
+                o[n1 + 2u * j + 1u] = d1;
+            }
+        }
+    }
+    return range_status(acc, in, vectors * b);
 }
 
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
@@ -1188,11 +1283,14 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
-    /* Haar spectra without a symmetry step: load and the first level at once */
-    bool fused = !BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u &&
-                 !pl->mirror && !pl->recip;
-    bw_status_t st = fused ? load_haar1(pl, work, samples)
-                           : load_samples(work, samples, pl->n, pl->prequant);
+    /* Haar spectra without a symmetry step: load and the first levels at once */
+    unsigned fused = 0;
+    if (!BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
+        !pl->recip)
+        fused = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
+    bw_status_t st = fused == 2u   ? load_haar2(pl, work, samples)
+                     : fused == 1u ? load_haar1(pl, work, samples)
+                                   : load_samples(work, samples, pl->n, pl->prequant);
     if (st == BW_OK && (pl->mirror || pl->recip))
         st = symmetry(pl, work, true);
     if (st != BW_OK)

@@ -214,11 +214,12 @@ static const uint32_t crc_slice[4][256] = {
 
 uint32_t bw_crc32_update(uint32_t crc, const uint8_t *p, size_t n)
 {
+    /* a base pointer for each table: each lookup is then one load */
+    const uint32_t *t0 = crc_slice[0], *t1 = crc_slice[1], *t2 = crc_slice[2], *t3 = crc_slice[3];
     crc = ~crc;
     for (; n >= 4u; n -= 4u, p += 4) {
         crc ^= (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-        crc = crc_slice[3][crc & 0xFFu] ^ crc_slice[2][(crc >> 8) & 0xFFu] ^
-              crc_slice[1][(crc >> 16) & 0xFFu] ^ crc_slice[0][crc >> 24];
+        crc = t3[crc & 0xFFu] ^ t2[(crc >> 8) & 0xFFu] ^ t1[(crc >> 16) & 0xFFu] ^ t0[crc >> 24];
     }
     return ~crc_bytes(crc, p, n);
 }

@@ -56,6 +56,13 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 #define BW_UNROLL8
 #endif
 
+/* A condition that holds far more often than not (block layout only). */
+#if defined(__GNUC__)
+#define BW_LIKELY(c) __builtin_expect(!!(c), 1)
+#else
+#define BW_LIKELY(c) (c)
+#endif
+
 /* Number of significant bits of v (0 for 0). */
 static inline unsigned bw_bitlen(uint32_t v)
 {

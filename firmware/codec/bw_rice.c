@@ -295,7 +295,7 @@ static inline uint8_t *dense_words(const uint32_t *u, unsigned cnt, unsigned k, 
     for (unsigned b = 0; b < cnt; b++) {
         uint32_t x = u[b], c = (x & mask) | bitk;
         unsigned len = (x >> k) + k1;
-        if (len < left) {
+        if (BW_LIKELY(len < left)) {
             buf = (buf << len) | c;
             left -= len;
         } else {
@@ -360,30 +360,37 @@ static void code_dense(bw_bitw_t *w, const uint32_t *u, unsigned cnt, unsigned k
     W_STORE(w);
 }
 
-/* The zigzag codes of a strip and their sum, OR, zeros and negative values.
- * A zero is counted as (u - 1) >> 31, right for u <= 2^31 (a wider strip is
- * counted again by the caller). */
+/* The zigzag codes of a strip and their sum, OR and zeros. A zero is
+ * counted as (u - 1) >> 31, right for u <= 2^31 (a wider strip is counted
+ * again by the caller). */
 typedef struct {
-    uint32_t sum, neg, any, nz;
+    uint32_t sum, any, nz;
 } strip_stats_t;
 
 static inline void strip_stats(const int32_t *v, uint32_t *u, unsigned cnt, strip_stats_t *st)
 {
-    uint32_t sum = 0, neg = 0, any = 0, nz = 0;
+    uint32_t sum = 0, any = 0, nz = 0;
     BW_UNROLL8
     for (unsigned b = 0; b < cnt; b++) {
-        int32_t x = v[b];
-        uint32_t z = zigzag(x);
+        uint32_t z = zigzag(v[b]);
         u[b] = z;
         sum += z;
-        neg += (uint32_t)x >> 31;
         any |= z;
         nz += (z - 1u) >> 31;
     }
     st->sum = sum;
-    st->neg = neg;
     st->any = any;
     st->nz = nz;
+}
+
+/* the number of odd codes: the negative values */
+static inline uint32_t odd_count(const uint32_t *u, unsigned cnt)
+{
+    uint32_t neg = 0;
+    BW_UNROLL8
+    for (unsigned b = 0; b < cnt; b++)
+        neg += u[b] & 1u;
+    return neg;
 }
 
 void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
@@ -396,7 +403,7 @@ void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
         strip_stats(v, u, BW_RICE_STRIP_MAX, &st); /* a whole strip: a fixed count */
     else
         strip_stats(v, u, cnt, &st);
-    uint32_t sum32 = st.sum, neg = st.neg, any = st.any;
+    uint32_t sum32 = st.sum, any = st.any;
     unsigned nz = st.nz;
     if (any == 0u) {
         put_mode(e, MODE_ZERO);
@@ -415,7 +422,9 @@ void bw_rice_enc_strip(bw_rice_enc_t *e, const int32_t *v, unsigned cnt)
     unsigned k = rice_k(sum, cnt, 31u);
     if (nz >= cnt / 4u) {
         unsigned n = cnt - nz;
-        /* sum of |v| is (sum + neg) / 2: a negative v has an odd code */
+        /* sum of |v| is (sum + negatives) / 2: a negative v has an odd code */
+        uint32_t neg = !RICE_SMALL && cnt == BW_RICE_STRIP_MAX ? odd_count(u, BW_RICE_STRIP_MAX)
+                                                              : odd_count(u, cnt);
         uint64_t msum = (sum + neg) / 2u - n;
         sparse_t sp = sparse_params(msum, n, nz);
         if (choose_sparse(u, sum32, any, cnt, nz, k, msum, wide, &sp)) {

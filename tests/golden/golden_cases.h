@@ -67,6 +67,12 @@ static const golden_case_t golden_cases[] = {
      BW_BASIS_HAAR, 0, BW_FLAG_RECIPROCAL},
     {"full1x1x9_maxerr2_53_mirror_reciprocal", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_MAX_ERROR,
      BW_BASIS_53, 2, BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL},
+    {"spectra4x64_lossless_haar", BW_SHAPE_SPECTRA, 0, 0, 4, 64, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0,
+     0},
+    {"spectra4x64_maxerr3_haar_rice", BW_SHAPE_SPECTRA, 0, 0, 4, 64, BW_MODE_MAX_ERROR,
+     BW_BASIS_HAAR, 3, BW_FLAG_RICE},
+    {"spectra4x66_maxerr5_haar", BW_SHAPE_SPECTRA, 0, 0, 4, 66, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 5,
+     0},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

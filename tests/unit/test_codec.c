@@ -2531,6 +2531,49 @@ static void reciprocity_refuses_what_it_cannot_do(void **state)
 
 /* ---- bad encoder input ------------------------------------------------------ */
 
+/* The range check on every load: plain, Haar one level at once (bands not
+ * divisible by 4) and two levels at once (bands divisible by 4), lossless
+ * and with the max-error prequantiser. A sample one past +-BW_SAMPLE_MAX
+ * anywhere is refused; +-BW_SAMPLE_MAX, which set every bit that the
+ * check's first look sees, are coded exactly as bounded. */
+static void encoder_range_check_on_every_load_path(void **state)
+{
+    (void)state;
+    static const unsigned bases[] = {BW_BASIS_HAAR, BW_BASIS_53};
+    static const uint32_t bands[] = {8, 12, 7, 6, 1024};
+    static const int32_t outside[] = {BW_SAMPLE_MAX + 1, -BW_SAMPLE_MAX - 1, INT32_MIN};
+    for (size_t bi = 0; bi < ARRAY_LEN(bases); bi++)
+        for (size_t ni = 0; ni < ARRAY_LEN(bands); ni++)
+            for (unsigned me = 0; me < 2u; me++) {
+                bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 3, bands[ni]);
+                size_t n = bw_dims_samples(&d), wb = bw_work_bound(n, d.bands);
+                size_t cap = bw_payload_bound(n), len;
+                int32_t *x = xmalloc(n * sizeof *x), *work = xmalloc(wb * sizeof *work);
+                int32_t *ver = xmalloc(wb * sizeof *ver), *back = xmalloc(n * sizeof *back);
+                uint8_t *out = xmalloc(cap);
+                fill_smooth(x, d.n_in, d.bands, 4000 + ni, 50);
+                bw_params_t p = params_of(me ? BW_MODE_MAX_ERROR : BW_MODE_LOSSLESS, bases[bi]);
+                p.max_error = 3u;
+                size_t at[] = {0, n / 2, n - 1};
+                for (size_t i = 0; i < ARRAY_LEN(outside); i++)
+                    for (size_t a = 0; a < ARRAY_LEN(at); a++) {
+                        int32_t keep = x[at[a]];
+                        x[at[a]] = outside[i];
+                        assert_int_equal(bw_encode(&d, &p, x, work, NULL, out, cap, &len),
+                                         BW_ERR_RANGE);
+                        x[at[a]] = keep;
+                    }
+                x[0] = SMAX;
+                x[n - 1] = -SMAX;
+                x[n / 2] = -SMAX;
+                assert_int_equal(bw_encode(&d, &p, x, work, ver, out, cap, &len), BW_OK);
+                assert_int_equal(bw_decode(out, len, back, n, work, wb, NULL), BW_OK);
+                for (size_t i = 0; i < n; i++)
+                    assert_true(labs((long)back[i] - x[i]) <= (me ? 3L : 0L));
+                free(x), free(work), free(ver), free(back), free(out);
+            }
+}
+
 static void encoder_refuses_bad_input(void **state)
 {
     (void)state;
@@ -2922,6 +2965,7 @@ int main(void)
         cmocka_unit_test(reciprocity_halves_a_reciprocal_brdf_again),
         cmocka_unit_test(reciprocity_keeps_every_guarantee_on_data_that_is_not_reciprocal),
         cmocka_unit_test(reciprocity_refuses_what_it_cannot_do),
+        cmocka_unit_test(encoder_range_check_on_every_load_path),
         cmocka_unit_test(encoder_refuses_bad_input),
         cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),
