@@ -124,6 +124,8 @@ typedef struct {
     uint32_t step_q8;
     uint32_t vec_thresh_q8;
     uint32_t round_q8;  /* encoder: rounding offset of the quantiser, Q8 */
+    uint32_t round_cut; /* encoder: coefficient k of the v-th vector quantised
+                         * takes round_q8 + 1 where k V + v < round_cut (V vectors) */
     bool mirror;        /* BW_FLAG_MIRROR */
     bool recip;         /* BW_FLAG_RECIPROCAL */
     bool stream;        /* coding order: streamed (post-order) instead of coarse-to-fine */
@@ -150,6 +152,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->step_q8 = STEP_ONE_Q8;
     pl->vec_thresh_q8 = VEC_THRESH_Q8;
     pl->round_q8 = 0;
+    pl->round_cut = 0;
     pl->mirror = false;
     pl->recip = false;
     pl->stream = false;
@@ -483,10 +486,10 @@ static inline int32_t dequant(int32_t q, uint64_t st)
     return q < 0 ? -(int32_t)m : (int32_t)m;
 }
 
-/* Quantises (forward, rounding offset round_q8) or reconstructs one vector
- * with its subband steps. */
+/* Quantises (forward, rounding offset round_q8, and round_q8 + 1 for the
+ * coefficients below kc) or reconstructs one vector with its subband steps. */
 static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v, bool forward,
-                      uint32_t round_q8)
+                      uint32_t round_q8, uint32_t kc)
 {
     for (unsigned i = 0; i < sb->count; i++) {
         uint64_t st = steps[i];
@@ -494,9 +497,14 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
             continue;
         uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
         if (forward) {
-            uint64_t off = (st * round_q8) >> 8;
+#if BW_SMALL
             for (; k < end; k++)
-                v[k] = quant(v[k], st, off);
+                v[k] = quant(v[k], st, (st * (round_q8 + (k < kc))) >> 8);
+#else
+            uint64_t off = (st * round_q8) >> 8, off1 = (st * (round_q8 + 1u)) >> 8;
+            for (; k < end; k++)
+                v[k] = quant(v[k], st, k < kc ? off1 : off);
+#endif
         } else {
             for (; k < end; k++)
                 v[k] = dequant(v[k], st);
@@ -516,6 +524,7 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
     spec_bands_t sb;
     uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
     uint32_t steps_gio = 0; /* no vector has gain 0: the first one computes */
+    size_t vecs = (size_t)d->n_in * d->n_out;
     spec_bands(pl, &sb);
     for (uint32_t i = 0; i < d->n_in; i++) {
         uint32_t gi = in_gain(pl, i);
@@ -545,7 +554,10 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
                     /* outgoing space: drop the spectral vector */
                     memset(v, 0, (size_t)b * sizeof *v);
                 } else {
-                    vec_quant(&sb, steps, v, forward, pl->round_q8);
+                    /* the bands k with k vecs + vi < round_cut (< b vecs) */
+                    size_t vi = (size_t)i * d->n_out + o;
+                    vec_quant(&sb, steps, v, forward, pl->round_q8,
+                              (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
                 }
             }
             if (!pass && e < thr) {
@@ -1460,19 +1472,27 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
     if (st != BW_OK)
         return st;
     if (sz < budget - budget / ROUND_FILL) {
-        unsigned lo_r = 0, hi_r = ROUND_MAX_Q8 + 1u; /* lo_r fits, hi_r does not */
-        while (hi_r - lo_r > 1u) {
-            unsigned mid = (lo_r + hi_r) / 2u;
-            pl->round_q8 = mid;
+        /* t = r n + c: the offset r / 256 for every coefficient, and
+         * (r + 1) / 256 for the first c of them, band by band (coarse to
+         * fine), each band in the quantiser's order of vectors: so that the
+         * last few bytes fill by single coefficients where a whole step of
+         * r would add too many (many coefficients just below a step) */
+        uint32_t n = (uint32_t)pl->n, lo_t = 0; /* n <= BW_MAX_SAMPLES; lo_t fits */
+        uint32_t hi_t = n > UINT32_MAX / ROUND_MAX_Q8 ? UINT32_MAX : ROUND_MAX_Q8 * n;
+        while (hi_t - lo_t > 1u) {
+            uint32_t mid = lo_t + (hi_t - lo_t) / 2u;
+            pl->round_q8 = mid / n;
+            pl->round_cut = mid % n;
             st = count_bytes(pl, pa, samples, work, &sz);
             if (st != BW_OK)
                 return st;
             if (sz <= budget)
-                lo_r = mid;
+                lo_t = mid;
             else
-                hi_r = mid;
+                hi_t = mid;
         }
-        pl->round_q8 = lo_r;
+        pl->round_q8 = lo_t / n;
+        pl->round_cut = lo_t % n;
     }
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
 }
@@ -1707,7 +1727,7 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
         if (b > 1u && vec_energy(&sb, steps, v, thr) < thr)
             memset(v, 0, (size_t)b * sizeof *v);
         else
-            vec_quant(&sb, steps, v, true, 0u);
+            vec_quant(&sb, steps, v, true, 0u, 0u);
     }
     /* stream order: no directional parent, no previous vector */
     for (uint32_t k = 0; k < b; k++)

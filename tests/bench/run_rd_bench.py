@@ -337,6 +337,50 @@ def base_setting(r):
     return s
 
 
+def exact_bytes(tf, kind):
+    """The size of our exact coding of the input for budget rows of this kind
+    (ratio or ratio_rel), if one of them made it."""
+    for r in tf.rows:
+        if (r["codec"] == "brdfwave" and r.get("kind") == kind and
+                "step=1.0000" in r["notes"]):
+            return r["bytes"]
+    return None
+
+
+def next_payload(r):
+    """For a budget row: the smallest payload above ours that the encoder
+    makes from a larger budget (same command, --bytes instead of --ratio),
+    and the smallest budget that gives it; None if none within 64 x."""
+    argv = r["cmd"].split()
+    i = argv.index("--ratio")
+    del argv[i:i + 2]
+    o = argv.index("-o")
+    out = argv[o + 1] + ".next"
+    argv[o + 1] = out
+    ours = r["bytes"]
+
+    def size(b):
+        cb.run(argv + ["--bytes", str(b)], "brdfwave encode (next payload size)")
+        return os.path.getsize(out)
+
+    lo, hi, step = r["budget"], r["budget"], max(1, r["budget"] // 64)
+    while True:
+        s = size(hi)
+        if s > ours:
+            break
+        lo, hi, step = hi, hi + step, 2 * step
+        if hi > 64 * r["budget"]:
+            return None
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        m = size(mid)
+        if m > ours:
+            hi, s = mid, m
+        else:
+            lo = mid
+    return s, hi
+
+
 def evaluate(v, sets_tables, paper):
     for key, tabs in sets_tables:
         tf, ti = tabs["f"], tabs["i"]
@@ -424,6 +468,12 @@ def evaluate(v, sets_tables, paper):
                 note += "; %d more where the exact coding fits under the budget" % exact
             if over:
                 note += "; %d OVER budget" % len(over)
+            if u > TARGET_BUDGET:
+                nxt = next_payload(r)
+                if nxt:
+                    note += ("; the next larger payload the encoder makes is %d B (%s from a "
+                             "budget of %d B)" % (nxt[0], "the exact coding" if nxt[0] ==
+                                                  exact_bytes(tf, r.get("kind")) else "lossy", nxt[1]))
             v.add("byte budget: <= 2 % under, never over", key, r["setting"],
                   "%d B" % r["bytes"], "budget %d B" % r["budget"], "2 %",
                   max(u, 0.0) / TARGET_BUDGET if not over else float("inf"), 1.0, note)

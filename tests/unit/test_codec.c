@@ -1654,6 +1654,51 @@ static void byte_budget_fills_small_budgets_within_2_percent_on_field_spectra(vo
     print_message("lowest use of a small budget: %.1f%%\n", 100.0 * worst);
 }
 
+/* Data whose finest details are +-1 (a smooth curve plus a unit of noise,
+ * as float data on a fine grid): at the finest lossy step (257/256) the
+ * rounding offset, one step of it up, takes many of them back at once.
+ * Budgets between that step without offset and the most it reaches (a
+ * budget just below the exact coding) land within 2 % under: the offset
+ * goes up for part of the coefficients only. */
+static void byte_budget_fills_between_rounding_offsets(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 8, 512);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    rng_t r;
+    rng_seed(&r, 77);
+    for (size_t v = 0; v < d.n_in; v++)
+        for (uint32_t k = 0; k < d.bands; k++) {
+            int32_t t = (int32_t)((k * 7u + (uint32_t)v * 31u) % 1024u);
+            t = t < 512 ? t : 1023 - t;
+            x[v * d.bands + k] = (1 << 22) + t * 300 + rng_between(&r, -1, 1);
+        }
+    size_t exact = lossless_size(&d, x, BW_BASIS_53), lo, hi;
+    bw_params_t p = params_of(BW_MODE_STEP, BW_BASIS_53);
+    p.step_q8 = 257u;
+    uint8_t *out;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &lo), BW_OK);
+    free(out);
+    p = params_of(BW_MODE_BYTES, BW_BASIS_53);
+    p.byte_budget = (uint32_t)exact - 1u;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &hi), BW_OK);
+    free(out);
+    /* the range this test is about */
+    if (!(hi > lo + lo / 20u))
+        fail_msg("step 257/256: %zu bytes without offset, %zu at most: no range", lo, hi);
+    for (unsigned j = 1; j <= 4; j++) {
+        bw_params_t pb = params_of(BW_MODE_BYTES, BW_BASIS_53);
+        pb.byte_budget = (uint32_t)(lo + (hi - lo) * j / 5u);
+        size_t len;
+        assert_int_equal(encode_new(&d, &pb, x, true, &out, &len), BW_OK);
+        if (len > pb.byte_budget || len < pb.byte_budget * 98u / 100u)
+            fail_msg("budget %u between %zu and %zu: payload %zu", pb.byte_budget, lo, hi, len);
+        free(out);
+    }
+    free(x);
+}
+
 /* ---- decoder robustness --------------------------------------------------- */
 
 typedef struct {
@@ -2950,6 +2995,7 @@ int main(void)
         cmocka_unit_test(byte_budget_too_small_is_refused),
         cmocka_unit_test(byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_small_budgets_within_2_percent_on_field_spectra),
+        cmocka_unit_test(byte_budget_fills_between_rounding_offsets),
         cmocka_unit_test(vector_threshold_keeps_every_spectrum_with_a_coefficient_above_a_step),
         cmocka_unit_test(every_truncation_of_a_valid_payload_is_rejected),
         cmocka_unit_test(every_single_bit_flip_is_rejected_by_the_crc_or_the_header_checks),
