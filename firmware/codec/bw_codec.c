@@ -1176,9 +1176,19 @@ static inline uint32_t prequant_k(int32_t x, const prequant_t *pq)
  * when a sample is out of range. */
 static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
-    uint32_t acc = 0;
     prequant_t pq = prequant_of(q);
-    if (!BW_SMALL && q == 1u) { /* the general loop, without the division */
+#if BW_SMALL
+    /* a build for size checks each sample exactly: the same result, less code */
+    uint32_t bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        int32_t x = in[i];
+        bad |= (uint32_t)x + BW_SAMPLE_MAX > 2u * BW_SAMPLE_MAX;
+        out[i] = (int32_t)(prequant_k(x, &pq) - pq.k);
+    }
+    return bad ? BW_ERR_RANGE : BW_OK;
+#else
+    uint32_t acc = 0;
+    if (q == 1u) { /* the general loop, without the division */
         BW_UNROLL8
         for (size_t i = 0; i < n; i++) {
             int32_t x = in[i];
@@ -1194,6 +1204,7 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
         }
     }
     return range_status(acc, in, n);
+#endif
 }
 
 /* load_samples and the first level of the Haar lifting (fwd_haar) in one
@@ -1536,6 +1547,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         /* keep the smallest payload, or for BYTES the smallest error (the
          * smallest step when there is no room to decode) */
         uint64_t best_score = UINT64_MAX;
+        size_t best_sz = 0;
         for (unsigned b = first; b <= last; b++) {
             size_t sz;
             plan_for(&pl, dims, b, pa, work);
@@ -1554,8 +1566,11 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
                                              &score) != BW_OK)
                     return BW_ERR_VERIFY;
             }
-            if (score < best_score) {
+            /* a byte budget: the smallest error, then the smallest payload
+             * (several bases may code the data exactly) */
+            if (score < best_score || (score == best_score && sz < best_sz)) {
                 best_score = score;
+                best_sz = sz;
                 best = b;
             }
         }

@@ -338,13 +338,11 @@ def base_setting(r):
 
 
 def exact_bytes(tf, kind):
-    """The size of our exact coding of the input for budget rows of this kind
-    (ratio or ratio_rel), if one of them made it."""
-    for r in tf.rows:
-        if (r["codec"] == "brdfwave" and r.get("kind") == kind and
-                "step=1.0000" in r["notes"]):
-            return r["bytes"]
-    return None
+    """The smallest exact coding of the input that budget rows of this kind
+    (ratio or ratio_rel) made, if any did."""
+    sizes = [r["bytes"] for r in tf.rows if r["codec"] == "brdfwave" and
+             r.get("kind") == kind and "step=1.0000" in r["notes"]]
+    return min(sizes) if sizes else None
 
 
 def next_payload(r):

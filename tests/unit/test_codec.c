@@ -1699,6 +1699,33 @@ static void byte_budget_fills_between_rounding_offsets(void **state)
     free(x);
 }
 
+/* A budget that every basis codes exactly: the automatic basis gives the
+ * smallest exact payload (equal errors, then the smaller payload). */
+static void byte_budget_with_room_for_every_exact_coding_keeps_the_smallest(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 6, 300);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x);
+    fill_smooth(x, d.n_in, d.bands, 99, 30);
+    static const unsigned bases[] = {BW_BASIS_HAAR, BW_BASIS_53, BW_BASIS_97};
+    size_t lo = SIZE_MAX, hi = 0;
+    for (size_t i = 0; i < ARRAY_LEN(bases); i++) {
+        size_t sz = lossless_size(&d, x, bases[i]);
+        lo = sz < lo ? sz : lo;
+        hi = sz > hi ? sz : hi;
+    }
+    assert_true(hi > lo);
+    bw_params_t p = params_of(BW_MODE_BYTES, BW_BASIS_AUTO);
+    p.byte_budget = (uint32_t)hi + 100u;
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_OK);
+    assert_int_equal(len, lo);
+    free(out);
+    free(x);
+}
+
 /* ---- decoder robustness --------------------------------------------------- */
 
 typedef struct {
@@ -2996,6 +3023,7 @@ int main(void)
         cmocka_unit_test(byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_small_budgets_within_2_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_between_rounding_offsets),
+        cmocka_unit_test(byte_budget_with_room_for_every_exact_coding_keeps_the_smallest),
         cmocka_unit_test(vector_threshold_keeps_every_spectrum_with_a_coefficient_above_a_step),
         cmocka_unit_test(every_truncation_of_a_valid_payload_is_rejected),
         cmocka_unit_test(every_single_bit_flip_is_rejected_by_the_crc_or_the_header_checks),
