@@ -1172,6 +1172,30 @@ static inline uint32_t prequant_k(int32_t x, const prequant_t *pq)
     return ((uint32_t)x + pq->bias) / pq->q;
 }
 
+/* A sample as the loads take it: prequantised plus k, or (pre false, no
+ * prequantiser) itself; the loads subtract koff(pq, pre) where k stays. */
+static BW_ALWAYS_INLINE uint32_t load_k(int32_t x, const prequant_t *pq, bool pre)
+{
+    return pre ? prequant_k(x, pq) : (uint32_t)x;
+}
+static BW_ALWAYS_INLINE uint32_t koff(const prequant_t *pq, bool pre) { return pre ? pq->k : 0u; }
+
+/* The loops below are written once and called with pre constant: with the
+ * prequantiser, and without it (q = 1: no division). Each returns the OR of
+ * the range check (range_status). */
+static BW_ALWAYS_INLINE uint32_t load_pass(int32_t *out, const int32_t *in, size_t n,
+                                           const prequant_t *pq, bool pre)
+{
+    uint32_t acc = 0;
+    BW_UNROLL8
+    for (size_t i = 0; i < n; i++) {
+        int32_t x = in[i];
+        acc |= range_mag(x);
+        out[i] = (int32_t)(load_k(x, pq, pre) - koff(pq, pre));
+    }
+    return acc;
+}
+
 /* Loads n samples into out, prequantised; BW_ERR_RANGE, after loading all,
  * when a sample is out of range. */
 static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
@@ -1187,22 +1211,7 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
     }
     return bad ? BW_ERR_RANGE : BW_OK;
 #else
-    uint32_t acc = 0;
-    if (q == 1u) { /* the general loop, without the division */
-        BW_UNROLL8
-        for (size_t i = 0; i < n; i++) {
-            int32_t x = in[i];
-            acc |= range_mag(x);
-            out[i] = x;
-        }
-    } else {
-        BW_UNROLL8
-        for (size_t i = 0; i < n; i++) {
-            int32_t x = in[i];
-            acc |= range_mag(x);
-            out[i] = (int32_t)(prequant_k(x, &pq) - pq.k);
-        }
-    }
+    uint32_t acc = q == 1u ? load_pass(out, in, n, &pq, false) : load_pass(out, in, n, &pq, true);
     return range_status(acc, in, n);
 #endif
 }
@@ -1211,93 +1220,72 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
  * pass: from the caller's samples the approximation and the details go
  * straight to their places in out, with no scratch. Same values (the k of
  * the prequantiser cancels in the details). */
-static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
+static BW_ALWAYS_INLINE uint32_t haar1_pass(const plan_t *pl, int32_t *o, const int32_t *x,
+                                            const prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
     uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, acc = 0;
-    prequant_t pq = prequant_of(pl->prequant);
-    const int32_t *x = in;
-    int32_t *o = out;
-    if (pq.q == 1u) {
-        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
-            BW_UNROLL8
-            for (uint32_t k = 0; k < nd; k++) {
-                int32_t e = x[2u * k], d = bw_wsub(x[2u * k + 1u], e);
-                acc |= range_mag(e) | range_mag(x[2u * k + 1u]);
-                o[k] = bw_wadd(e, bw_asr32(d, 1));
-                o[ns + k] = d;
-            }
-            if (ns > nd) {
-                acc |= range_mag(x[2u * nd]);
-                o[nd] = x[2u * nd];
-            }
+    for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+        BW_UNROLL8
+        for (uint32_t k = 0; k < nd; k++) {
+            int32_t e0 = x[2u * k], o0 = x[2u * k + 1u];
+            acc |= range_mag(e0) | range_mag(o0);
+            uint32_t e = load_k(e0, pq, pre);
+            int32_t d = (int32_t)(load_k(o0, pq, pre) - e);
+            o[k] = (int32_t)(e - koff(pq, pre) + (uint32_t)bw_asr32(d, 1));
+            o[ns + k] = d;
         }
-    } else {
-        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
-            BW_UNROLL8
-            for (uint32_t k = 0; k < nd; k++) {
-                int32_t e0 = x[2u * k], o0 = x[2u * k + 1u];
-                acc |= range_mag(e0) | range_mag(o0);
-                uint32_t e = prequant_k(e0, &pq);
-                int32_t d = (int32_t)(prequant_k(o0, &pq) - e);
-                o[k] = (int32_t)(e - pq.k + (uint32_t)bw_asr32(d, 1));
-                o[ns + k] = d;
-            }
-            if (ns > nd) {
-                acc |= range_mag(x[2u * nd]);
-                o[nd] = (int32_t)(prequant_k(x[2u * nd], &pq) - pq.k);
-            }
+        if (ns > nd) {
+            acc |= range_mag(x[2u * nd]);
+            o[nd] = (int32_t)(load_k(x[2u * nd], pq, pre) - koff(pq, pre));
         }
     }
-    return range_status(acc, in, vectors * b);
+    return acc;
+}
+
+static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
+{
+    prequant_t pq = prequant_of(pl->prequant);
+    uint32_t acc = pq.q == 1u ? haar1_pass(pl, out, in, &pq, false)
+                              : haar1_pass(pl, out, in, &pq, true);
+    return range_status(acc, in, bw_dims_samples(&pl->dims));
 }
 
 /* load_haar1 and the second Haar level in one pass, for bands divisible by
  * 4: each 4 samples give two level-1 details, one level-2 detail and one
- * approximation, written to their places in out. Same values. */
-static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
+ * approximation, written to their places in out. Same values (k cancels in
+ * every detail). */
+static BW_ALWAYS_INLINE uint32_t haar2_pass(const plan_t *pl, int32_t *o, const int32_t *x,
+                                            const prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
     uint32_t b = pl->dims.bands, n1 = b / 2u, n2 = b / 4u, acc = 0;
-    prequant_t pq = prequant_of(pl->prequant);
-    const int32_t *x = in;
-    int32_t *o = out;
-    if (pq.q == 1u) {
-        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
-            BW_UNROLL8
-            for (uint32_t j = 0; j < n2; j++) {
-                int32_t e0 = x[4u * j], o0 = x[4u * j + 1u];
-                int32_t e1 = x[4u * j + 2u], o1 = x[4u * j + 3u];
-                acc |= range_mag(e0) | range_mag(o0) | range_mag(e1) | range_mag(o1);
-                int32_t d0 = bw_wsub(o0, e0), d1 = bw_wsub(o1, e1);
-                int32_t s0 = bw_wadd(e0, bw_asr32(d0, 1)), s1 = bw_wadd(e1, bw_asr32(d1, 1));
-                int32_t dd = bw_wsub(s1, s0);
-                o[j] = bw_wadd(s0, bw_asr32(dd, 1));
-                o[n2 + j] = dd;
-                o[n1 + 2u * j] = d0;
-                o[n1 + 2u * j + 1u] = d1;
-            }
-        }
-    } else {
-        for (size_t v = 0; v < vectors; v++, x += b, o += b) {
-            BW_UNROLL8
-            for (uint32_t j = 0; j < n2; j++) {
-                int32_t e0 = x[4u * j], o0 = x[4u * j + 1u];
-                int32_t e1 = x[4u * j + 2u], o1 = x[4u * j + 3u];
-                acc |= range_mag(e0) | range_mag(o0) | range_mag(e1) | range_mag(o1);
-                uint32_t qe0 = prequant_k(e0, &pq), qe1 = prequant_k(e1, &pq);
-                int32_t d0 = (int32_t)(prequant_k(o0, &pq) - qe0);
-                int32_t d1 = (int32_t)(prequant_k(o1, &pq) - qe1);
-                uint32_t s0 = qe0 + (uint32_t)bw_asr32(d0, 1);
-                int32_t dd = (int32_t)(qe1 + (uint32_t)bw_asr32(d1, 1) - s0);
-                o[j] = (int32_t)(s0 - pq.k + (uint32_t)bw_asr32(dd, 1)); /* k cancels in dd */
-                o[n2 + j] = dd;
-                o[n1 + 2u * j] = d0;
-                o[n1 + 2u * j + 1u] = d1;
-            }
+    for (size_t v = 0; v < vectors; v++, x += b, o += b) {
+        BW_UNROLL8
+        for (uint32_t j = 0; j < n2; j++) {
+            int32_t e0 = x[4u * j], o0 = x[4u * j + 1u];
+            int32_t e1 = x[4u * j + 2u], o1 = x[4u * j + 3u];
+            acc |= range_mag(e0) | range_mag(o0) | range_mag(e1) | range_mag(o1);
+            uint32_t qe0 = load_k(e0, pq, pre), qe1 = load_k(e1, pq, pre);
+            int32_t d0 = (int32_t)(load_k(o0, pq, pre) - qe0);
+            int32_t d1 = (int32_t)(load_k(o1, pq, pre) - qe1);
+            uint32_t s0 = qe0 + (uint32_t)bw_asr32(d0, 1);
+            int32_t dd = (int32_t)(qe1 + (uint32_t)bw_asr32(d1, 1) - s0);
+            o[j] = (int32_t)(s0 - koff(pq, pre) + (uint32_t)bw_asr32(dd, 1));
+            o[n2 + j] = dd;
+            o[n1 + 2u * j] = d0;
+            o[n1 + 2u * j + 1u] = d1;
         }
     }
-    return range_status(acc, in, vectors * b);
+    return acc;
+}
+
+static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
+{
+    prequant_t pq = prequant_of(pl->prequant);
+    uint32_t acc = pq.q == 1u ? haar2_pass(pl, out, in, &pq, false)
+                              : haar2_pass(pl, out, in, &pq, true);
+    return range_status(acc, in, bw_dims_samples(&pl->dims));
 }
 
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL

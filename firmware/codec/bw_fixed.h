@@ -48,6 +48,13 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 #define BW_SMALL_NOINLINE
 #endif
 
+/* A helper whose constant arguments must specialise it at each call. */
+#if defined(__GNUC__)
+#define BW_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define BW_ALWAYS_INLINE inline
+#endif
+
 /* Before a hot loop: unrolled 8 times where built for speed. */
 #if !BW_SMALL && defined(__GNUC__)
 #define BW_PRAGMA_(x) _Pragma(#x)
