@@ -498,12 +498,17 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
         uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
         if (forward) {
 #if BW_SMALL
+            /* the offset of each coefficient computed in place: less code */
             for (; k < end; k++)
                 v[k] = quant(v[k], st, (st * (round_q8 + (k < kc))) >> 8);
 #else
-            uint64_t off = (st * round_q8) >> 8, off1 = (st * (round_q8 + 1u)) >> 8;
+            /* the coefficients below kc, then the rest: no choice per element */
+            uint32_t cut = kc < k ? k : kc < end ? kc : end;
+            uint64_t off1 = (st * (round_q8 + 1u)) >> 8, off = (st * round_q8) >> 8;
+            for (; k < cut; k++)
+                v[k] = quant(v[k], st, off1);
             for (; k < end; k++)
-                v[k] = quant(v[k], st, k < kc ? off1 : off);
+                v[k] = quant(v[k], st, off);
 #endif
         } else {
             for (; k < end; k++)
