@@ -7,7 +7,8 @@
 # build/sanitize), independent of the Makefile's build. The codec core is
 # compiled for size (-Os, as for the device's flash budget), so that the
 # forms its loops take in that build (BW_SMALL) run here; the other builds
-# run the -O2 forms.
+# run the -O2 forms. test_codec then runs once more with the core built
+# without -Os, for what a build for size leaves out (prediction).
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
 # Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
@@ -27,33 +28,46 @@ export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
-mkdir -p "$OUT/obj"
+mkdir -p "$OUT/obj" "$OUT/obj-O1"
 echo "== building with $CC -fsanitize=address,undefined into $OUT"
 objs=()
+core_o1=()
 for src in $LIB_SRC; do
     obj="$OUT/obj/$(echo "${src%.c}" | tr / _).o"
     opt=
     case $src in firmware/codec/*) opt=-Os ;; esac
     # shellcheck disable=SC2086
     $CC $CFLAGS $opt -c "$src" -o "$obj"
+    case $src in
+    firmware/codec/*)
+        # the core once more as built for speed: the parts a build for size
+        # leaves out (prediction) run in the second pass of test_codec
+        o1="$OUT/obj-O1/$(echo "${src%.c}" | tr / _).o"
+        # shellcheck disable=SC2086
+        $CC $CFLAGS -c "$src" -o "$o1"
+        core_o1+=("$o1")
+        ;;
+    *) core_o1+=("$obj") ;;
+    esac
     objs+=("$obj")
 done
 
 passed=0
 failed=0
-for t in tests/unit/test_*.c; do
-    name=$(basename "${t%.c}")
-    bin="$OUT/$name"
-    log="$OUT/$name.log"
+# run_test NAME SOURCE OBJECTS...
+run_test() {
+    local name=$1 t=$2
+    shift 2
+    local bin="$OUT/$name" log="$OUT/$name.log"
     # shellcheck disable=SC2086
-    if ! $CC $CFLAGS "$t" "${objs[@]}" -lcmocka -lm -o "$bin" >"$log" 2>&1; then
+    if ! $CC $CFLAGS "$t" "$@" -lcmocka -lm -o "$bin" >"$log" 2>&1; then
         printf '  %-24s does not build\n' "$name"
         sed 's/^/    | /' "$log" | tail -20
         failed=$((failed + 1))
-        continue
+        return
     fi
+    local t0 rc=0 secs p f
     t0=$(date +%s)
-    rc=0
     "$bin" >"$log" 2>&1 || rc=$?
     secs=$(($(date +%s) - t0))
     p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
@@ -69,6 +83,10 @@ for t in tests/unit/test_*.c; do
         grep -E 'runtime error|ERROR: AddressSanitizer|SUMMARY|FAILED|ERROR' "$log" | head -20 | sed 's/^/    | /'
         tail -25 "$log" | sed 's/^/    | /'
     fi
+}
+for t in tests/unit/test_*.c; do
+    run_test "$(basename "${t%.c}")" "$t" "${objs[@]}"
 done
+run_test test_codec_O1_core tests/unit/test_codec.c "${core_o1[@]}"
 echo "RESULT: $passed passed, $failed failed"
 [ "$failed" = 0 ]

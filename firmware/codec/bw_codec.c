@@ -142,7 +142,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->dims = *dims;
     pl->n = bw_dims_samples(dims);
     pl->basis = basis;
-    pl->spec_levels = bw_spec_levels(dims->bands);
+    pl->spec_levels = !BW_SMALL && basis == BW_BASIS_PRED ? 0u : bw_spec_levels(dims->bands);
     pl->spec_cls = work + pl->n;
     pl->spec_gain = pl->spec_cls + dims->bands;
     /* the lifting scratch shares the class table's room: it is only used
@@ -264,6 +264,92 @@ BW_SMALL_NOINLINE static uint32_t mirror_index(uint32_t o, unsigned level)
     uint32_t r = o & ((1u << sh) - 1u);
     return (3u - (o >> sh)) << sh | (r ^ ((r >> 1) & 0x55555555u));
 }
+
+#if !BW_SMALL
+/* ---- prediction (BW_BASIS_PRED) ------------------------------------------
+ *
+ * Spectrum by spectrum, band by band, over the decoded samples r: sample k
+ * of spectrum s is predicted as
+ *   p = r[s][k-1] + round(sum_i w_i d_i / 2^16),
+ *   d_0 = r[s][k-1] - r[s][k-2],    d_1 = r[s-1][k+1] - r[s-1][k],
+ *   d_2 = r[s-1][k] - r[s-1][k-1],  d_3 = r[s][k-2] - r[s][k-3]
+ * (a difference that needs a sample outside the spectra is 0; r[s][-1] is
+ * r[s-1][0], and 0 for the very first sample), clamped to +-BW_SAMPLE_MAX.
+ * The error x - p is quantised with the prequantiser D = 2E+1 (1: lossless),
+ * q = sign(e) floor((|e| + E) / D), r = p + q D, so |r - x| <= E; q is
+ * coded. The weights w (Q16, 0 at the start of every spectrum) then learn
+ * from the decoded error for k >= 1 (a normalised LMS step):
+ *   w_i += floor(PRED_MU e' d'_i / 2^floor(log2(D^2 + sum_j d'_j^2))),  e' = q D,
+ * with e' and d' saturated to +-2^20, and w_i kept within +-2^18.
+ * All of it is integer: encoder and decoder predict alike. */
+#define PRED_TAPS 4u
+#define PRED_MU 6554 /* the LMS step, 0.1 in Q16 */
+#define PRED_SAT (1 << 20)
+#define PRED_W_MAX (1 << 18)
+
+static inline int64_t sat64(int64_t v, int64_t m) { return v > m ? m : v < -m ? -m : v; }
+
+typedef struct {
+    int32_t w[PRED_TAPS];
+    int64_t d[PRED_TAPS];
+} pred_t;
+
+/* The prediction of band k of spectrum cur (bands before k decoded), prev
+ * the decoded previous spectrum (NULL for the first); sets pr->d. */
+static int32_t pred_value(pred_t *pr, const int32_t *cur, const int32_t *prev, uint32_t k,
+                          uint32_t bands)
+{
+    pr->d[0] = k >= 2u ? (int64_t)cur[k - 1] - cur[k - 2] : 0;
+    pr->d[1] = prev && k + 1u < bands ? (int64_t)prev[k + 1] - prev[k] : 0;
+    pr->d[2] = prev && k ? (int64_t)prev[k] - prev[k - 1] : 0;
+    pr->d[3] = k >= 3u ? (int64_t)cur[k - 2] - cur[k - 3] : 0;
+    int64_t acc = 0, a1 = k ? cur[k - 1] : prev ? prev[0] : 0;
+    for (unsigned i = 0; i < PRED_TAPS; i++)
+        acc += pr->w[i] * pr->d[i];
+    return (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
+}
+
+static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
+{
+    int64_t e = sat64(err, PRED_SAT), d[PRED_TAPS], nrm = (int64_t)D * D;
+    for (unsigned i = 0; i < PRED_TAPS; i++) {
+        d[i] = sat64(pr->d[i], PRED_SAT);
+        nrm += d[i] * d[i];
+    }
+    /* divided by 2^floor(log2(nrm)) instead of nrm: no division */
+    uint32_t hi = (uint32_t)((uint64_t)nrm >> 32);
+    unsigned sh = hi ? 31u + bw_bitlen(hi) : bw_bitlen((uint32_t)nrm) - 1u;
+    for (unsigned i = 0; i < PRED_TAPS; i++)
+        pr->w[i] = (int32_t)sat64(pr->w[i] + bw_asr64(e * d[i] * PRED_MU, sh), PRED_W_MAX);
+}
+
+/* Encoder (fwd) on range-checked samples x -> coded errors, in place, the
+ * decoded spectra in two rows of `bands` (rows); decoder: coded errors ->
+ * decoded samples, in place. */
+static void predict(const plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
+{
+    uint32_t bands = pl->dims.bands, D = pl->prequant, E = D / 2u;
+    const int32_t *prev = NULL;
+    for (size_t s = 0; s < pl->dims.n_in; s++) {
+        int32_t *v = x + s * bands, *cur = fwd ? rows + (s & 1u) * bands : v;
+        pred_t pr = {{0}, {0}};
+        for (uint32_t k = 0; k < bands; k++) {
+            int32_t p = pred_value(&pr, cur, prev, k, bands);
+            int64_t q = v[k];
+            if (fwd) { /* |x - p| < 2^25, E < 2^24: 32-bit division */
+                int64_t e = q - p;
+                uint32_t m = ((uint32_t)(e < 0 ? -e : e) + E) / D;
+                q = e < 0 ? -(int64_t)m : (int64_t)m;
+                v[k] = (int32_t)q;
+            }
+            cur[k] = (int32_t)(p + q * D);
+            if (k)
+                pred_learn(&pr, q * D, D);
+        }
+        prev = cur;
+    }
+}
+#endif
 
 /* The symmetry steps, on whole vectors of samples; a vector whose partner
  * comes first in [incoming][outgoing] order is coded as its difference
@@ -1073,6 +1159,21 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
     return st;
 }
 
+/* Prediction codes spectra, exactly or within a bound, in the plain order;
+ * a transform basis has its spectral levels. */
+static bool pred_ok(const bw_dims_t *d, unsigned mode, unsigned flags)
+{
+    return !BW_SMALL && d->shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR &&
+           !(flags & BW_FLAG_STREAM_ORDER);
+}
+
+static bool basis_ok(const bw_header_t *h)
+{
+    if (h->basis == BW_BASIS_PRED)
+        return pred_ok(&h->dims, h->mode, h->flags) && h->spectral_levels == 0u;
+    return h->spectral_levels == bw_spec_levels(h->dims.bands);
+}
+
 bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
 {
     if (len >= 2u && (p[0] != magic[0] || p[1] != magic[1]))
@@ -1120,8 +1221,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
                : d->level_out <= BW_MAX_LEVEL ? tri_count(d->level_out)
                                               : 0u;
-    if (bw_dims_check(d) != BW_OK || h->basis >= BW_BASIS_COUNT ||
-        h->spectral_levels != bw_spec_levels(d->bands) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
+    if (bw_dims_check(d) != BW_OK || !basis_ok(h) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
         ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL) ||
         ((h->flags & BW_FLAG_MIRROR) && d->shape == BW_SHAPE_SPECTRA) ||
         ((h->flags & BW_FLAG_RECIPROCAL) &&
@@ -1304,14 +1404,20 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
     if (!BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
         !pl->recip)
         fused = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
+    bool pred = !BW_SMALL && pl->basis == BW_BASIS_PRED;
     bw_status_t st = fused == 2u   ? load_haar2(pl, work, samples)
                      : fused == 1u ? load_haar1(pl, work, samples)
-                                   : load_samples(work, samples, pl->n, pl->prequant);
+                                   : load_samples(work, samples, pl->n, pred ? 1u : pl->prequant);
     if (st == BW_OK && (pl->mirror || pl->recip))
         st = symmetry(pl, work, true);
     if (st != BW_OK)
         return st;
-    transform_fwd(pl, work, fused);
+#if !BW_SMALL
+    if (pred)
+        predict(pl, work, work + pl->n, true);
+    else
+#endif
+        transform_fwd(pl, work, fused);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
         quantise(pl, work, true);
@@ -1511,7 +1617,10 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     bw_status_t st = bw_dims_check(dims);
     if (st != BW_OK)
         return st;
-    if (pa->mode > BW_MODE_STEP || (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO) ||
+    bool pred = pred_ok(dims, pa->mode, pa->flags);
+    if (pa->mode > BW_MODE_STEP ||
+        (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO &&
+         !(pa->basis == BW_BASIS_PRED && pred)) ||
         (pa->flags & ~BW_FLAGS_KNOWN) != 0u)
         return BW_ERR_ARG;
     if ((pa->flags & BW_FLAG_STREAM_ORDER) && dims->shape == BW_SHAPE_BRDF_FULL)
@@ -1531,10 +1640,12 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     unsigned first = pa->basis, last = pa->basis;
     if (pa->basis == BW_BASIS_AUTO) {
         first = 0;
-        last = BW_BASIS_COUNT - 1u;
+        last = pred ? BW_BASIS_PRED : BW_BASIS_COUNT - 1u;
     }
-    if (bw_spec_levels(dims->bands) == 0u)
-        last = first; /* no spectral transform: every basis codes alike */
+    /* no spectral transform: every transform basis codes alike */
+    bool one_transform = bw_spec_levels(dims->bands) == 0u;
+    if (one_transform && (BW_SMALL || last < BW_BASIS_COUNT))
+        last = first;
     unsigned best = first;
     if (first != last) {
         /* keep the smallest payload, or for BYTES the smallest error (the
@@ -1543,6 +1654,8 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         size_t best_sz = 0;
         for (unsigned b = first; b <= last; b++) {
             size_t sz;
+            if (!BW_SMALL && one_transform && b != first && b < BW_BASIS_COUNT)
+                continue;
             plan_for(&pl, dims, b, pa, work);
             st = encode_basis(&pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
                               out_cap, &sz);
@@ -1609,6 +1722,13 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     }
     if (st != BW_OK)
         return st;
+#if !BW_SMALL
+    if (pl.basis == BW_BASIS_PRED) {
+        predict(&pl, work, NULL, false); /* decoded samples: no prequantiser left */
+        memcpy(samples, work, n * sizeof *samples);
+        return BW_OK;
+    }
+#endif
     if (pl.step_q8 > STEP_ONE_Q8)
         quantise(&pl, work, false);
     transform_inv(&pl, work);

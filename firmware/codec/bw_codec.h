@@ -60,7 +60,12 @@ typedef enum {
     BW_BASIS_HAAR = 0, /* S-transform                         */
     BW_BASIS_53 = 1,   /* LeGall 5/3, reversible               */
     BW_BASIS_97 = 2,   /* integer-lifted CDF 9/7               */
-    BW_BASIS_COUNT = 3,
+    BW_BASIS_COUNT = 3, /* the transform bases above                 */
+    /* Prediction instead of a transform (SPECTRA, LOSSLESS and MAX_ERROR
+     * only; not in a build for size): each sample is predicted from the
+     * decoded samples before it in its spectrum and in the previous one,
+     * and the prediction error quantised in the loop. */
+    BW_BASIS_PRED = 3,
     BW_BASIS_AUTO = 255 /* encoder option: try all, keep the smallest payload */
 } bw_basis_t;
 

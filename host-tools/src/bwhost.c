@@ -668,8 +668,8 @@ const char *bwh_shape_name(unsigned s)
 
 const char *bwh_basis_name(unsigned b)
 {
-    static const char *names[] = {"haar", "53", "97"};
-    return b < 3 ? names[b] : "?";
+    static const char *names[] = {"haar", "53", "97", "pred"};
+    return b < 4 ? names[b] : "?";
 }
 
 const char *bwh_mode_name(unsigned m)

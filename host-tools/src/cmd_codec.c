@@ -54,7 +54,7 @@ static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
-    "                       [--basis haar|53|97|auto] [--scale S] [--relative]\n"
+    "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
     "                       [--coder range|rice]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "\n"
@@ -72,7 +72,8 @@ static const char encode_help[] =
     "  --max-error E     every decoded value within E of the input (value units)\n"
     "  --bytes N         the payload is at most N bytes, best quality that fits\n"
     "  --ratio R         the payload is at most 4*samples/R bytes (R:1 against float32)\n"
-    "  --basis B         spectral wavelet (default auto: the smallest payload)\n"
+    "  --basis B         spectral wavelet (default auto: the smallest payload); pred:\n"
+    "                    prediction instead, for spectra with --lossless or --max-error\n"
     "  --scale S         float input: value of one integer step\n"
     "  --device D        where to encode: host (default); qemu, the emulated\n"
     "                    Cortex-M4 co-processor (its payload comes back over the\n"
@@ -178,8 +179,9 @@ int bw_cmd_encode(int argc, char **argv)
             if (!strcmp(optarg, "haar")) o.basis = BW_BASIS_HAAR;
             else if (!strcmp(optarg, "53")) o.basis = BW_BASIS_53;
             else if (!strcmp(optarg, "97")) o.basis = BW_BASIS_97;
+            else if (!strcmp(optarg, "pred")) o.basis = BW_BASIS_PRED;
             else if (!strcmp(optarg, "auto")) o.basis = BW_BASIS_AUTO;
-            else return usage_err(C, "--basis must be haar, 53, 97 or auto");
+            else return usage_err(C, "--basis must be haar, 53, 97, pred or auto");
             break;
         case 's':
             if (parse_pos_double(optarg, &o.scale))
@@ -230,6 +232,10 @@ int bw_cmd_encode(int argc, char **argv)
         return usage_err(C, "--incoming and --level-in exclude each other");
     if ((incoming || level_in != UINT32_MAX) && level == UINT32_MAX)
         return usage_err(C, "--incoming / --level-in need --level");
+    if (o.basis == BW_BASIS_PRED &&
+        (level != UINT32_MAX || o.mode > BW_MODE_MAX_ERROR || (o.flags & BW_FLAG_STREAM_ORDER)))
+        return usage_err(C, "--basis pred codes sets of spectra (no --level) with --lossless "
+                            "or --max-error, not --stream");
     int is_sed = !strcmp(fmt, "sed");
     bwh_format_t f = BWH_FMT_F32;
     if (!strcmp(fmt, "u16")) f = BWH_FMT_U16;

@@ -138,6 +138,20 @@ for E in 5e-06 0.0005; do
     $PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= $E else 1)" && ok ||
         bad "sed max-error $E: $(key max_abs_error "$T/cmp")"
 done
+# prediction: named in the header, within its bound, and the smallest of the bases here
+for b in pred 53 auto; do
+    expect_ok "sed max-error 0.0002 basis $b" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/fsp_$b.bwv" --max-error 0.0002 --basis $b
+done
+"$BW" info "$T/fsp_pred.bwv" >"$T/info" && [ "$(key basis "$T/info")" = pred ] && ok || bad "basis pred: header says $(key basis "$T/info")"
+"$BW" decode -i "$T/fsp_pred.bwv" -o "$T/fsp.f32" && "$BW" compare "$T/fs.f32" "$T/fsp.f32" >"$T/cmp"
+$PY -c "import sys; sys.exit(0 if float('$(key max_abs_error "$T/cmp")') <= 0.0002 else 1)" && ok ||
+    bad "basis pred max-error 0.0002: $(key max_abs_error "$T/cmp")"
+[ "$(stat -c %s "$T/fsp_pred.bwv")" -lt "$(stat -c %s "$T/fsp_53.bwv")" ] &&
+    [ "$(stat -c %s "$T/fsp_auto.bwv")" = "$(stat -c %s "$T/fsp_pred.bwv")" ] && ok ||
+    bad "field max-error 0.0002: pred $(stat -c %s "$T/fsp_pred.bwv") B, 53 $(stat -c %s "$T/fsp_53.bwv") B, auto $(stat -c %s "$T/fsp_auto.bwv") B"
+expect_error "basis pred with a byte budget" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/x.bwv" --ratio 8 --basis pred
+expect_error "basis pred on directions" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --lossless --basis pred
+expect_error "basis pred streamed" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/x.bwv" --lossless --stream --basis pred
 for R in 8 64 256; do
     expect_ok "encode ratio $R" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --level 4 --incoming 16 --ratio $R
     size=$(stat -c %s "$T/p.bwv")

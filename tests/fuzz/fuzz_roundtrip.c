@@ -7,7 +7,9 @@
  *   bytes 2-3  bands (little-endian)          1 + v % 2151, then cut so that
  *                                             n <= FUZZ_MAX_SAMPLES
  *   byte 4     n_in (spectra, BRDF_ISO)       1 + b % 32
- *   byte 5     mode, basis                    b % 4, (b >> 2) % 4 (3 = AUTO)
+ *   byte 5     mode, basis                    b % 4, (b >> 2) % 4 (3 = AUTO); bit 4:
+ *                                             prediction instead, where it applies
+ *                                             (spectra, lossless or max-error)
  *   bytes 6-7  parameter p (little-endian)    MAX_ERROR: E = 1 + p % 1000, or for
  *                                               p >= 0xF000 up to BW_SAMPLE_MAX
  *                                             BYTES: budget = 2p bytes
@@ -81,6 +83,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     unsigned style = data[8] % 4u;
     if (basis == 3u)
         basis = BW_BASIS_AUTO;
+    if ((data[5] & 0x10u) && shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR)
+        basis = BW_BASIS_PRED;
 
     bw_dims_t d;
     int st = bw_dims_make(&d, (bw_shape_t)shape, level_out, level_in, n_in, bands);
@@ -189,7 +193,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         /* a byte budget that the exact coding fits gives the lossless payload */
         require(h.mode == mode || (mode == BW_MODE_BYTES && h.mode == BW_MODE_LOSSLESS),
                 "header mode differs", st);
-        require(basis == BW_BASIS_AUTO ? h.basis < BW_BASIS_COUNT : h.basis == basis,
+        require(basis == BW_BASIS_AUTO ? h.basis < BW_BASIS_COUNT ||
+                                             (h.basis == BW_BASIS_PRED &&
+                                              d.shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR)
+                                       : h.basis == basis,
                 "header basis differs", st);
         if (mode == BW_MODE_STEP)
             require(h.step_q8 == pa.step_q8, "header step differs", st);

@@ -64,6 +64,8 @@ static const seed_t seeds[] = {
     {"full_l0l1x2_maxerr4_97", 3, 0, 1, 0, 2, 1, 2, 4, 0},
     {"iso_3xl2x5_mirror_lossless_53", 2, 2, 0, 3, 5, 0, 1, 0, BW_FLAG_MIRROR},
     {"full_l1l1x2_mirror_maxerr2_haar", 3, 1, 1, 0, 2, 1, 0, 2, BW_FLAG_MIRROR},
+    {"spectra_3x40_lossless_pred", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, 0},
+    {"spectra_2x33_maxerr5_pred", 0, 0, 0, 2, 33, 1, BW_BASIS_PRED, 5, 0},
 };
 
 int main(int argc, char **argv)
@@ -133,7 +135,8 @@ int main(int argc, char **argv)
         in[2] = (uint8_t)bands_field;
         in[3] = (uint8_t)(bands_field >> 8);
         in[4] = (uint8_t)((sd->n_in ? sd->n_in - 1u : 0u) | (sd->flags & BW_FLAG_MIRROR ? 0x80u : 0u));
-        in[5] = (uint8_t)(sd->mode | (sd->basis == 255 ? 3u : sd->basis) << 2);
+        in[5] = (uint8_t)(sd->mode | (sd->basis == BW_BASIS_PRED ? 0x10u
+                                      : (sd->basis == 255 ? 3u : sd->basis) << 2));
         in[6] = (uint8_t)param;
         in[7] = (uint8_t)(param >> 8);
         in[8] = (uint8_t)(s % 4u);

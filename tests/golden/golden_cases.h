@@ -73,6 +73,12 @@ static const golden_case_t golden_cases[] = {
      BW_BASIS_HAAR, 3, BW_FLAG_RICE},
     {"spectra4x66_maxerr5_haar", BW_SHAPE_SPECTRA, 0, 0, 4, 66, BW_MODE_MAX_ERROR, BW_BASIS_HAAR, 5,
      0},
+    {"spectra5x2151_lossless_pred", BW_SHAPE_SPECTRA, 0, 0, 5, 2151, BW_MODE_LOSSLESS,
+     BW_BASIS_PRED, 0, 0},
+    {"spectra6x300_maxerr7_pred", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR, BW_BASIS_PRED,
+     7, 0},
+    {"spectra6x300_maxerr2_pred_rice", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR,
+     BW_BASIS_PRED, 2, BW_FLAG_RICE},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

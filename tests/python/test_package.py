@@ -134,6 +134,23 @@ def encode_then_decode_is_lossless_for_integer_spectra():
 
 
 @case
+def prediction_codes_spectra_within_the_bound_and_names_its_basis():
+    rng = np.random.default_rng(8)
+    x = (2000 + np.cumsum(rng.integers(-30, 31, size=(4, 300)), axis=1)).astype(np.float32)
+    for kw in ({"lossless": True}, {"max_error": 5}):
+        p = brdfwave.encode(x, basis="pred", **kw)
+        m = brdfwave.decode_bytes(p)
+        assert m.header["basis"] == "pred", m.header
+        assert np.max(np.abs(np.asarray(m) - x)) <= kw.get("max_error", 0)
+    try:
+        brdfwave.encode(x, basis="pred", ratio=8)
+    except brdfwave.BrdfwaveError:
+        pass
+    else:
+        raise AssertionError("prediction under a byte budget was not refused")
+
+
+@case
 def grid_equals_the_cli_csv():
     for level in (0, 2, 4):
         rows = bw("grid", "--level", str(level)).strip().split("\n")

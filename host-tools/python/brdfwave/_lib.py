@@ -99,7 +99,7 @@ def last_error():
 
 SHAPES = ("spectra", "reflectance", "brdf", "brdf-full")
 _MODES = ("lossless", "max-error", "bytes", "step")
-_BASIS_NAMES = ("haar", "53", "97")
+_BASIS_NAMES = ("haar", "53", "97", "pred")
 
 
 def _float_of(bits):

@@ -21,7 +21,7 @@ from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, _header_dict
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
            "header_of"]
 
-BASES = {"haar": 0, "53": 1, "97": 2, "auto": 255}
+BASES = {"haar": 0, "53": 1, "97": 2, "pred": 3, "auto": 255}
 
 
 class Measurement(np.ndarray):
@@ -143,7 +143,8 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
       level=L                    a spectral reflectance, values (4*4^L, bands)
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
-    One of lossless (default), max_error=E, nbytes=N, ratio=R. symmetry: "auto" (try
+    One of lossless (default), max_error=E, nbytes=N, ratio=R. basis: "haar", "53",
+    "97", "pred" (spectra, lossless or max_error only) or "auto". symmetry: "auto" (try
     the mirror image (x, -y, z) for directional data, and reciprocity for a full BRDF
     with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none"."""
     L = lib()
@@ -187,7 +188,7 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
             nbytes = max(1, int(np.floor(4.0 * need / ratio)))
         o.byte_budget = int(nbytes)
     if basis not in BASES:
-        raise BrdfwaveError("basis must be haar, 53, 97 or auto")
+        raise BrdfwaveError("basis must be haar, 53, 97, pred or auto")
     o.basis = BASES[basis]
     if scale is not None:
         o.scale = float(scale)
