@@ -326,7 +326,7 @@ static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
 /* Encoder (fwd) on range-checked samples x -> coded errors, in place, the
  * decoded spectra in two rows of `bands` (rows); decoder: coded errors ->
  * decoded samples, in place. */
-static void predict(const plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
+static BW_NOINLINE void predict(const plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
 {
     uint32_t bands = pl->dims.bands, D = pl->prequant, E = D / 2u;
     const int32_t *prev = NULL;
@@ -1393,6 +1393,23 @@ static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
     return range_status(acc, in, bw_dims_samples(&pl->dims));
 }
 
+/* Prediction in place of the prequantiser and the transform (out of line, so
+ * that the transforms' encode is built as without it). */
+#if BW_SMALL
+#define PREQUANT_OF(pl) ((pl)->prequant)
+#define TRANSFORM_FWD(pl, x, done) transform_fwd(pl, x, done)
+#else
+#define PREQUANT_OF(pl) ((pl)->basis == BW_BASIS_PRED ? 1u : (pl)->prequant)
+#define TRANSFORM_FWD(pl, x, done) transform_or_predict(pl, x, done)
+static BW_NOINLINE void transform_or_predict(const plan_t *pl, int32_t *x, unsigned done)
+{
+    if (pl->basis == BW_BASIS_PRED)
+        predict(pl, x, x + pl->n, true);
+    else
+        transform_fwd(pl, x, done);
+}
+#endif
+
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
  * (count only). */
 static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
@@ -1404,20 +1421,14 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
     if (!BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
         !pl->recip)
         fused = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
-    bool pred = !BW_SMALL && pl->basis == BW_BASIS_PRED;
     bw_status_t st = fused == 2u   ? load_haar2(pl, work, samples)
                      : fused == 1u ? load_haar1(pl, work, samples)
-                                   : load_samples(work, samples, pl->n, pred ? 1u : pl->prequant);
+                                   : load_samples(work, samples, pl->n, PREQUANT_OF(pl));
     if (st == BW_OK && (pl->mirror || pl->recip))
         st = symmetry(pl, work, true);
     if (st != BW_OK)
         return st;
-#if !BW_SMALL
-    if (pred)
-        predict(pl, work, work + pl->n, true);
-    else
-#endif
-        transform_fwd(pl, work, fused);
+    TRANSFORM_FWD(pl, work, fused);
     plan_tables(pl);
     if (pl->step_q8 > STEP_ONE_Q8)
         quantise(pl, work, true);

@@ -48,6 +48,14 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 #define BW_SMALL_NOINLINE
 #endif
 
+/* A function kept out of line, so that it does not change how its callers'
+ * other calls inline. */
+#if defined(__GNUC__)
+#define BW_NOINLINE __attribute__((noinline))
+#else
+#define BW_NOINLINE
+#endif
+
 /* A helper whose constant arguments must specialise it at each call. */
 #if defined(__GNUC__)
 #define BW_ALWAYS_INLINE inline __attribute__((always_inline))

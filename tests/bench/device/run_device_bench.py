@@ -55,7 +55,7 @@ SHAPE_SPECTRA, SHAPE_REFLECTANCE, SHAPE_ISO, SHAPE_FULL = 0, 1, 2, 3
 MODES = ["lossless", "maxerr1", "maxerr4", "maxerr16", "ratio8", "ratio32"]
 MODE_LABEL = {"lossless": "lossless", "maxerr1": "max-error 1", "maxerr4": "max-error 4",
               "maxerr16": "max-error 16", "ratio8": "bytes, ratio 8", "ratio32": "bytes, ratio 32"}
-BASIS = {0: "haar", 1: "5/3", 2: "9/7"}
+BASIS = {0: "haar", 1: "5/3", 2: "9/7", 3: "pred"}
 
 failures = []
 
@@ -470,7 +470,7 @@ def peer_bits(ds):
 
 
 FAST_MODES = ["lossless", "maxerr1", "maxerr4", "maxerr16", "step8", "step64"]
-BASIS_NAMES = {0: "Haar", 1: "5/3", 2: "9/7"}
+BASIS_NAMES = {0: "Haar", 1: "5/3", 2: "9/7", 3: "prediction"}
 LOSSY_TARGET = 40.0
 LOSSLESS_TARGET = 85.0
 
@@ -624,7 +624,8 @@ def main():
       "(the device path); *encode + verify* passes the verify buffer (the encoder decodes its "
       "own payload and checks the guarantee); *decode* is `bw_decode`. The basis is "
       "`BW_BASIS_AUTO` (the CLI's default): for a set with a spectral axis the encoder codes "
-      "every basis and keeps the best, so *basis fixed* gives the same encode with the "
+      "every basis (for sets of spectra in lossless and max-error modes also prediction, "
+      "`pred`) and keeps the best, so *basis fixed* gives the same encode with the "
       "chosen basis named up front (same payload). Modes: lossless; max-error E; bytes: "
       "budget = 2 x samples / R bytes (ratio R against the 16-bit raw samples), payload "
       "including its header and CRC. ÷ memcpy: instructions per sample divided by "
@@ -729,7 +730,8 @@ def main():
     A("## Where the instructions go (measured)")
     A("")
     A("The transforms alone, called on the same samples in the same run (`bw_spec_fwd` on "
-      "every spectrum with the basis the lossless encode chose, `bw_biohaar_fwd` on the "
+      "every spectrum with the basis the lossless encode chose, 5/3 where it chose "
+      "prediction, `bw_biohaar_fwd` on the "
       "outgoing and incoming hemispheres, and their inverses), the core's CRC-32 over the "
       "lossless payload, and an encode/decode with a quantiser step so large that every "
       "coefficient becomes zero (`BW_MODE_STEP`, `step_q8` = 0xFFFFFFFF: load, range "
