@@ -83,7 +83,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     unsigned style = data[8] % 4u;
     if (basis == 3u)
         basis = BW_BASIS_AUTO;
-    if ((data[5] & 0x10u) && shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR)
+    /* where prediction applies (bw_codec.h) */
+    int pred = shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR;
+    if ((data[5] & 0x10u) && pred)
         basis = BW_BASIS_PRED;
 
     bw_dims_t d;
@@ -193,10 +195,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         /* a byte budget that the exact coding fits gives the lossless payload */
         require(h.mode == mode || (mode == BW_MODE_BYTES && h.mode == BW_MODE_LOSSLESS),
                 "header mode differs", st);
-        require(basis == BW_BASIS_AUTO ? h.basis < BW_BASIS_COUNT ||
-                                             (h.basis == BW_BASIS_PRED &&
-                                              d.shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR)
-                                       : h.basis == basis,
+        require(basis == BW_BASIS_AUTO
+                    ? h.basis < BW_BASIS_COUNT || (h.basis == BW_BASIS_PRED && pred)
+                    : h.basis == basis,
                 "header basis differs", st);
         if (mode == BW_MODE_STEP)
             require(h.step_q8 == pa.step_q8, "header step differs", st);

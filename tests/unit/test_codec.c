@@ -3223,13 +3223,10 @@ static void prediction_is_refused_where_it_does_not_apply(void **state)
     assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
     free(y);
     wire_hdr_t w0 = wire_of(out, len);
-    const uint8_t *body = out + len - 4u;
-    {
-        bw_header_t h;
-        assert_int_equal(bw_header_read(out, len, &h), BW_OK);
-        body = out + h.header_len;
-    }
-    size_t blen = len - 4u - (size_t)(body - out);
+    payload_t pl = {out, len, spectra, NULL};
+    const uint8_t *body;
+    size_t blen;
+    body_of(&pl, &body, &blen);
     uint8_t g[4096];
     assert_true(blen + 64u <= sizeof g);
     /* unchanged: valid */
