@@ -34,6 +34,7 @@
 #define STEP_T_MAX (24u * STEP_FRAC)
 #define STEP_REFINE 16384u   /* then bisection on the step to 1/16384 of it */
 #define ROUND_MAX_Q8 32u     /* then the rounding offset, up to 1/8 of a step */
+#define ROUND_WIDE_Q8 128u   /* or 1/2, where 1/8 leaves the budget unfilled  */
 #define ROUND_FILL 128u      /* when the payload is more than 1/128 under */
 #define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 #define VEC_THRESH_MAX_LOG2 16u /* a budget may raise it up to 2^16 steps     */
@@ -1513,6 +1514,31 @@ static bw_status_t count_bytes(plan_t *pl, const bw_params_t *pa, const int32_t 
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, sz);
 }
 
+#if !BW_SMALL
+/* The largest value of *field in [*lo, hi] whose payload fits the budget
+ * (*lo fits; the size grows with it), into *lo. */
+static bw_status_t fill_search(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                               int32_t *work, size_t budget, uint32_t *field, uint32_t hi,
+                               uint32_t *lo)
+{
+    uint32_t l = *lo, h = hi + 1u; /* l fits, h does not (or lies past hi) */
+    while (h - l > 1u) {
+        size_t sz;
+        uint32_t mid = l + (h - l) / 2u;
+        *field = mid;
+        bw_status_t st = count_bytes(pl, pa, samples, work, &sz);
+        if (st != BW_OK)
+            return st;
+        if (sz <= budget)
+            l = mid;
+        else
+            h = mid;
+    }
+    *lo = l;
+    return BW_OK;
+}
+#endif
+
 static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                 int32_t *work, uint8_t *out, size_t cap, size_t *len)
 {
@@ -1599,7 +1625,8 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
          * last few bytes fill by single coefficients where a whole step of
          * r would add too many (many coefficients just below a step) */
         uint32_t n = (uint32_t)pl->n, lo_t = 0; /* n <= BW_MAX_SAMPLES; lo_t fits */
-        uint32_t hi_t = n > UINT32_MAX / ROUND_MAX_Q8 ? UINT32_MAX : ROUND_MAX_Q8 * n;
+        uint32_t max_t = n > UINT32_MAX / ROUND_MAX_Q8 ? UINT32_MAX : ROUND_MAX_Q8 * n;
+        uint32_t hi_t = max_t;
         while (hi_t - lo_t > 1u) {
             uint32_t mid = lo_t + (hi_t - lo_t) / 2u;
             pl->round_q8 = mid / n;
@@ -1614,6 +1641,26 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         }
         pl->round_q8 = lo_t / n;
         pl->round_cut = lo_t % n;
+#if !BW_SMALL
+        /* all of that fits and the payload is still short: the step jumped
+         * where integer coefficients of a few units (data coded nearly
+         * exactly, at a step just above 1) fell a level together, and no
+         * step between the exact coding and that one exists. An offset up
+         * to 1/2 of a step takes them back, most to their exact value (the
+         * reconstruction is an integer): the error falls as the budget
+         * grows (tests/unit/test_codec.c). */
+        if (lo_t + 1u == max_t) {
+            uint32_t r = pl->round_q8, c = 0;
+            pl->round_cut = 0;
+            st = fill_search(pl, pa, samples, work, budget, &pl->round_q8, ROUND_WIDE_Q8, &r);
+            pl->round_q8 = r;
+            if (st == BW_OK && r < ROUND_WIDE_Q8)
+                st = fill_search(pl, pa, samples, work, budget, &pl->round_cut, n - 1u, &c);
+            if (st != BW_OK)
+                return st;
+            pl->round_cut = c;
+        }
+#endif
     }
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, budget, len);
 }

@@ -1717,6 +1717,63 @@ static void byte_budget_fills_between_rounding_offsets(void **state)
     free(x);
 }
 
+/* Data coded nearly exactly (a slow staircase, broad features and +-1 of
+ * noise): at the finest lossy step many coefficients of one or two units
+ * fall a level together, beyond what 1/8 of a step of rounding takes back.
+ * Every budget between that step and the exact coding still lands within
+ * 2 % under, and the error falls as the budget grows. */
+static void byte_budget_fills_the_gap_below_the_exact_coding(void **state)
+{
+    (void)state;
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 8, 512);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x), *y;
+    rng_t r;
+    rng_seed(&r, 91);
+    for (uint32_t v = 0; v < d.n_in; v++)
+        for (uint32_t k = 0; k < d.bands; k++) {
+            int32_t t = (int32_t)((k * 3u + v * 61u) % 754u);
+            t = t < 377 ? t : 753 - t;
+            x[v * d.bands + k] = (1 << 20) + (int32_t)(k / 10u) + t * 80 / 377 +
+                                 (int32_t)v * 3 + rng_between(&r, -1, 1);
+        }
+    size_t exact = lossless_size(&d, x, BW_BASIS_53), lo;
+    bw_params_t p = params_of(BW_MODE_STEP, BW_BASIS_53);
+    p.step_q8 = 257u;
+    uint8_t *out;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &lo), BW_OK);
+    free(out);
+    if (!(exact > lo + lo / 5u))
+        fail_msg("step 257/256: %zu bytes, exact %zu: no gap", lo, exact);
+    double first = 0.0, prev = 0.0;
+    for (unsigned j = 0; j <= 10; j++) {
+        bw_params_t pb = params_of(BW_MODE_BYTES, BW_BASIS_53);
+        pb.byte_budget = (uint32_t)(lo + (exact - 1u - lo) * j / 10u);
+        size_t len;
+        assert_int_equal(encode_new(&d, &pb, x, true, &out, &len), BW_OK);
+        if (len > pb.byte_budget || len < pb.byte_budget * 98u / 100u)
+            fail_msg("budget %u between %zu and %zu: payload %zu", pb.byte_budget, lo, exact,
+                     len);
+        assert_int_equal(decode_new(out, len, &y, NULL), BW_OK);
+        double e = 0.0;
+        for (size_t i = 0; i < n; i++)
+            e += (double)(y[i] - x[i]) * (double)(y[i] - x[i]);
+        e = sqrt(e / (double)n);
+        if (j == 0)
+            first = e;
+        else if (e > prev * 1.01)
+            fail_msg("budget %u: RMSE %.4f, above %.4f at the budget before", pb.byte_budget, e,
+                     prev);
+        prev = e;
+        free(y);
+        free(out);
+    }
+    if (!(prev < 0.25 * first))
+        fail_msg("RMSE %.4f just below the exact coding, %.4f at the finest step", prev, first);
+    print_message("gap %zu .. %zu bytes: RMSE %.4f .. %.4f\n", lo, exact, first, prev);
+    free(x);
+}
+
 /* A budget that every basis codes exactly: the automatic basis gives the
  * smallest exact payload (equal errors, then the smaller payload). */
 static void byte_budget_with_room_for_every_exact_coding_keeps_the_smallest(void **state)
@@ -3289,6 +3346,7 @@ int main(void)
         cmocka_unit_test(byte_budget_uses_most_of_budgets_between_5_and_50_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_small_budgets_within_2_percent_on_field_spectra),
         cmocka_unit_test(byte_budget_fills_between_rounding_offsets),
+        cmocka_unit_test(byte_budget_fills_the_gap_below_the_exact_coding),
         cmocka_unit_test(byte_budget_with_room_for_every_exact_coding_keeps_the_smallest),
         cmocka_unit_test(vector_threshold_keeps_every_spectrum_with_a_coefficient_above_a_step),
         cmocka_unit_test(every_truncation_of_a_valid_payload_is_rejected),
