@@ -28,7 +28,7 @@
 #include "bw_rice.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 5u
+#define BW_VERSION 6u
 #define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
@@ -1076,10 +1076,9 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
         if (!mask)
             return BW_ERR_CORRUPT; /* a present strip holds at least one value */
         prev_mask = mask;
-        if (rc->overrun)
-            return BW_ERR_CORRUPT;
     }
-    return rc->overrun ? BW_ERR_CORRUPT : BW_OK;
+    /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
+    return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
 }
 
 /* ---- header -------------------------------------------------------------- */

@@ -8,8 +8,9 @@
  * while it learns, steady once it has. Bypass bits cost
  * exactly one bit. The encoder writes into a caller buffer and only records
  * an overflow (the caller then reports BW_ERR_OUTPUT_FULL), so it can also
- * run with a NULL buffer to count bytes. The decoder treats bytes past the
- * end of its input as an error (flag `overrun`) and never reads them.
+ * run with a NULL buffer to count bytes. The code leaves out the encoder's
+ * always-zero first byte and a last byte of 0; the decoder reads zeros past
+ * the end of its input (docs/FORMAT.md, Range coder).
  */
 #ifndef BW_RC_H
 #define BW_RC_H
@@ -50,6 +51,7 @@ typedef struct {
     uint8_t *out; /* NULL: count only */
     size_t cap;
     size_t pos;
+    bool lead;
     bool overflow;
 } bw_rc_enc_t;
 
@@ -58,8 +60,7 @@ typedef struct {
     uint32_t code;
     const uint8_t *in;
     size_t len;
-    size_t pos;
-    bool overrun;
+    size_t pos; /* bytes read, those past the end included */
 } bw_rc_dec_t;
 
 void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap);
@@ -98,12 +99,13 @@ static inline void bw_rc_enc_direct(bw_rc_enc_t *e, uint32_t value, unsigned nbi
     }
 }
 
+/* Bytes past the end of the input read as 0 (never from memory); pos still
+ * counts them: a whole code leaves it 3 or 4 past the end. */
 static inline uint8_t bw_rc_dec_byte(bw_rc_dec_t *d)
 {
-    if (d->pos < d->len)
-        return d->in[d->pos++];
-    d->overrun = true;
-    return 0;
+    uint8_t b = d->pos < d->len ? d->in[d->pos] : 0u;
+    d->pos++;
+    return b;
 }
 
 static inline unsigned bw_rc_dec_bit(bw_rc_dec_t *d, bw_prob_t *p)
