@@ -51,7 +51,6 @@ typedef struct {
     uint8_t *out; /* NULL: count only */
     size_t cap;
     size_t pos;
-    bool lead;
     bool overflow;
 } bw_rc_enc_t;
 
