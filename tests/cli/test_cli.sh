@@ -38,6 +38,18 @@ expect_error() {
 
 # key VALUE from 'key: value' output
 key() { sed -n "s/^$1: //p" "$2"; }
+# encode_symmetries IN NAME "S..." ARGS...: IN encoded with ARGS and each
+# --symmetry S as $T/NAME_S.bwv, its header kept in $T/NAME_S.info
+encode_symmetries() {
+    local in=$1 name=$2 syms=$3 S
+    shift 3
+    for S in $syms; do
+        expect_ok "encode $name symmetry $S" "$BW" encode -i "$in" -o "$T/${name}_$S.bwv" "$@" \
+            --symmetry "$S"
+        expect_ok "info $name symmetry $S" "$BW" info "$T/${name}_$S.bwv"
+        cp "$T/out" "$T/${name}_$S.info"
+    done
+}
 
 # ---- help -------------------------------------------------------------------
 for c in encode decode info compare grid synth import-rgl; do
@@ -173,14 +185,9 @@ expect_ok "encode bytes" "$BW" encode -i "$T/p.f32" -o "$T/p.bwv" --bands 1 --le
 [ "$(stat -c %s "$T/p.bwv")" -le 3000 ] && ok || bad "bytes 3000 exceeded"
 # --symmetry: the Phong set is symmetric about its plane of incidence, so auto
 # keeps the mirror, and the mirrored payload is the smaller
-for S in auto mirror none; do
-    expect_ok "encode max-error symmetry $S" "$BW" encode -i "$T/p.f32" -o "$T/ps_$S.bwv" --bands 1 \
-        --level 4 --incoming 16 --max-error 0.001 --symmetry $S
-    expect_ok "info symmetry $S" "$BW" info "$T/ps_$S.bwv"
-    cp "$T/out" "$T/info_$S"
-done
-[ "$(key symmetry "$T/info_auto")" = mirror ] && [ "$(key symmetry "$T/info_mirror")" = mirror ] &&
-    [ "$(key symmetry "$T/info_none")" = none ] && ok || bad "info symmetry: $(cat "$T/info_auto")"
+encode_symmetries "$T/p.f32" ps "auto mirror none" --bands 1 --level 4 --incoming 16 --max-error 0.001
+[ "$(key symmetry "$T/ps_auto.info")" = mirror ] && [ "$(key symmetry "$T/ps_mirror.info")" = mirror ] &&
+    [ "$(key symmetry "$T/ps_none.info")" = none ] && ok || bad "info symmetry: $(cat "$T/ps_auto.info")"
 cmp -s "$T/ps_auto.bwv" "$T/ps_mirror.bwv" && ok || bad "symmetry auto differs from mirror"
 [ "$(stat -c %s "$T/ps_mirror.bwv")" -lt "$(stat -c %s "$T/ps_none.bwv")" ] && ok ||
     bad "mirrored payload not smaller: $(stat -c %s "$T/ps_mirror.bwv") vs $(stat -c %s "$T/ps_none.bwv")"
@@ -196,14 +203,10 @@ expect_error "symmetry mirror of spectra" "$BW" encode -i "$T/p.f32" -o "$T/x.bw
 # x-z: auto keeps both steps, and both give the smallest payload
 expect_ok "synth ward level 3 x 3" "$BW" synth --model ward --ax 0.35 --ay 0.05 --kd 0.75 --ks 0.25 \
     --level 3 --level-in 3 -o "$T/w.f32"
-for S in auto mirror reciprocal both none; do
-    expect_ok "encode ward symmetry $S" "$BW" encode -i "$T/w.f32" -o "$T/ws_$S.bwv" --bands 1 \
-        --level 3 --level-in 3 --max-error 0.0005 --symmetry $S
-    expect_ok "info ward symmetry $S" "$BW" info "$T/ws_$S.bwv"
-    cp "$T/out" "$T/winfo_$S"
-done
-[ "$(key symmetry "$T/winfo_auto")" = both ] && [ "$(key symmetry "$T/winfo_reciprocal")" = reciprocal ] &&
-    [ "$(key symmetry "$T/winfo_both")" = both ] && ok || bad "info ward symmetry: $(cat "$T/winfo_auto")"
+encode_symmetries "$T/w.f32" ws "auto mirror reciprocal both none" --bands 1 --level 3 --level-in 3 \
+    --max-error 0.0005
+[ "$(key symmetry "$T/ws_auto.info")" = both ] && [ "$(key symmetry "$T/ws_reciprocal.info")" = reciprocal ] &&
+    [ "$(key symmetry "$T/ws_both.info")" = both ] && ok || bad "info ward symmetry: $(cat "$T/ws_auto.info")"
 cmp -s "$T/ws_auto.bwv" "$T/ws_both.bwv" && ok || bad "ward symmetry auto differs from both"
 [ "$(stat -c %s "$T/ws_both.bwv")" -lt "$(stat -c %s "$T/ws_mirror.bwv")" ] &&
     [ "$(stat -c %s "$T/ws_reciprocal.bwv")" -lt "$(stat -c %s "$T/ws_none.bwv")" ] && ok ||
