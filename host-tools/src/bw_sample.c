@@ -62,8 +62,21 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
  * arc from b to c'. */
 void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
 {
-    double ahat = u1 * t->area;
-    double s = sin(ahat - t->alpha), c = cos(ahat - t->alpha);
+    double ahat = u1 * t->area, s, c;
+    if (t->area <= 0.1) {
+        /* sin, cos of ahat - alpha by the sum formulas, with the Taylor
+         * series of the small angle ahat: the first term left out is
+         * below 3e-17 */
+        double x2 = ahat * ahat;
+        double sa =
+            ahat * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+        double ca = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+        s = sa * t->cos_alpha - ca * t->sin_alpha;
+        c = ca * t->cos_alpha + sa * t->sin_alpha;
+    } else {
+        s = sin(ahat - t->alpha);
+        c = cos(ahat - t->alpha);
+    }
     double uu = c - t->cos_alpha;
     double vv = s + t->sin_alpha * t->cos_c;
     double q = ((vv * c - uu * s) * t->cos_alpha - vv) / ((vv * s + uu * c) * t->sin_alpha);
@@ -71,16 +84,17 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
     double sq = sqrt(1.0 - q * q), cp[3];
     for (int k = 0; k < 3; k++)
         cp[k] = q * t->a[k] + sq * t->e[k];
+    /* on the arc from b to c': z = cos of the angle from b; the direction
+     * along the arc is f = (c' - cb b) / |c' - cb b| */
     double cb = bwg_dot3(cp, t->b);
     double z = 1.0 - u2 * (1.0 - cb);
     double f[3];
     for (int k = 0; k < 3; k++)
         f[k] = cp[k] - cb * t->b[k];
-    bwg_normalize3(f);
-    double sz = sqrt(fmax(0.0, 1.0 - z * z));
+    double ff = bwg_dot3(f, f);
+    double g = ff > 0.0 ? sqrt(fmax(0.0, 1.0 - z * z) / ff) : 0.0;
     for (int k = 0; k < 3; k++)
-        out[k] = z * t->b[k] + sz * f[k];
-    bwg_normalize3(out);
+        out[k] = z * t->b[k] + g * f[k];
 }
 
 void bwh_sample_cosine(double u1, double u2, double out[3])
@@ -97,7 +111,9 @@ void bwh_sampler_free(bwh_sampler_t *s)
     free(s->trig);
     free(s->inv_total);
     free(s->node);
+    free(s->cum);
     free(s->leaf);
+    free(s->cut);
     memset(s, 0, sizeof *s);
 }
 
@@ -140,6 +156,27 @@ static void subdivide(const bwh_tri_t *t, unsigned depth, double (*dir)[3], doub
     }
 }
 
+static void midpoint(const double a[3], const double b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = a[k] + b[k];
+    bwg_normalize3(out);
+}
+
+/* the normals of the great circles through the edge midpoints of t, each
+ * positive on the side of the corner child 1, 2 or 3 it cuts off (as in
+ * bwh_grid_locate) */
+static void cut_normals(const bwh_tri_t *t, double n[3][3])
+{
+    double mab[3], mbc[3], mca[3];
+    midpoint(t->v[0], t->v[1], mab);
+    midpoint(t->v[1], t->v[2], mbc);
+    midpoint(t->v[2], t->v[0], mca);
+    bwg_cross3(mab, mca, n[0]);
+    bwg_cross3(mbc, mab, n[1]);
+    bwg_cross3(mca, mbc, n[2]);
+}
+
 int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_tables,
                       const double *theta, unsigned level_in, bwh_brdf_fn f, void *ctx,
                       unsigned supersample, double mix)
@@ -180,7 +217,9 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
     double *v = malloc(g.per_leaf * sizeof *v);
     s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
+    s->cut = malloc((level_offset(level) ? level_offset(level) : 1) * sizeof *s->cut);
     s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
+    s->cum = malloc(n_tables * s->n_nodes * sizeof *s->cum);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
     g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
     s->inv_total = malloc(n_tables * sizeof *s->inv_total);
@@ -188,8 +227,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !v || !s->leaf || !s->node || !g.dir || !g.proj || !s->inv_total ||
-        (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
+    if (!tri || !in_dir || !v || !s->leaf || !s->cut || !s->node || !s->cum || !g.dir ||
+        !g.proj || !s->inv_total || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
         free(in_dir);
         free(v);
@@ -197,6 +236,11 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         free(g.proj);
         bwh_sampler_free(s);
         return bwh_fail("sampler: out of memory");
+    }
+    for (unsigned l = 0; l < level; l++) {
+        bwh_grid_triangles(l, tri);
+        for (size_t k = 0; k < bwh_grid_count(l); k++)
+            cut_normals(&tri[k], s->cut[level_offset(l) + k]);
     }
     bwh_grid_triangles(level, tri);
     for (size_t k = 0; k < s->n_leaves; k++) {
@@ -241,6 +285,13 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             sum_up(node, level);
         }
         s->inv_total[i] = 1.0 / tree_total(node);
+        double *cum = s->cum + i * s->n_nodes;
+        for (size_t k = 0; k < s->n_nodes; k += 4) {
+            cum[k] = node[k];
+            cum[k + 1] = cum[k] + node[k + 1];
+            cum[k + 2] = cum[k + 1] + node[k + 2];
+            cum[k + 3] = cum[k + 2] + node[k + 3];
+        }
     }
     free(in_dir);
     free(v);
@@ -293,18 +344,21 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
         sel->w[0] = 1.0;
         return sel->n = 1;
     }
-    size_t lo = 0, hi = n - 1; /* theta[lo] < theta_i < theta[hi] */
-    while (hi - lo > 1) {
-        size_t mid = (lo + hi) / 2;
-        if (tr[2 * mid] >= z)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    /* theta_i - theta[lo] = asin(d) with d = sin(theta_i - theta[lo]) */
-    double d = r * tr[2 * lo] - z * tr[2 * lo + 1];
-    double t = asin(d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d) / (s->theta[hi] - s->theta[lo]);
-    t = t > 1.0 ? 1.0 : t;
+    /* the last table with cos(theta) >= z: theta[lo] <= theta_i < theta[lo + 1]
+     * (a search without branches: its steps do not depend on z) */
+    size_t lo = 0, step = 1;
+    while (2 * step < n - 1)
+        step *= 2;
+    for (; step; step /= 2)
+        if (lo + step < n - 1)
+            lo = tr[2 * (lo + step)] >= z ? lo + step : lo;
+    size_t hi = lo + 1;
+    /* weights sin(theta_i - theta[lo]), sin(theta[hi] - theta_i), normalised */
+    double a = r * tr[2 * lo] - z * tr[2 * lo + 1];
+    double b = z * tr[2 * hi + 1] - r * tr[2 * hi];
+    a = a > 0.0 ? a : 0.0;
+    b = b > 0.0 ? b : 0.0;
+    double t = a + b > 0.0 ? a / (a + b) : 0.0;
     sel->t[0] = lo;
     sel->w[0] = 1.0 - t;
     sel->t[1] = hi;
@@ -331,6 +385,28 @@ static void to_world(const select_t *sel, const double w[3], double out[3])
     out[2] = w[2];
 }
 
+/* The leaf holding d (z >= 0, finite, local frame): bwh_grid_locate's
+ * descent with the cutting circles' normals stored, so it gives the same
+ * leaf without forming midpoints. */
+static size_t locate(const bwh_sampler_t *s, const double d[3])
+{
+    double x = d[0], y = d[1];
+    size_t idx = x > 0.0 && y >= 0.0    ? 0
+                 : x <= 0.0 && y > 0.0  ? 1
+                 : x < 0.0 && y <= 0.0  ? 2
+                 : x >= 0.0 && y < 0.0  ? 3
+                                        : 0; /* the zenith */
+    for (unsigned l = 0; l < s->level; l++) {
+        const double(*n)[3] = s->cut[level_offset(l) + idx];
+        unsigned m = bwg_dot3(d, n[0]) > 0.0   ? 1
+                     : bwg_dot3(d, n[1]) > 0.0 ? 2
+                     : bwg_dot3(d, n[2]) > 0.0 ? 3
+                                               : 0;
+        idx = 4 * idx + m;
+    }
+    return idx;
+}
+
 /* tree pdf of leaf k (local frame) */
 static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
 {
@@ -343,34 +419,36 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
     return p * s->leaf[k].inv_area;
 }
 
-/* Picks one of 4 children in proportion to v with *t in [0, sum of v):
- * the child whose running sum is the first to pass *t (compared without
- * branches); *t becomes the offset inside that child, so that it picks
- * again below without a division. A child with value 0 is never picked.
- * Rounding can leave *t at or past the sum: then the last child with a
- * positive value, and *t moves inside it. */
-static inline unsigned pick4(const double *v, double *t)
+/* Picks one of 4 siblings in proportion to their values, from their
+ * running sums c, with *t in [0, c[3]): the first whose running sum passes
+ * *t (compared without branches); *t becomes the offset inside it, so that
+ * it picks again below without a division. A child with value 0 is never
+ * picked. Rounding can leave *t at or past the sum: then the last child
+ * with a positive value, and *t moves inside it. */
+static inline unsigned pick4(const double *c, double *t)
 {
-    double x = *t, c1 = v[0], c2 = c1 + v[1], c3 = c2 + v[2];
-    if (x < c3 + v[3]) {
-        unsigned m = (unsigned)(x >= c1) + (unsigned)(x >= c2) + (unsigned)(x >= c3);
-        double below[4] = {0.0, c1, c2, c3};
-        *t = x - below[m];
+    double x = *t;
+    if (x < c[3]) {
+        unsigned m = (unsigned)(x >= c[0]) + (unsigned)(x >= c[1]) + (unsigned)(x >= c[2]);
+        *t = m ? x - c[m - 1] : x;
         return m;
     }
     unsigned last = 3;
-    while (last > 0 && !(v[last] > 0.0))
+    while (last > 0 && !(c[last] > c[last - 1]))
         last--;
-    *t = 0.5 * v[last];
+    *t = 0.5 * (last ? c[last] - c[last - 1] : c[0]);
     return last;
 }
 
-static size_t descend(const bwh_sampler_t *s, const double *node, double u)
+static size_t descend(const bwh_sampler_t *s, const double *cum, double u)
 {
-    double t = u * tree_total(node);
-    size_t idx = pick4(node, &t);
-    for (unsigned l = 1; l <= s->level; l++)
-        idx = 4 * idx + pick4(node + level_offset(l) + 4 * idx, &t);
+    double t = u * cum[3];
+    size_t idx = pick4(cum, &t);
+    const double *lv = cum;
+    for (unsigned l = 1; l <= s->level; l++) {
+        lv += (size_t)1 << (2u * l); /* level l: 4^l nodes before it */
+        idx = 4 * idx + pick4(lv + 4 * idx, &t);
+    }
     return idx;
 }
 
@@ -398,10 +476,10 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
         return -1;
     double u0 = u[0];
     if (u0 < s->mix) {
-        double d[3];
-        bwh_sample_cosine(u[1], u[2], d);
-        memcpy(wo, d, sizeof d);
-        *pdf = bwh_sampler_pdf(s, wi, wo);
+        double local[3];
+        bwh_sample_cosine(u[1], u[2], wo);
+        to_local(&sel, wo, local);
+        *pdf = s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, local));
         return 0;
     }
     if (s->mix > 0.0)
@@ -417,8 +495,8 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     }
     if (u0 >= 1.0)
         u0 = nextafter(1.0, 0.0);
-    const double *node = s->node + t * s->n_nodes;
-    size_t k = linear ? scan(s, node, u0) : descend(s, node, u0);
+    size_t k = linear ? scan(s, s->node + t * s->n_nodes, u0)
+                      : descend(s, s->cum + t * s->n_nodes, u0);
     double local[3];
     bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
     to_world(&sel, local, wo);
@@ -443,14 +521,11 @@ double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double 
     select_t sel;
     if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0))
         return 0.0;
+    if (!isfinite(wo[0]) || !isfinite(wo[1]) || !isfinite(wo[2]))
+        return 0.0;
     double local[3];
     to_local(&sel, wo, local);
-    if (local[2] < 0.0)
-        local[2] = 0.0;
-    long k = bwh_grid_locate(s->level, local);
-    if (k < 0)
-        return 0.0;
-    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, (size_t)k);
+    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, local));
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)

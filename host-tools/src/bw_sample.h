@@ -24,8 +24,11 @@
  *   BWH_SAMPLER_ISO   tables at zenith angles theta_k in the plane phi = 0;
  *                     wi and wo are turned about the normal until phi_i = 0
  *                     (the azimuthal rotation of sec. 5.2) and the two
- *                     tables around theta_i are mixed linearly (sample picks
- *                     one with the mixing weight; pdf is the mixture);
+ *                     tables around theta_i are mixed with the weights
+ *                     sin(theta_i - theta_lo) and sin(theta_hi - theta_i),
+ *                     normalised (within d^2 / 32 of the linear weight for
+ *                     tables d radians apart, and no inverse trigonometry);
+ *                     sample picks one with its weight, pdf is the mixture;
  *   BWH_SAMPLER_FULL  one table per geodesic centre of level level_in; wi
  *                     selects the table of the triangle it falls in.
  *
@@ -73,7 +76,11 @@ typedef struct {
     double *trig;        /* ISO: [n_tables][2] cos, sin of theta */
     double *inv_total;   /* [n_tables] 1 / (integral over the hemisphere) */
     double *node;        /* [n_tables][n_nodes]; level l starts at 4 (4^l - 1) / 3 */
+    double *cum;         /* [n_tables][n_nodes]: node's running sums within each
+                            group of 4 siblings (what the descent compares) */
     bwh_leaf_t *leaf;    /* [n_leaves] */
+    double (*cut)[3][3]; /* [nodes above the leaves]: normals of the great circles
+                            cutting off children 1, 2, 3 (leaf search for pdf) */
     double mix;          /* weight of the cosine lobe, 0 .. 1 */
 } bwh_sampler_t;
 

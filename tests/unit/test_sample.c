@@ -375,15 +375,15 @@ static void chi_square_rejects_a_different_brdf(void **state)
     bwh_sampler_free(&s25);
 }
 
-static void arvo_samples_are_uniform_in_a_triangle(void **state)
+/* Arvo's samples in grid triangle `index` of `level` fall in its 64
+ * descendants three levels down in proportion to their solid angles. */
+static void arvo_uniform_in(unsigned level, size_t index)
 {
-    (void)state;
-    bwh_tri_t t[16], sub[64];
-    bwh_grid_triangles(1, t);
+    bwh_tri_t t[256], sub[64];
+    bwh_grid_triangles(level, t);
     bwh_leaf_t leaf;
-    const bwh_tri_t *T = &t[6]; /* a corner child of base 1 */
+    const bwh_tri_t *T = &t[index];
     bwh_leaf_init(&leaf, T->v[0], T->v[1], T->v[2]);
-    /* its 64 descendants three levels down, in quadtree order */
     sub[0] = *T;
     size_t n = 1;
     for (int l = 0; l < 3; l++) {
@@ -397,17 +397,51 @@ static void arvo_samples_are_uniform_in_a_triangle(void **state)
     long obs[64] = {0};
     double ex[64];
     const long N = 400000;
+    long first = (long)index * 64;
     for (long i = 0; i < N; i++) {
         double d[3];
         bwh_leaf_sample(&leaf, rnd(), rnd(), d);
-        long k = bwh_grid_locate(4, d);
-        assert_true(k >= 6 * 64 && k < 7 * 64); /* inside the triangle */
-        obs[k - 6 * 64]++;
+        assert_true(fabs(bwg_dot3(d, d) - 1.0) < 1e-14);
+        long k = bwh_grid_locate(level + 3, d);
+        assert_true(k >= first && k < first + 64); /* inside the triangle */
+        obs[k - first]++;
     }
     for (int i = 0; i < 64; i++)
         ex[i] = N * bwh_solid_angle(sub[i].v[0], sub[i].v[1], sub[i].v[2]) / leaf.area;
     double p = chi2_pvalue(obs, ex, 64, NULL, NULL);
     assert_true(p > 0.01);
+}
+
+static void arvo_samples_are_uniform_in_a_triangle(void **state)
+{
+    (void)state;
+    arvo_uniform_in(1, 6);   /* a corner child of base 1: sin and cos from libm */
+    arvo_uniform_in(3, 150); /* solid angle below 0.1: their series */
+}
+
+/* With u2 = 1 Arvo's point is the vertex c' that cuts off the triangle
+ * (a, b, c') of solid angle u1 times the leaf's. */
+static void arvo_cuts_the_area_in_proportion_to_u1(void **state)
+{
+    (void)state;
+    static const struct {
+        unsigned level;
+        size_t index;
+    } leaf_of[] = {{1, 6}, {3, 150}, {6, 9000}};
+    for (size_t i = 0; i < sizeof leaf_of / sizeof *leaf_of; i++) {
+        static bwh_tri_t t[16384];
+        bwh_grid_triangles(leaf_of[i].level, t);
+        const bwh_tri_t *T = &t[leaf_of[i].index];
+        bwh_leaf_t leaf;
+        bwh_leaf_init(&leaf, T->v[0], T->v[1], T->v[2]);
+        for (int k = 1; k < 100; k++) {
+            double u1 = k / 100.0, cp[3];
+            bwh_leaf_sample(&leaf, u1, 1.0, cp);
+            double part = bwh_solid_angle(leaf.a, leaf.b, cp) / leaf.area;
+            /* the solid angles carry rounding of about 1e-15 */
+            assert_true(fabs(part - u1) * leaf.area < 4e-14);
+        }
+    }
 }
 
 static void projected_solid_angles_add_up_to_pi(void **state)
@@ -652,6 +686,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(projected_solid_angles_add_up_to_pi),
         cmocka_unit_test(arvo_samples_are_uniform_in_a_triangle),
+        cmocka_unit_test(arvo_cuts_the_area_in_proportion_to_u1),
         cmocka_unit_test(sampler_phong_passes_chi_square),
         cmocka_unit_test(sampler_ward_passes_chi_square),
         cmocka_unit_test(sampler_decoded_measured_passes_chi_square),
