@@ -514,7 +514,8 @@ static void render_usage(FILE *f)
         "                     payloads) or the wavelet hierarchy (default wavelet); a\n"
         "                     comma list renders each in turn, side by side in one PNG\n"
         "  --level J          level of accuracy of the hierarchy, 0..6 (default 4)\n"
-        "  --tables N         incoming tables for analytic models (default 32)\n"
+        "  --tables N         incoming tables for analytic models, every 90/N degrees from\n"
+        "                     the normal (default 32)\n"
         "  --supersample S    leaf integrals from 4^S points per leaf, 0..3 (default 1)\n"
         "  --mix M            weight of the cosine lobe in the hierarchy's pdf (default 0.05)\n"
         "  --spp N            paths per pixel (default 16)\n"
@@ -637,7 +638,7 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
         if (!th)
             return rfail("out of memory");
         for (unsigned long k = 0; k < so->tables; k++)
-            th[k] = (k + 0.5) * 0.5 * R_PI / (double)so->tables;
+            th[k] = k * 0.5 * R_PI / (double)so->tables; /* from normal incidence */
         rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_ISO, so->level, so->tables, th, 0,
                                analytic_f, m, so->supersample, so->mix);
         free(th);

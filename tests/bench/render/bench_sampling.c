@@ -4,7 +4,10 @@
  * (bwh_sampler_sample_linear: the O(n) running sum), same sampler, same
  * random numbers, one thread, CPU time; and, for scale, the analytic Phong
  * lobe sampler with its pdf (bwh_phong_sample + bwh_phong_pdf, what the
- * renderer calls per direction). Used by `make bench-render`.
+ * renderer calls per direction). Then, for a few incoming directions, the
+ * relative variance of the path weight f cos / pdf that each sampler gives
+ * (0 for a sampler exactly proportional to f cos). Used by
+ * `make bench-render`.
  *
  *   bench_sampling LEVEL     prints key: value lines
  */
@@ -72,13 +75,39 @@ static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum meth
     return (double)n / t;
 }
 
+/* relative variance Var(w) / E(w)^2 of the path weight w = f cos / pdf of
+ * n draws for the incoming zenith angle th (0 for a sampler exactly
+ * proportional to f cos), by the hierarchy s or the analytic lobe of p */
+static double weight_relvar(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum method how,
+                            double th, long n)
+{
+    double wi[3] = {sin(th), 0.0, cos(th)}, m = 0.0, m2 = 0.0;
+    for (long i = 0; i < n; i++) {
+        double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf = 0.0, w = 0.0;
+        int rc;
+        if (how == LOBE) {
+            bwh_phong_sample(p, wi, u, wo);
+            pdf = bwh_phong_pdf(p, wi, wo);
+            rc = pdf > 0.0 ? 0 : -1;
+        } else {
+            rc = bwh_sampler_sample(s, wi, u, wo, &pdf);
+        }
+        if (rc == 0 && wo[2] > 0.0 && pdf > 0.0)
+            w = bwh_brdf_phong((void *)p, wi, wo) * wo[2] / pdf;
+        m += w;
+        m2 += w * w;
+    }
+    m /= (double)n;
+    return (m2 / (double)n - m * m) / (m * m);
+}
+
 int main(int argc, char **argv)
 {
     unsigned level = argc > 1 ? (unsigned)atoi(argv[1]) : 6;
     bwh_brdf_params_t p = {.kd = 0.05, .ks = 0.9, .n = 60.0};
     double th[32];
     for (int k = 0; k < 32; k++)
-        th[k] = (k + 0.5) * 0.5 * 3.141592653589793 / 32.0;
+        th[k] = k * 0.5 * 3.141592653589793 / 32.0;
     bwh_sampler_t s;
     if (bwh_sampler_build(&s, BWH_SAMPLER_ISO, level, 32, th, 0, phong, &p, 1, 0.05) != 0) {
         fprintf(stderr, "bench_sampling: cannot build the sampler at level %u\n", level);
@@ -91,6 +120,13 @@ int main(int argc, char **argv)
     printf("level: %u\nleaves: %zu\ntree_samples_per_second: %.0f\n"
            "linear_samples_per_second: %.0f\nratio: %.2f\nanalytic_samples_per_second: %.0f\n",
            level, s.n_leaves, tree, scan, tree / scan, lobe);
+    static const int deg[] = {0, 30, 60, 80};
+    for (size_t i = 0; i < sizeof deg / sizeof *deg; i++) {
+        double zen = deg[i] * 3.141592653589793 / 180.0;
+        printf("weight_relvar_tree_%d: %.6g\nweight_relvar_analytic_%d: %.6g\n", deg[i],
+               weight_relvar(&s, &p, TREE, zen, 400000), deg[i],
+               weight_relvar(&s, &p, LOBE, zen, 400000));
+    }
     bwh_sampler_free(&s);
     return 0;
 }
