@@ -44,6 +44,19 @@ static double phong(void *ctx, const double wi[3], const double wo[3])
 
 enum method { TREE, SCAN, LOBE };
 
+/* one direction for wi: 0 with wo and its pdf, or -1 */
+static int draw(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum method how,
+                const double wi[3], const double u[3], double wo[3], double *pdf)
+{
+    if (how == LOBE) {
+        bwh_phong_sample(p, wi, u, wo);
+        *pdf = bwh_phong_pdf(p, wi, wo);
+        return *pdf > 0.0 ? 0 : -1;
+    }
+    return how == SCAN ? bwh_sampler_sample_linear(s, wi, u, wo, pdf)
+                       : bwh_sampler_sample(s, wi, u, wo, pdf);
+}
+
 /* samples per CPU second over at least `min_seconds`: the hierarchy s by
  * its tree or its linear scan, or the analytic lobe of p */
 static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum method how,
@@ -56,16 +69,7 @@ static double rate(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum meth
             double th = 1.4 * rnd(), ph = 6.283185307179586 * rnd();
             double wi[3] = {sin(th) * cos(ph), sin(th) * sin(ph), cos(th)};
             double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-            int rc;
-            if (how == LOBE) {
-                bwh_phong_sample(p, wi, u, wo);
-                pdf = bwh_phong_pdf(p, wi, wo);
-                rc = pdf > 0.0 ? 0 : -1;
-            } else {
-                rc = how == SCAN ? bwh_sampler_sample_linear(s, wi, u, wo, &pdf)
-                                 : bwh_sampler_sample(s, wi, u, wo, &pdf);
-            }
-            if (rc == 0)
+            if (draw(s, p, how, wi, u, wo, &pdf) == 0)
                 acc += wo[2] / pdf;
         }
         n += batch;
@@ -84,15 +88,7 @@ static double weight_relvar(const bwh_sampler_t *s, const bwh_brdf_params_t *p, 
     double wi[3] = {sin(th), 0.0, cos(th)}, m = 0.0, m2 = 0.0;
     for (long i = 0; i < n; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf = 0.0, w = 0.0;
-        int rc;
-        if (how == LOBE) {
-            bwh_phong_sample(p, wi, u, wo);
-            pdf = bwh_phong_pdf(p, wi, wo);
-            rc = pdf > 0.0 ? 0 : -1;
-        } else {
-            rc = bwh_sampler_sample(s, wi, u, wo, &pdf);
-        }
-        if (rc == 0 && wo[2] > 0.0 && pdf > 0.0)
+        if (draw(s, p, how, wi, u, wo, &pdf) == 0 && wo[2] > 0.0 && pdf > 0.0)
             w = bwh_brdf_phong((void *)p, wi, wo) * wo[2] / pdf;
         m += w;
         m2 += w * w;
