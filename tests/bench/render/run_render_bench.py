@@ -228,7 +228,10 @@ def main():
               "Var(w) / E(w)^2 of the weight w = f cos / pdf a path carries from the Phong "
               "material, over 400,000 directions (0 for a sampler exactly proportional to "
               "f cos). The analytic lobe leaves out the cosine and loses the part of its lobe "
-              "under the horizon; the hierarchy's pdf is constant on each leaf.\n")
+              "under the horizon; the hierarchy's pdf is constant on each leaf. The paper "
+              "blames the analytic sampler's noise on treating the diffuse and specular terms "
+              "apart (sec. 6.2); the one here draws from the mixture of both terms and "
+              "divides the whole BRDF by the mixture's pdf (`bwh_phong_pdf`).\n")
     md.append("| sampler | " + " | ".join("theta_i = %d deg" % d for d in degs) + " |")
     md.append("|---|" + "---|" * len(degs))
     md.append("| analytic lobe | " + " | ".join(
