@@ -212,12 +212,14 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->n_nodes = level_offset(level + 1);
     s->mix = mix;
 
+    /* cutting circles down to the leaves, and to the incoming triangles */
+    unsigned cut_levels = kind == BWH_SAMPLER_FULL && level_in > level ? level_in : level;
     subgrid_t g = {NULL, NULL, (size_t)1 << (2u * supersample)};
-    bwh_tri_t *tri = malloc(s->n_leaves * sizeof *tri);
+    bwh_tri_t *tri = malloc(bwh_grid_count(cut_levels) * sizeof *tri);
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
     double *v = malloc(g.per_leaf * sizeof *v);
     s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
-    s->cut = malloc((level_offset(level) ? level_offset(level) : 1) * sizeof *s->cut);
+    s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
     s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
     s->cum = malloc(n_tables * s->n_nodes * sizeof *s->cum);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
@@ -237,7 +239,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         bwh_sampler_free(s);
         return bwh_fail("sampler: out of memory");
     }
-    for (unsigned l = 0; l < level; l++) {
+    for (unsigned l = 0; l < cut_levels; l++) {
         bwh_grid_triangles(l, tri);
         for (size_t k = 0; k < bwh_grid_count(l); k++)
             cut_normals(&tri[k], s->cut[level_offset(l) + k]);
@@ -300,6 +302,28 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     return 0;
 }
 
+/* The triangle of `level` holding d (z >= 0, finite): bwh_grid_locate's
+ * descent with the cutting circles' normals stored, so it gives the same
+ * triangle without forming midpoints. */
+static size_t locate(const bwh_sampler_t *s, unsigned level, const double d[3])
+{
+    double x = d[0], y = d[1];
+    size_t idx = x > 0.0 && y >= 0.0    ? 0
+                 : x <= 0.0 && y > 0.0  ? 1
+                 : x < 0.0 && y <= 0.0  ? 2
+                 : x >= 0.0 && y < 0.0  ? 3
+                                        : 0; /* the zenith */
+    for (unsigned l = 0; l < level; l++) {
+        const double(*n)[3] = s->cut[level_offset(l) + idx];
+        unsigned m = bwg_dot3(d, n[0]) > 0.0   ? 1
+                     : bwg_dot3(d, n[1]) > 0.0 ? 2
+                     : bwg_dot3(d, n[2]) > 0.0 ? 3
+                                               : 0;
+        idx = 4 * idx + m;
+    }
+    return idx;
+}
+
 /* The tables for wi and their weights, and the rotation taking wi to
  * phi = 0 (ISO). Returns the number of tables (1 or 2), 0 for a bad wi. */
 typedef struct {
@@ -316,10 +340,7 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
     sel->c = 1.0;
     sel->s = 0.0;
     if (s->kind == BWH_SAMPLER_FULL) {
-        long k = bwh_grid_locate(s->level_in, wi);
-        if (k < 0)
-            return 0;
-        sel->t[0] = (size_t)k;
+        sel->t[0] = locate(s, s->level_in, wi);
         sel->w[0] = 1.0;
         return sel->n = 1;
     }
@@ -383,28 +404,6 @@ static void to_world(const select_t *sel, const double w[3], double out[3])
     out[0] = x;
     out[1] = y;
     out[2] = w[2];
-}
-
-/* The leaf holding d (z >= 0, finite, local frame): bwh_grid_locate's
- * descent with the cutting circles' normals stored, so it gives the same
- * leaf without forming midpoints. */
-static size_t locate(const bwh_sampler_t *s, const double d[3])
-{
-    double x = d[0], y = d[1];
-    size_t idx = x > 0.0 && y >= 0.0    ? 0
-                 : x <= 0.0 && y > 0.0  ? 1
-                 : x < 0.0 && y <= 0.0  ? 2
-                 : x >= 0.0 && y < 0.0  ? 3
-                                        : 0; /* the zenith */
-    for (unsigned l = 0; l < s->level; l++) {
-        const double(*n)[3] = s->cut[level_offset(l) + idx];
-        unsigned m = bwg_dot3(d, n[0]) > 0.0   ? 1
-                     : bwg_dot3(d, n[1]) > 0.0 ? 2
-                     : bwg_dot3(d, n[2]) > 0.0 ? 3
-                                               : 0;
-        idx = 4 * idx + m;
-    }
-    return idx;
 }
 
 /* tree pdf of leaf k (local frame) */
@@ -479,7 +478,8 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
         double local[3];
         bwh_sample_cosine(u[1], u[2], wo);
         to_local(&sel, wo, local);
-        *pdf = s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, local));
+        size_t k = locate(s, s->level, local);
+        *pdf = s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, k);
         return 0;
     }
     if (s->mix > 0.0)
@@ -525,7 +525,7 @@ double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double 
         return 0.0;
     double local[3];
     to_local(&sel, wo, local);
-    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, local));
+    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, s->level, local));
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)

@@ -79,8 +79,9 @@ typedef struct {
     double *cum;         /* [n_tables][n_nodes]: node's running sums within each
                             group of 4 siblings (what the descent compares) */
     bwh_leaf_t *leaf;    /* [n_leaves] */
-    double (*cut)[3][3]; /* [nodes above the leaves]: normals of the great circles
-                            cutting off children 1, 2, 3 (leaf search for pdf) */
+    double (*cut)[3][3]; /* [triangles above the leaves, or above level_in's if
+                            finer]: normals of the great circles cutting off
+                            children 1, 2, 3 (leaf and table search) */
     double mix;          /* weight of the cosine lobe, 0 .. 1 */
 } bwh_sampler_t;
 

@@ -359,6 +359,77 @@ static void sampler_decoded_measured_passes_chi_square(void **state)
     bwh_sampler_free(&s);
 }
 
+/* Total variation distance between the sampler's leaf masses for wi and
+ * max(0, f(wi_frame, centre)) times the leaf's projected solid angle,
+ * normalised and mixed with the cosine lobe as the sampler is (wi_frame:
+ * wi in the sampler's frame, turned to phi = 0 for ISO). */
+static double leaf_mass_distance(const bwh_sampler_t *s, bwh_brdf_fn f, void *ctx,
+                                 const double wi[3], const double wi_frame[3])
+{
+    double *m = malloc(s->n_leaves * sizeof *m), sum = 0.0, tv = 0.0;
+    assert_non_null(m);
+    for (size_t k = 0; k < s->n_leaves; k++) {
+        const bwh_leaf_t *L = &s->leaf[k];
+        double c[3];
+        bwh_tri_centre(&(bwh_tri_t){{{L->a[0], L->a[1], L->a[2]},
+                                     {L->b[0], L->b[1], L->b[2]},
+                                     {L->c[0], L->c[1], L->c[2]}}},
+                       c);
+        double v = f(ctx, wi_frame, c);
+        m[k] = (v > 0.0 ? v : 0.0) * L->proj;
+        sum += m[k];
+    }
+    for (size_t k = 0; k < s->n_leaves; k++) {
+        double want = (1.0 - s->mix) * m[k] / sum + s->mix * s->leaf[k].proj / PI;
+        tv += fabs(bwh_sampler_leaf_mass(s, wi, k) - want);
+    }
+    free(m);
+    return 0.5 * tv;
+}
+
+/* The tables a sampler draws from belong to wi: at the incoming directions
+ * it tabulates (FULL: the centres of the level_in triangles; ISO: the
+ * tabulated zenith angles, at any azimuth) its leaf masses are those of the
+ * BRDF there, up to the leaf quadrature; half way between two ISO tables,
+ * up to the mixing of the two. */
+static void sampler_draws_from_the_tables_of_wi(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
+                                       (void *)&ward, 1, 0.05),
+                     0);
+    double cen[64][3];
+    bwh_grid_centres(2, cen, NULL);
+    static const size_t in[] = {0, 9, 21, 38, 50, 63};
+    for (size_t i = 0; i < sizeof in / sizeof *in; i++) {
+        double d = leaf_mass_distance(&s, ward_cb, (void *)&ward, cen[in[i]], cen[in[i]]);
+        printf("    ward, incoming triangle %zu: distance %.4f\n", in[i], d);
+        assert_true(d < 0.1); /* a neighbour's table: above 0.3 */
+    }
+    bwh_sampler_free(&s);
+
+    assert_int_equal(build_phong(&s, &phong, 4, 0.05), 0);
+    /* at a table, and half way to the next (where the two are mixed) */
+    static const struct {
+        size_t table;
+        double phi;
+    } at[] = {{0, 0.0}, {5, 40.0}, {17, 200.0}, {28, 310.0}};
+    for (size_t i = 0; i < sizeof at / sizeof *at; i++) {
+        for (int half = 0; half < 2; half++) {
+            size_t k = at[i].table;
+            double th = (half ? 0.5 * (s.theta[k] + s.theta[k + 1]) : s.theta[k]) * 180.0 / PI;
+            double wi[3], frame[3];
+            dir(th, at[i].phi, wi);
+            dir(th, 0.0, frame);
+            double d = leaf_mass_distance(&s, phong_cb, (void *)&phong, wi, frame);
+            printf("    phong, %.2f deg at phi %.0f: distance %.4f\n", th, at[i].phi, d);
+            assert_true(d < 0.02); /* the next table in place of one: above 0.03 */
+        }
+    }
+    bwh_sampler_free(&s);
+}
+
 static void chi_square_rejects_a_different_brdf(void **state)
 {
     (void)state;
@@ -690,6 +761,7 @@ int main(void)
         cmocka_unit_test(sampler_phong_passes_chi_square),
         cmocka_unit_test(sampler_ward_passes_chi_square),
         cmocka_unit_test(sampler_decoded_measured_passes_chi_square),
+        cmocka_unit_test(sampler_draws_from_the_tables_of_wi),
         cmocka_unit_test(chi_square_rejects_a_different_brdf),
         cmocka_unit_test(pdf_integrates_to_one),
         cmocka_unit_test(albedo_estimator_is_unbiased),
