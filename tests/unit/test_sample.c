@@ -157,6 +157,12 @@ static int build_phong(bwh_sampler_t *s, const bwh_brdf_params_t *p, unsigned le
     return bwh_sampler_build(s, BWH_SAMPLER_ISO, level, 32, th, 0, phong_cb, (void *)p, 1, mix);
 }
 
+/* Ward: one table per incoming triangle of level 2, leaves of level 4 */
+static int build_ward(bwh_sampler_t *s, double mix)
+{
+    return bwh_sampler_build(s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb, (void *)&ward, 1, mix);
+}
+
 /* measured: satin_rosaline (RGL) at level 4, 16 incidences, 3 bands, through
  * the codec at 20:1, as brdfwave import-rgl + encode --ratio 20 + decode */
 static bwh_brdf_data_t measured;
@@ -335,9 +341,7 @@ static void sampler_ward_passes_chi_square(void **state)
 {
     (void)state;
     bwh_sampler_t s;
-    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
-                                       (void *)&ward, 1, 0.05),
-                     0);
+    assert_int_equal(build_ward(&s, 0.05), 0);
     double wi[3][3];
     dir(10.0, 20.0, wi[0]);
     dir(45.0, 200.0, wi[1]);
@@ -396,9 +400,7 @@ static void sampler_draws_from_the_tables_of_wi(void **state)
 {
     (void)state;
     bwh_sampler_t s;
-    assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
-                                       (void *)&ward, 1, 0.05),
-                     0);
+    assert_int_equal(build_ward(&s, 0.05), 0);
     double cen[64][3];
     bwh_grid_centres(2, cen, NULL);
     static const size_t in[] = {0, 9, 21, 38, 50, 63};
@@ -538,9 +540,7 @@ static void pdf_integrates_to_one(void **state)
     (void)state;
     bwh_sampler_t s[3];
     assert_int_equal(build_phong(&s[0], &phong, 4, 0.1), 0);
-    assert_int_equal(bwh_sampler_build(&s[1], BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
-                                       (void *)&ward, 1, 0.1),
-                     0);
+    assert_int_equal(build_ward(&s[1], 0.1), 0);
     assert_int_equal(build_measured(&s[2], 4, 0.1), 0);
     size_t n6 = bwh_grid_count(6);
     double(*c)[3] = malloc(n6 * sizeof *c), *a = malloc(n6 * sizeof *a);
@@ -634,9 +634,7 @@ static void albedo_estimator_is_unbiased(void **state)
         if (c < 2)
             assert_int_equal(build_phong(&s, &phong, 4, 0.05), 0);
         else if (c == 2)
-            assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb,
-                                               (void *)&ward, 1, 0.05),
-                             0);
+            assert_int_equal(build_ward(&s, 0.05), 0);
         else
             assert_int_equal(build_measured(&s, 4, 0.05), 0);
         double wi[3];
