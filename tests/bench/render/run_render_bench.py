@@ -8,7 +8,9 @@ Writes build/bench/render.md and the images in build/bench/render/:
     encoded at 20:1 and decoded), uniform vs wavelet sampling;
   - what the image variance is made of (an analytic run at 4x the paths);
   - sampling throughput of the hierarchy at level 6 vs a linear scan, and the
-    analytic lobe sampler's for scale.
+    analytic lobe sampler's for scale;
+  - per incoming angle, the relative variance of the path weight f cos / pdf
+    of the analytic lobe and of the hierarchy.
 Every ratio is between runs of this script on this machine.
 """
 import os
