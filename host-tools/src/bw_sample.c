@@ -156,27 +156,6 @@ static void subdivide(const bwh_tri_t *t, unsigned depth, double (*dir)[3], doub
     }
 }
 
-static void midpoint(const double a[3], const double b[3], double out[3])
-{
-    for (int k = 0; k < 3; k++)
-        out[k] = a[k] + b[k];
-    bwg_normalize3(out);
-}
-
-/* the normals of the great circles through the edge midpoints of t, each
- * positive on the side of the corner child 1, 2 or 3 it cuts off (as in
- * bwh_grid_locate) */
-static void cut_normals(const bwh_tri_t *t, double n[3][3])
-{
-    double mab[3], mbc[3], mca[3];
-    midpoint(t->v[0], t->v[1], mab);
-    midpoint(t->v[1], t->v[2], mbc);
-    midpoint(t->v[2], t->v[0], mca);
-    bwg_cross3(mab, mca, n[0]);
-    bwg_cross3(mbc, mab, n[1]);
-    bwg_cross3(mca, mbc, n[2]);
-}
-
 int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_tables,
                       const double *theta, unsigned level_in, bwh_brdf_fn f, void *ctx,
                       unsigned supersample, double mix)
@@ -242,7 +221,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     for (unsigned l = 0; l < cut_levels; l++) {
         bwh_grid_triangles(l, tri);
         for (size_t k = 0; k < bwh_grid_count(l); k++)
-            cut_normals(&tri[k], s->cut[level_offset(l) + k]);
+            bwh_tri_cut_normals(&tri[k], s->cut[level_offset(l) + k]);
     }
     bwh_grid_triangles(level, tri);
     for (size_t k = 0; k < s->n_leaves; k++) {
@@ -303,24 +282,13 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
 }
 
 /* The triangle of `level` holding d (z >= 0, finite): bwh_grid_locate's
- * descent with the cutting circles' normals stored, so it gives the same
- * triangle without forming midpoints. */
+ * descent with the cutting normals stored, so it gives the same triangle
+ * without forming midpoints. */
 static size_t locate(const bwh_sampler_t *s, unsigned level, const double d[3])
 {
-    double x = d[0], y = d[1];
-    size_t idx = x > 0.0 && y >= 0.0    ? 0
-                 : x <= 0.0 && y > 0.0  ? 1
-                 : x < 0.0 && y <= 0.0  ? 2
-                 : x >= 0.0 && y < 0.0  ? 3
-                                        : 0; /* the zenith */
-    for (unsigned l = 0; l < level; l++) {
-        const double(*n)[3] = s->cut[level_offset(l) + idx];
-        unsigned m = bwg_dot3(d, n[0]) > 0.0   ? 1
-                     : bwg_dot3(d, n[1]) > 0.0 ? 2
-                     : bwg_dot3(d, n[2]) > 0.0 ? 3
-                                               : 0;
-        idx = 4 * idx + m;
-    }
+    size_t idx = bwh_grid_base(d);
+    for (unsigned l = 0; l < level; l++)
+        idx = 4 * idx + bwh_cut_child((const double(*)[3])s->cut[level_offset(l) + idx], d);
     return idx;
 }
 

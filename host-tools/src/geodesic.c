@@ -136,13 +136,32 @@ int bwh_grid_centres(unsigned level, double (*xyz)[3], double *solid_angle)
     return 0;
 }
 
-/* Positive when d lies on the counter-clockwise side of the great circle
- * from p to q. */
-static double side(const double d[3], const double p[3], const double q[3])
+unsigned bwh_grid_base(const double dir[3])
 {
-    double n[3];
-    bwg_cross3(p, q, n);
-    return bwg_dot3(d, n);
+    double x = dir[0], y = dir[1];
+    if (x > 0.0 && y >= 0.0)
+        return 0;
+    if (x <= 0.0 && y > 0.0)
+        return 1;
+    if (x < 0.0 && y <= 0.0)
+        return 2;
+    if (x >= 0.0 && y < 0.0)
+        return 3;
+    return 0; /* x = y = 0: the zenith, a vertex of every base */
+}
+
+/* Each corner child is cut off from the centre child by one great circle
+ * through two edge midpoints; its other two sides lie on the parent's
+ * boundary. */
+void bwh_tri_cut_normals(const bwh_tri_t *t, double n[3][3])
+{
+    double mab[3], mbc[3], mca[3];
+    midpoint(t->v[0], t->v[1], mab);
+    midpoint(t->v[1], t->v[2], mbc);
+    midpoint(t->v[2], t->v[0], mca);
+    bwg_cross3(mab, mca, n[0]);
+    bwg_cross3(mbc, mab, n[1]);
+    bwg_cross3(mca, mbc, n[2]);
 }
 
 long bwh_grid_locate(unsigned level, const double dir[3])
@@ -154,38 +173,14 @@ long bwh_grid_locate(unsigned level, const double dir[3])
     if (dir[2] < 0.0)
         return -1;
 
-    double x = dir[0], y = dir[1];
-    unsigned b;
-    if (x > 0.0 && y >= 0.0)
-        b = 0;
-    else if (x <= 0.0 && y > 0.0)
-        b = 1;
-    else if (x < 0.0 && y <= 0.0)
-        b = 2;
-    else if (x >= 0.0 && y < 0.0)
-        b = 3;
-    else
-        b = 0; /* x = y = 0: the zenith, a vertex of every base */
-
+    unsigned b = bwh_grid_base(dir);
     bwh_tri_t t;
     base_triangle(b, &t);
     long idx = (long)b;
     for (unsigned l = 0; l < level; l++) {
-        double mab[3], mbc[3], mca[3];
-        midpoint(t.v[0], t.v[1], mab);
-        midpoint(t.v[1], t.v[2], mbc);
-        midpoint(t.v[2], t.v[0], mca);
-        /* Each corner child is cut off from the centre child by one great
-         * circle; its other two sides lie on the parent's boundary. */
-        unsigned m;
-        if (side(dir, mab, mca) > 0.0)
-            m = 1;
-        else if (side(dir, mbc, mab) > 0.0)
-            m = 2;
-        else if (side(dir, mca, mbc) > 0.0)
-            m = 3;
-        else
-            m = 0;
+        double n[3][3];
+        bwh_tri_cut_normals(&t, n);
+        unsigned m = bwh_cut_child((const double(*)[3])n, dir);
         bwh_tri_child(&t, m, &t);
         idx = idx * 4 + (long)m;
     }

@@ -70,6 +70,25 @@ double bwh_solid_angle(const double a[3], const double b[3], const double c[3]);
  * be NULL. 0, or -1 on a bad level or NULL xyz. */
 int bwh_grid_centres(unsigned level, double (*xyz)[3], double *solid_angle);
 
+/* The base triangle (0..3) holding dir by the half-open quadrants of (x, y);
+ * the zenith (x = y = 0) goes to 0. */
+unsigned bwh_grid_base(const double dir[3]);
+
+/* The normals of the great circles through the edge midpoints of t that cut
+ * off its corner children 1, 2 and 3: dir lies in child m (1..3) when the
+ * first positive dot(dir, n[k]) is k = m - 1, in child 0 when none is
+ * (bwh_cut_child). bwh_grid_locate descends with them. */
+void bwh_tri_cut_normals(const bwh_tri_t *t, double n[3][3]);
+
+/* The child (0..3) of the triangle with cutting normals n that holds dir. */
+static inline unsigned bwh_cut_child(const double n[3][3], const double dir[3])
+{
+    return bwg_dot3(dir, n[0]) > 0.0   ? 1u
+           : bwg_dot3(dir, n[1]) > 0.0 ? 2u
+           : bwg_dot3(dir, n[2]) > 0.0 ? 3u
+                                       : 0u;
+}
+
 /* Index at `level` of the triangle containing the unit direction dir
  * (z >= 0); -1 if z < 0, dir is not finite, or the level is bad. Points on a
  * shared edge go to a fixed side: bases by half-open quadrants of (x, y),
