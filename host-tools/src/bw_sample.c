@@ -196,7 +196,6 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     subgrid_t g = {NULL, NULL, (size_t)1 << (2u * supersample)};
     bwh_tri_t *tri = malloc(bwh_grid_count(cut_levels) * sizeof *tri);
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
-    double *v = malloc(g.per_leaf * sizeof *v);
     s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
     s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
     s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
@@ -208,11 +207,10 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !v || !s->leaf || !s->cut || !s->node || !s->cum || !g.dir ||
+    if (!tri || !in_dir || !s->leaf || !s->cut || !s->node || !s->cum || !g.dir ||
         !g.proj || !s->inv_total || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
         free(in_dir);
-        free(v);
         free(g.dir);
         free(g.proj);
         bwh_sampler_free(s);
@@ -275,7 +273,6 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         }
     }
     free(in_dir);
-    free(v);
     free(g.dir);
     free(g.proj);
     return 0;
@@ -335,12 +332,12 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
     }
     /* the last table with cos(theta) >= z: theta[lo] <= theta_i < theta[lo + 1]
      * (a search without branches: its steps do not depend on z) */
-    size_t lo = 0, step = 1;
-    while (2 * step < n - 1)
-        step *= 2;
-    for (; step; step /= 2)
-        if (lo + step < n - 1)
-            lo = tr[2 * (lo + step)] >= z ? lo + step : lo;
+    size_t lo = 0;
+    for (size_t len = n - 1; len > 1;) { /* candidates lo .. lo + len - 1 */
+        size_t half = len / 2;
+        lo = tr[2 * (lo + half)] >= z ? lo + half : lo;
+        len -= half;
+    }
     size_t hi = lo + 1;
     /* weights sin(theta_i - theta[lo]), sin(theta[hi] - theta_i), normalised */
     double a = r * tr[2 * lo] - z * tr[2 * lo + 1];
@@ -384,6 +381,20 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
         p += sel->w[i] * node[off + k] * s->inv_total[sel->t[i]];
     }
     return p * s->leaf[k].inv_area;
+}
+
+/* the mixture's pdf at a direction in leaf k with cos(theta_o) = cos_o */
+static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o)
+{
+    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k);
+}
+
+/* the leaf holding wo (world frame, z >= 0, finite) */
+static size_t leaf_of(const bwh_sampler_t *s, const select_t *sel, const double wo[3])
+{
+    double local[3];
+    to_local(sel, wo, local);
+    return locate(s, s->level, local);
 }
 
 /* Picks one of 4 siblings in proportion to their values, from their
@@ -443,11 +454,8 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
         return -1;
     double u0 = u[0];
     if (u0 < s->mix) {
-        double local[3];
         bwh_sample_cosine(u[1], u[2], wo);
-        to_local(&sel, wo, local);
-        size_t k = locate(s, s->level, local);
-        *pdf = s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, k);
+        *pdf = mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
         return 0;
     }
     if (s->mix > 0.0)
@@ -468,7 +476,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     double local[3];
     bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
     to_world(&sel, local, wo);
-    *pdf = s->mix * fmax(0.0, wo[2]) / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, k);
+    *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]));
     return 0;
 }
 
@@ -487,13 +495,10 @@ int bwh_sampler_sample_linear(const bwh_sampler_t *s, const double wi[3], const 
 double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double wo[3])
 {
     select_t sel;
-    if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0))
+    if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0) || !isfinite(wo[0]) ||
+        !isfinite(wo[1]) || !isfinite(wo[2]))
         return 0.0;
-    if (!isfinite(wo[0]) || !isfinite(wo[1]) || !isfinite(wo[2]))
-        return 0.0;
-    double local[3];
-    to_local(&sel, wo, local);
-    return s->mix * wo[2] / S_PI + (1.0 - s->mix) * tree_pdf(s, &sel, locate(s, s->level, local));
+    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)
