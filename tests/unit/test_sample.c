@@ -363,6 +363,16 @@ static void sampler_decoded_measured_passes_chi_square(void **state)
     bwh_sampler_free(&s);
 }
 
+/* normalize(a + b + c) of a leaf, as bwh_tri_centre */
+static void leaf_centre(const bwh_leaf_t *L, double c[3])
+{
+    bwh_tri_t t;
+    memcpy(t.v[0], L->a, sizeof t.v[0]);
+    memcpy(t.v[1], L->b, sizeof t.v[1]);
+    memcpy(t.v[2], L->c, sizeof t.v[2]);
+    bwh_tri_centre(&t, c);
+}
+
 /* Total variation distance between the sampler's leaf masses for wi and
  * max(0, f(wi_frame, centre)) times the leaf's projected solid angle,
  * normalised and mixed with the cosine lobe as the sampler is (wi_frame:
@@ -373,14 +383,10 @@ static double leaf_mass_distance(const bwh_sampler_t *s, bwh_brdf_fn f, void *ct
     double *m = malloc(s->n_leaves * sizeof *m), sum = 0.0, tv = 0.0;
     assert_non_null(m);
     for (size_t k = 0; k < s->n_leaves; k++) {
-        const bwh_leaf_t *L = &s->leaf[k];
         double c[3];
-        bwh_tri_centre(&(bwh_tri_t){{{L->a[0], L->a[1], L->a[2]},
-                                     {L->b[0], L->b[1], L->b[2]},
-                                     {L->c[0], L->c[1], L->c[2]}}},
-                       c);
+        leaf_centre(&s->leaf[k], c);
         double v = f(ctx, wi_frame, c);
-        m[k] = (v > 0.0 ? v : 0.0) * L->proj;
+        m[k] = (v > 0.0 ? v : 0.0) * s->leaf[k].proj;
         sum += m[k];
     }
     for (size_t k = 0; k < s->n_leaves; k++) {
@@ -679,10 +685,7 @@ static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
     double c[3];
     size_t zero = 0;
     for (size_t k = 0; k < s.n_leaves; k++) {
-        bwh_tri_centre(&(bwh_tri_t){{{s.leaf[k].a[0], s.leaf[k].a[1], s.leaf[k].a[2]},
-                                     {s.leaf[k].b[0], s.leaf[k].b[1], s.leaf[k].b[2]},
-                                     {s.leaf[k].c[0], s.leaf[k].c[1], s.leaf[k].c[2]}}},
-                       c);
+        leaf_centre(&s.leaf[k], c);
         if (c[0] <= 0.0) {
             assert_true(bwh_sampler_leaf_mass(&s, wi, k) == 0.0);
             assert_true(bwh_sampler_pdf(&s, wi, c) == 0.0);
