@@ -109,17 +109,11 @@ void bwh_sampler_free(bwh_sampler_t *s)
 {
     free(s->theta);
     free(s->trig);
-    free(s->inv_total);
-    free(s->node);
-    free(s->cum);
+    free(s->split);
+    free(s->mass);
     free(s->leaf);
     free(s->cut);
     memset(s, 0, sizeof *s);
-}
-
-static double tree_total(const double *node)
-{
-    return node[0] + node[1] + node[2] + node[3];
 }
 
 /* every node above the leaves: the sum of its children, finest to coarsest */
@@ -131,6 +125,50 @@ static void sum_up(double *node, unsigned level)
         for (size_t k = 0; k < n; k++)
             p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
     }
+}
+
+#define SHARE_ONE 32768u /* a parent's whole share: 2^15 */
+
+/* The shares of 4 siblings of values v (>= 0) in their parent, rounded to
+ * units of 2^-15 adding up to 2^15: a child of positive value gets at least
+ * one unit, a child of value 0 none; the rounding left over goes to the
+ * largest. Stored as where each share ends. */
+static void quantise(const double v[4], uint16_t end[4])
+{
+    double p = v[0] + v[1] + v[2] + v[3];
+    long w[4], sum = 0;
+    unsigned big = 0;
+    for (unsigned k = 0; k < 4; k++) {
+        if (p > 0.0) {
+            w[k] = v[k] > 0.0 ? lround(SHARE_ONE * (v[k] / p)) : 0;
+            if (v[k] > 0.0 && w[k] < 1)
+                w[k] = 1;
+        } else {
+            w[k] = SHARE_ONE / 4; /* never reached: the parent has no mass */
+        }
+        sum += w[k];
+        big = v[k] > v[big] ? k : big;
+    }
+    w[big] += (long)SHARE_ONE - sum;
+    long e = 0;
+    for (unsigned k = 0; k < 4; k++) {
+        e += w[k];
+        end[k] = (uint16_t)e;
+    }
+}
+
+/* the share of child m, from where the shares end */
+static inline unsigned share(const uint16_t end[4], unsigned m)
+{
+    return end[m] - (m ? end[m - 1] : 0u);
+}
+
+/* One level of the descent's arithmetic: the mass of a child whose parent
+ * has mass `parent` and whose share is `units` (the build and sample use
+ * this same product, so they agree to the bit). */
+static inline double child_mass(double parent, unsigned units)
+{
+    return parent * 0x1p-15 * (double)units;
 }
 
 /* sub-triangle centres and projected solid angles of every leaf */
@@ -188,7 +226,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->level_in = level_in;
     s->n_tables = n_tables;
     s->n_leaves = bwh_grid_count(level);
-    s->n_nodes = level_offset(level + 1);
+    s->n_groups = level_offset(level + 1) / 4;
+    size_t n_nodes = level_offset(level + 1);
     s->mix = mix;
 
     /* cutting circles down to the leaves, and to the incoming triangles */
@@ -198,18 +237,20 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
     s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
     s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
-    s->node = malloc(n_tables * s->n_nodes * sizeof *s->node);
-    s->cum = malloc(n_tables * s->n_nodes * sizeof *s->cum);
+    double *node = malloc(n_nodes * sizeof *node), *nmass = malloc(n_nodes * sizeof *nmass);
+    s->split = malloc(n_tables * s->n_groups * sizeof *s->split);
+    s->mass = malloc(n_tables * s->n_leaves * sizeof *s->mass);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
     g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
-    s->inv_total = malloc(n_tables * sizeof *s->inv_total);
     if (kind == BWH_SAMPLER_ISO) {
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !s->leaf || !s->cut || !s->node || !s->cum || !g.dir ||
-        !g.proj || !s->inv_total || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
+    if (!tri || !in_dir || !s->leaf || !s->cut || !node || !nmass || !s->split || !s->mass ||
+        !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
+        free(node);
+        free(nmass);
         free(in_dir);
         free(g.dir);
         free(g.proj);
@@ -242,9 +283,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     }
 
     size_t off_leaf = level_offset(level);
+    double *lv = node + off_leaf;
     for (size_t i = 0; i < n_tables; i++) {
-        double *node = s->node + i * s->n_nodes;
-        double *lv = node + off_leaf;
         for (size_t k = 0; k < s->n_leaves; k++) {
             double sum = 0.0;
             for (size_t j = 0; j < g.per_leaf; j++) {
@@ -256,22 +296,25 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             lv[k] = sum;
         }
         sum_up(node, level);
-        double total = tree_total(node);
+        double total = node[0] + node[1] + node[2] + node[3];
         if (!(total > 0.0) || !isfinite(total)) {
             /* nothing to follow: the projected solid angle (the cosine lobe) */
             for (size_t k = 0; k < s->n_leaves; k++)
                 lv[k] = s->leaf[k].proj;
             sum_up(node, level);
         }
-        s->inv_total[i] = 1.0 / tree_total(node);
-        double *cum = s->cum + i * s->n_nodes;
-        for (size_t k = 0; k < s->n_nodes; k += 4) {
-            cum[k] = node[k];
-            cum[k + 1] = cum[k] + node[k + 1];
-            cum[k + 2] = cum[k + 1] + node[k + 2];
-            cum[k + 3] = cum[k + 2] + node[k + 3];
+        /* shares of every group; masses from the base triangles down */
+        uint16_t(*sp)[4] = s->split + i * s->n_groups;
+        for (size_t q = 0; q < s->n_groups; q++) {
+            quantise(node + 4 * q, sp[q]);
+            double parent = q ? nmass[q - 1] : 1.0; /* group q: children of node q - 1 */
+            for (unsigned m = 0; m < 4; m++)
+                nmass[4 * q + m] = child_mass(parent, share(sp[q], m));
         }
+        memcpy(s->mass + i * s->n_leaves, nmass + off_leaf, s->n_leaves * sizeof *nmass);
     }
+    free(node);
+    free(nmass);
     free(in_dir);
     free(g.dir);
     free(g.proj);
@@ -371,22 +414,22 @@ static void to_world(const select_t *sel, const double w[3], double out[3])
     out[2] = w[2];
 }
 
-/* tree pdf of leaf k (local frame) */
-static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
+/* tree pdf of leaf k (local frame); known: the mass of k in table
+ * sel->t[chosen] when sample has it from its descent (chosen < 0: none) */
+static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, int chosen,
+                       double known)
 {
-    size_t off = level_offset(s->level);
     double p = 0.0;
-    for (int i = 0; i < sel->n; i++) {
-        const double *node = s->node + sel->t[i] * s->n_nodes;
-        p += sel->w[i] * node[off + k] * s->inv_total[sel->t[i]];
-    }
+    for (int i = 0; i < sel->n; i++)
+        p += sel->w[i] * (i == chosen ? known : s->mass[sel->t[i] * s->n_leaves + k]);
     return p * s->leaf[k].inv_area;
 }
 
 /* the mixture's pdf at a direction in leaf k with cos(theta_o) = cos_o */
-static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o)
+static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o,
+                          int chosen, double known)
 {
-    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k);
+    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k, chosen, known);
 }
 
 /* the leaf holding wo (world frame, z >= 0, finite) */
@@ -397,50 +440,53 @@ static size_t leaf_of(const bwh_sampler_t *s, const select_t *sel, const double 
     return locate(s, s->level, local);
 }
 
-/* Picks one of 4 siblings in proportion to their values, from their
- * running sums c, with *t in [0, c[3]): the first whose running sum passes
- * *t (compared without branches); *t becomes the offset inside it, so that
- * it picks again below without a division. A child with value 0 is never
- * picked. Rounding can leave *t at or past the sum: then the last child
- * with a positive value, and *t moves inside it. */
-static inline unsigned pick4(const double *c, double *t)
+/* Picks one of 4 siblings by their shares (ends `end`, units 2^-15 of the
+ * parent, whose range of u is [*base, *base + *mass)): the child whose part
+ * of the range holds u; *base, *mass become that child's. A child of share 0
+ * is never picked: when rounding leaves u just outside the parent's range,
+ * the first or last child with a share. */
+static inline unsigned pick4(const uint16_t end[4], double u, double *base, double *mass)
 {
-    double x = *t;
-    if (x < c[3]) {
-        unsigned m = (unsigned)(x >= c[0]) + (unsigned)(x >= c[1]) + (unsigned)(x >= c[2]);
-        *t = m ? x - c[m - 1] : x;
-        return m;
+    double q = *mass * 0x1p-15, x = u - *base;
+    unsigned m = (unsigned)(x >= q * end[0]) + (unsigned)(x >= q * end[1]) +
+                 (unsigned)(x >= q * end[2]);
+    if (share(end, m) == 0) { /* only below 0 (m = 0) or at the top (m = 3) */
+        if (m == 0)
+            while (share(end, m) == 0)
+                m++;
+        else
+            while (m > 0 && share(end, m) == 0)
+                m--;
     }
-    unsigned last = 3;
-    while (last > 0 && !(c[last] > c[last - 1]))
-        last--;
-    *t = 0.5 * (last ? c[last] - c[last - 1] : c[0]);
-    return last;
+    *base += q * (end[m] - share(end, m));
+    *mass = child_mass(*mass, share(end, m));
+    return m;
 }
 
-static size_t descend(const bwh_sampler_t *s, const double *cum, double u)
+/* the leaf for u in [0, 1) in the table of shares sp; *mass its mass */
+static size_t descend(const bwh_sampler_t *s, const uint16_t (*sp)[4], double u, double *mass)
 {
-    double t = u * cum[3];
-    size_t idx = pick4(cum, &t);
-    const double *lv = cum;
+    double base = 0.0;
+    *mass = 1.0;
+    size_t idx = pick4(sp[0], u, &base, mass);
     for (unsigned l = 1; l <= s->level; l++) {
-        lv += (size_t)1 << (2u * l); /* level l: 4^l nodes before it */
-        idx = 4 * idx + pick4(lv + 4 * idx, &t);
+        sp += (size_t)1 << (2u * (l - 1)); /* level l's groups: after 4^(l-1) more */
+        idx = 4 * idx + pick4(sp[idx], u, &base, mass);
     }
     return idx;
 }
 
-static size_t scan(const bwh_sampler_t *s, const double *node, double u)
+/* the same leaf by the running sum of the leaf masses */
+static size_t scan(const bwh_sampler_t *s, const double *mass, double u)
 {
-    const double *lv = node + level_offset(s->level);
-    double y = u * tree_total(node), acc = 0.0;
+    double acc = 0.0;
     size_t last = 0;
     for (size_t k = 0; k < s->n_leaves; k++) {
-        if (!(lv[k] > 0.0))
+        if (!(mass[k] > 0.0))
             continue;
-        acc += lv[k];
+        acc += mass[k];
         last = k;
-        if (y < acc)
+        if (u < acc)
             return k;
     }
     return last;
@@ -455,15 +501,15 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     double u0 = u[0];
     if (u0 < s->mix) {
         bwh_sample_cosine(u[1], u[2], wo);
-        *pdf = mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
+        *pdf = mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2], -1, 0.0);
         return 0;
     }
     if (s->mix > 0.0)
         u0 = (u0 - s->mix) / (1.0 - s->mix);
-    size_t t = sel.t[0];
+    int chosen = 0;
     if (sel.n == 2) {
         if (u0 < sel.w[1]) {
-            t = sel.t[1];
+            chosen = 1;
             u0 /= sel.w[1];
         } else {
             u0 = (u0 - sel.w[1]) / sel.w[0];
@@ -471,12 +517,16 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     }
     if (u0 >= 1.0)
         u0 = nextafter(1.0, 0.0);
-    size_t k = linear ? scan(s, s->node + t * s->n_nodes, u0)
-                      : descend(s, s->cum + t * s->n_nodes, u0);
+    size_t t = sel.t[chosen];
+    double m = 0.0;
+    size_t k = linear ? scan(s, s->mass + t * s->n_leaves, u0)
+                      : descend(s, s->split + t * s->n_groups, u0, &m);
+    if (linear)
+        m = s->mass[t * s->n_leaves + k];
     double local[3];
     bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
     to_world(&sel, local, wo);
-    *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]));
+    *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]), chosen, m);
     return 0;
 }
 
@@ -498,7 +548,7 @@ double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double 
     if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0) || !isfinite(wo[0]) ||
         !isfinite(wo[1]) || !isfinite(wo[2]))
         return 0.0;
-    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
+    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2], -1, 0.0);
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)
@@ -507,7 +557,7 @@ double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t 
     if (leaf >= s->n_leaves || !select_tables(s, wi, &sel))
         return 0.0;
     return s->mix * s->leaf[leaf].proj / S_PI +
-           (1.0 - s->mix) * tree_pdf(s, &sel, leaf) * s->leaf[leaf].area;
+           (1.0 - s->mix) * tree_pdf(s, &sel, leaf, -1, 0.0) * s->leaf[leaf].area;
 }
 
 /* ---- analytic lobes --------------------------------------------------- */

@@ -1,18 +1,23 @@
 /*
  * Importance sampling of a BRDF from the triangle hierarchy (sec. 6.1).
  *
- * For each tabulated incoming direction the sampler stores, on the geodesic
+ * For each tabulated incoming direction the sampler forms, on the geodesic
  * triangles of one level (the "level of accuracy"), the integral of
  * max(0, f(wi, wo)) cos(theta_o) over each triangle, and above them the sums
- * of the children up to the 4 base triangles: every node holds the integral
- * over its subtree. f is a scalar: the BRDF integrated over wavelength (or
- * one channel), given by a callback, so analytic models and decoded payloads
- * are sampled the same way.
+ * of the children up to the 4 base triangles: every node's integral over its
+ * subtree. f is a scalar: the BRDF integrated over wavelength (or one
+ * channel), given by a callback, so analytic models and decoded payloads are
+ * sampled the same way. What it keeps is each node's share of its parent's
+ * integral, in 15-bit fixed point (the 4 shares of a group add up to 2^15 and
+ * a child with a positive integral gets at least 1): 8 bytes per group of 4
+ * siblings, and each leaf's probability, the product of the shares above it.
  *
  *   sample   descend from the base triangles, picking a child with
- *            probability proportional to its integral (O(log4 n)), then a
- *            uniform direction in the leaf's spherical triangle (Arvo 1995);
- *   pdf      leaf integral / (total * leaf solid angle): piecewise constant.
+ *            probability its share (O(log4 n)), then a uniform direction in
+ *            the leaf's spherical triangle (Arvo 1995);
+ *   pdf      leaf probability / leaf solid angle: piecewise constant. The
+ *            descent forms the same product as the build, so sample's pdf
+ *            and pdf() agree to the bit away from leaf edges.
  *
  * Negative values (left by lossy compression) are clamped to 0 once, when the
  * leaf integrals are formed, so sample and pdf see the same function. A
@@ -39,6 +44,7 @@
 #define BW_SAMPLE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "brdf_models.h"
 
@@ -71,13 +77,16 @@ typedef struct {
     unsigned level_in;   /* FULL: incoming level */
     size_t n_tables;
     size_t n_leaves;     /* 4 * 4^level */
-    size_t n_nodes;      /* nodes per table, all levels */
+    size_t n_groups;     /* groups of 4 siblings per table, all levels */
     double *theta;       /* ISO: ascending zenith angles of the tables (radians) */
     double *trig;        /* ISO: [n_tables][2] cos, sin of theta */
-    double *inv_total;   /* [n_tables] 1 / (integral over the hemisphere) */
-    double *node;        /* [n_tables][n_nodes]; level l starts at 4 (4^l - 1) / 3 */
-    double *cum;         /* [n_tables][n_nodes]: node's running sums within each
-                            group of 4 siblings (what the descent compares) */
+    uint16_t (*split)[4]; /* [n_tables][n_groups]: where the shares of children
+                            0, 1, 2, 3 end in their parent, in units of 2^-15
+                            (the last is 2^15); the groups of level l (4^l of
+                            them, children of level l - 1's nodes) start at
+                            (4^l - 1) / 3 */
+    double *mass;        /* [n_tables][n_leaves]: probability of each leaf, the
+                            product of its ancestors' shares */
     bwh_leaf_t *leaf;    /* [n_leaves] */
     double (*cut)[3][3]; /* [triangles above the leaves, or above level_in's if
                             finer]: normals of the great circles cutting off
