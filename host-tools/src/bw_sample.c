@@ -116,6 +116,13 @@ void bwh_sampler_free(bwh_sampler_t *s)
     memset(s, 0, sizeof *s);
 }
 
+/* the one clamp, of the tables and of sample's value: negative or not
+ * finite values of f count as 0 */
+static double clamp_f(double v)
+{
+    return v > 0.0 && isfinite(v) ? v : 0.0;
+}
+
 /* every node above the leaves: the sum of its children, finest to coarsest */
 static void sum_up(double *node, unsigned level)
 {
@@ -229,6 +236,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->n_groups = level_offset(level + 1) / 4;
     size_t n_nodes = level_offset(level + 1);
     s->mix = mix;
+    s->f = f;
+    s->ctx = ctx;
 
     /* cutting circles down to the leaves, and to the incoming triangles */
     unsigned cut_levels = kind == BWH_SAMPLER_FULL && level_in > level ? level_in : level;
@@ -289,9 +298,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             double sum = 0.0;
             for (size_t j = 0; j < g.per_leaf; j++) {
                 size_t q = k * g.per_leaf + j;
-                double fv = f(ctx, in_dir[i], g.dir[q]);
-                if (fv > 0.0 && isfinite(fv)) /* the one clamp */
-                    sum += fv * g.proj[q];
+                sum += clamp_f(f(ctx, in_dir[i], g.dir[q])) * g.proj[q];
             }
             lv[k] = sum;
         }
@@ -493,7 +500,7 @@ static size_t scan(const bwh_sampler_t *s, const double *mass, double u)
 }
 
 static int sample_with(const bwh_sampler_t *s, const double wi[3], const double u[3],
-                       double wo[3], double *pdf, int linear)
+                       double wo[3], double *pdf, double *value, int linear)
 {
     select_t sel;
     if (!select_tables(s, wi, &sel))
@@ -502,6 +509,8 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     if (u0 < s->mix) {
         bwh_sample_cosine(u[1], u[2], wo);
         *pdf = mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2], -1, 0.0);
+        if (value)
+            *value = clamp_f(s->f(s->ctx, wi, wo));
         return 0;
     }
     if (s->mix > 0.0)
@@ -527,19 +536,21 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
     to_world(&sel, local, wo);
     *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]), chosen, m);
+    if (value)
+        *value = clamp_f(s->f(s->ctx, wi, wo));
     return 0;
 }
 
 int bwh_sampler_sample(const bwh_sampler_t *s, const double wi[3], const double u[3],
-                       double wo[3], double *pdf)
+                       double wo[3], double *pdf, double *value)
 {
-    return sample_with(s, wi, u, wo, pdf, 0);
+    return sample_with(s, wi, u, wo, pdf, value, 0);
 }
 
 int bwh_sampler_sample_linear(const bwh_sampler_t *s, const double wi[3], const double u[3],
-                              double wo[3], double *pdf)
+                              double wo[3], double *pdf, double *value)
 {
-    return sample_with(s, wi, u, wo, pdf, 1);
+    return sample_with(s, wi, u, wo, pdf, value, 1);
 }
 
 double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double wo[3])

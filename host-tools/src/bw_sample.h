@@ -14,7 +14,8 @@
  *
  *   sample   descend from the base triangles, picking a child with
  *            probability its share (O(log4 n)), then a uniform direction in
- *            the leaf's spherical triangle (Arvo 1995);
+ *            the leaf's spherical triangle (Arvo 1995); with it the pdf and,
+ *            on request, the BRDF's value there;
  *   pdf      leaf probability / leaf solid angle: piecewise constant. The
  *            descent forms the same product as the build, so sample's pdf
  *            and pdf() agree to the bit away from leaf edges.
@@ -92,6 +93,8 @@ typedef struct {
                             finer]: normals of the great circles cutting off
                             children 1, 2, 3 (leaf and table search) */
     double mix;          /* weight of the cosine lobe, 0 .. 1 */
+    bwh_brdf_fn f;       /* the BRDF it was built from, and its context: */
+    void *ctx;           /* sample's value */
 } bwh_sampler_t;
 
 /*
@@ -100,6 +103,8 @@ typedef struct {
  * 4 * 4^level_in. Each leaf integral is a midpoint sum over the leaf's
  * 4^supersample sub-triangles (f at their centres times their projected
  * solid angle). A table whose integral is 0 samples the cosine lobe.
+ * The sampler keeps f and ctx for sample's value: ctx must outlive it, and f
+ * be safe to call from every thread that samples with a value.
  * Returns 0, or -1 (bad arguments, out of memory; see bwh_last_error()).
  */
 int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_tables,
@@ -109,16 +114,19 @@ void bwh_sampler_free(bwh_sampler_t *s);
 
 /*
  * Draws wo for wi (z > 0) from u[0..2] in [0, 1). Returns 0 with *pdf the
- * pdf (per solid angle) of wo, or -1 when wi is below the horizon or not
- * finite (wo, pdf untouched). Uses the tree: O(level) per sample.
+ * pdf (per solid angle) of wo and, when value is not NULL, *value the BRDF
+ * the sampler was built from at (wi, wo), clamped as the tables are (0 where
+ * f is negative or not finite): a path's weight is *value * wo[2] / *pdf.
+ * Returns -1 when wi is below the horizon or not finite (wo, pdf, value
+ * untouched). Uses the tree: O(level) per sample.
  */
 int bwh_sampler_sample(const bwh_sampler_t *s, const double wi[3], const double u[3],
-                       double wo[3], double *pdf);
+                       double wo[3], double *pdf, double *value);
 
 /* The same distribution, with the leaf found by a linear scan of the
  * leaves' running sum (the O(n) method the tree replaces). For comparison. */
 int bwh_sampler_sample_linear(const bwh_sampler_t *s, const double wi[3], const double u[3],
-                              double wo[3], double *pdf);
+                              double wo[3], double *pdf, double *value);
 
 /* pdf of wo given wi (per solid angle); 0 below the horizon or for wi below
  * the horizon. */

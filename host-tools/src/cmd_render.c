@@ -360,7 +360,7 @@ static int sample_dir(const job_t *j, const material_t *m, const double wi[3], r
         }
         return wo[2] > 0.0 && *pdf > 0.0;
     case S_WAVELET:
-        if (bwh_sampler_sample(&m->sampler, wi, u, wo, pdf) != 0)
+        if (bwh_sampler_sample(&m->sampler, wi, u, wo, pdf, NULL) != 0)
             return 0;
         return wo[2] > 0.0 && *pdf > 0.0;
     }

@@ -16,6 +16,7 @@
  *    leaf's mass;
  *  - the albedo estimator f cos / pdf is unbiased (within 4 standard errors
  *    plus the error of the reference quadrature);
+ *  - sample's value is f at (wi, wo), clamped as the tables are;
  *  - negative values are clamped the same way for sample and pdf; a region
  *    where f is faint but positive keeps a positive pdf and is drawn as often
  *    as it says; the tree and the linear scan pick the same leaves; bad input
@@ -287,7 +288,7 @@ static double chi2_test(const bwh_sampler_t *drawn, const bwh_sampler_t *model,
     long mism = 0;
     for (long i = 0; i < n; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-        assert_int_equal(bwh_sampler_sample(drawn, wi, u, wo, &pdf), 0);
+        assert_int_equal(bwh_sampler_sample(drawn, wi, u, wo, &pdf, NULL), 0);
         long k = leaf_of(model, wi, wo);
         assert_true(k >= 0);
         obs[k]++;
@@ -653,9 +654,10 @@ static void albedo_estimator_is_unbiased(void **state)
             ref = phong.kd + phong.ks, qerr = 0.0; /* exact at normal incidence */
         double sum = 0.0, sum2 = 0.0;
         for (long i = 0; i < N_SAMPLES; i++) {
-            double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-            assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf), 0);
+            double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf, value;
+            assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf, &value), 0);
             double v = cases[c].f(cases[c].ctx, wi, wo);
+            assert_true(value == (v > 0.0 ? v : 0.0)); /* sample's value: f, clamped */
             double est = wo[2] > 0.0 && pdf > 0.0 ? v * wo[2] / pdf : 0.0;
             sum += est;
             sum2 += est * est;
@@ -673,7 +675,8 @@ static double with_negative(void *ctx, const double wi[3], const double wo[3])
 {
     (void)ctx;
     (void)wi;
-    return wo[0] > 0.0 ? 1.0 : -0.5; /* half the hemisphere negative */
+    /* half the hemisphere negative, across leaves (not along a base edge) */
+    return wo[0] > 0.25 * wo[1] ? 1.0 : -0.5;
 }
 
 static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
@@ -687,9 +690,10 @@ static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
     double wi[3] = {0.0, 0.0, 1.0};
     double c[3];
     size_t zero = 0;
+    long neg = 0;
     for (size_t k = 0; k < s.n_leaves; k++) {
-        leaf_centre(&s.leaf[k], c);
-        if (c[0] <= 0.0) {
+        leaf_centre(&s.leaf[k], c); /* supersample 0: f at the centre only */
+        if (with_negative(NULL, wi, c) < 0.0) {
             assert_true(bwh_sampler_leaf_mass(&s, wi, k) == 0.0);
             assert_true(bwh_sampler_pdf(&s, wi, c) == 0.0);
             zero++;
@@ -697,12 +701,17 @@ static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
     }
     assert_true(zero > s.n_leaves / 3);
     for (int i = 0; i < 100000; i++) {
-        double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-        assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf), 0);
+        double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf, value;
+        assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf, &value), 0);
         long k = bwh_grid_locate(3, wo);
         assert_true(bwh_sampler_leaf_mass(&s, wi, (size_t)k) > 0.0);
         assert_true(pdf > 0.0);
+        /* a leaf across the edge of the negative half: its value there is 0 */
+        assert_true(value == (with_negative(NULL, wi, wo) > 0.0 ? 1.0 : 0.0));
+        neg += value == 0.0;
     }
+    printf("    %ld of 100000 draws where f < 0 (value 0)\n", neg);
+    assert_true(neg > 0);
     bwh_sampler_free(&s);
 }
 
@@ -734,7 +743,7 @@ static void a_faint_region_keeps_a_positive_pdf(void **state)
     long hits = 0;
     for (long i = 0; i < N_SAMPLES; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
-        assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf), 0);
+        assert_int_equal(bwh_sampler_sample(&s, wi, u, wo, &pdf, NULL), 0);
         assert_true(pdf > 0.0);
         hits += wo[0] <= 0.0;
     }
@@ -756,8 +765,8 @@ static void tree_and_linear_scan_pick_the_same_leaf(void **state)
     int same = 0;
     for (int i = 0; i < 20000; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, a[3], b[3], pa, pb;
-        assert_int_equal(bwh_sampler_sample(&s, wi, u, a, &pa), 0);
-        assert_int_equal(bwh_sampler_sample_linear(&s, wi, u, b, &pb), 0);
+        assert_int_equal(bwh_sampler_sample(&s, wi, u, a, &pa, NULL), 0);
+        assert_int_equal(bwh_sampler_sample_linear(&s, wi, u, b, &pb, NULL), 0);
         same += a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && pa == pb;
     }
     /* the two sums round differently only at leaf boundaries */
@@ -788,8 +797,8 @@ static void bad_input_is_refused(void **state)
     assert_int_equal(build_phong(&s, &phong, 3, 0.1), 0);
     double below[3] = {0.6, 0.0, -0.8}, nan[3] = {NAN, 0.0, 1.0}, up[3] = {0.0, 0.0, 1.0};
     double u[3] = {0.3, 0.3, 0.3}, wo[3] = {9, 9, 9}, pdf = -1.0;
-    assert_int_equal(bwh_sampler_sample(&s, below, u, wo, &pdf), -1);
-    assert_int_equal(bwh_sampler_sample(&s, nan, u, wo, &pdf), -1);
+    assert_int_equal(bwh_sampler_sample(&s, below, u, wo, &pdf, NULL), -1);
+    assert_int_equal(bwh_sampler_sample(&s, nan, u, wo, &pdf, NULL), -1);
     assert_true(wo[0] == 9.0 && pdf == -1.0);
     assert_true(bwh_sampler_pdf(&s, below, up) == 0.0);
     assert_true(bwh_sampler_pdf(&s, up, below) == 0.0);

@@ -53,8 +53,8 @@ static int draw(const bwh_sampler_t *s, const bwh_brdf_params_t *p, enum method 
         *pdf = bwh_phong_pdf(p, wi, wo);
         return *pdf > 0.0 ? 0 : -1;
     }
-    return how == SCAN ? bwh_sampler_sample_linear(s, wi, u, wo, pdf)
-                       : bwh_sampler_sample(s, wi, u, wo, pdf);
+    return how == SCAN ? bwh_sampler_sample_linear(s, wi, u, wo, pdf, NULL)
+                       : bwh_sampler_sample(s, wi, u, wo, pdf, NULL);
 }
 
 /* samples per CPU second over at least `min_seconds`: the hierarchy s by
