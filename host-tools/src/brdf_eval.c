@@ -172,6 +172,12 @@ double bwh_brdf_data_mean_cb(void *ctx, const double wi[3], const double wo[3])
     return bwh_brdf_data_mean((const bwh_brdf_data_t *)ctx, wi, wo);
 }
 
+double bwh_brdf_data_band_cb(void *ctx, const double wi[3], const double wo[3])
+{
+    const bwh_brdf_band_t *b = ctx;
+    return bwh_brdf_data_band(b->data, wi, wo, b->band);
+}
+
 double bwh_brdf_data_eval(const bwh_brdf_data_t *d, const double wi[3], const double wo[3],
                           double lambda, double *work)
 {

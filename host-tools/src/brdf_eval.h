@@ -63,6 +63,15 @@ double bwh_brdf_data_eval(const bwh_brdf_data_t *d, const double wi[3], const do
 /* For bwh_sampler_build: ctx is a bwh_brdf_data_t, f its band mean. */
 double bwh_brdf_data_mean_cb(void *ctx, const double wi[3], const double wo[3]);
 
+/* For bwh_sampler_build, one channel: ctx is a bwh_brdf_band_t, f band
+ * `band` of `data` (NAN, which the sampler counts as 0, for a band out of
+ * range). */
+typedef struct {
+    const bwh_brdf_data_t *data;
+    size_t band;
+} bwh_brdf_band_t;
+double bwh_brdf_data_band_cb(void *ctx, const double wi[3], const double wo[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -10,6 +10,7 @@
  *    0.01 with a Sidak correction over the incoming directions of a BRDF;
  *    for Phong, Ward and a measured RGL BRDF encoded and decoded by the codec;
  *  - the same test rejects samples of a different BRDF (it has power);
+ *  - a sampler of one channel of a decoded BRDF follows that channel;
  *  - Arvo's method is uniform inside a triangle (chi-square on 64 parts);
  *  - pdf() agrees with the pdf sample() returns (to the bit, away from leaf
  *    edges), integrates to 1, and its integral over each leaf is that
@@ -442,6 +443,73 @@ static void sampler_draws_from_the_tables_of_wi(void **state)
     bwh_sampler_free(&s);
 }
 
+/* Three bands of different shapes: a lobe about the mirror direction, a
+ * constant, a lobe about the incoming direction (back-scatter). */
+static int synth_bands(bwh_brdf_data_t *d)
+{
+    const unsigned level = 4;
+    const size_t n_in = 8, n_out = bwh_grid_count(level), bands = 3;
+    double(*c)[3] = malloc(n_out * sizeof *c);
+    float *x = malloc(n_in * n_out * bands * sizeof *x);
+    if (!c || !x) {
+        free(c);
+        free(x);
+        return -1;
+    }
+    bwh_grid_centres(level, c, NULL);
+    for (size_t i = 0; i < n_in; i++) {
+        double wi[3];
+        dir((i + 0.5) * 90.0 / (double)n_in, 0.0, wi);
+        for (size_t o = 0; o < n_out; o++) {
+            double cm = -wi[0] * c[o][0] - wi[1] * c[o][1] + wi[2] * c[o][2];
+            double cb = wi[0] * c[o][0] + wi[1] * c[o][1] + wi[2] * c[o][2];
+            float *v = x + (i * n_out + o) * bands;
+            v[0] = (float)(cm > 0.0 ? pow(cm, 30.0) : 0.0);
+            v[1] = 0.3f;
+            v[2] = (float)(cb > 0.0 ? pow(cb, 30.0) : 0.0);
+        }
+    }
+    free(c);
+    bw_dims_t dims = {.shape = BW_SHAPE_BRDF_ISO, .level_out = level, .n_in = (uint32_t)n_in,
+                      .n_out = (uint32_t)n_out, .bands = (uint32_t)bands};
+    int rc = bwh_brdf_data_init(d, &dims, x, NULL, 0.0, 0.0);
+    free(x);
+    return rc;
+}
+
+/* Sampling one channel on request (bwh_brdf_data_band_cb): the sampler of a
+ * band follows that band, not the mean nor another band, and passes the
+ * chi-square test. */
+static void a_sampler_per_channel_follows_its_band(void **state)
+{
+    (void)state;
+    bwh_brdf_data_t d;
+    assert_int_equal(synth_bands(&d), 0);
+    bwh_brdf_band_t band[2] = {{&d, 0}, {&d, 2}};
+    double th = d.theta_in[3] * 180.0 / PI, wi[3], frame[3];
+    dir(th, 70.0, wi);
+    dir(th, 0.0, frame);
+    for (int b = 0; b < 2; b++) {
+        bwh_sampler_t s;
+        assert_int_equal(bwh_sampler_build(&s, BWH_SAMPLER_ISO, 4, d.n_in, d.theta_in, 0,
+                                           bwh_brdf_data_band_cb, &band[b], 1, 0.05),
+                         0);
+        double own = leaf_mass_distance(&s, bwh_brdf_data_band_cb, &band[b], wi, frame);
+        double other = leaf_mass_distance(&s, bwh_brdf_data_band_cb, &band[1 - b], wi, frame);
+        double mean = leaf_mass_distance(&s, bwh_brdf_data_mean_cb, &d, wi, frame);
+        printf("    band %zu: distance to its band %.4f, to band %zu %.4f, to the mean %.4f\n",
+               band[b].band, own, band[1 - b].band, other, mean);
+        assert_true(own < 0.05); /* the leaf quadrature of a cos^30 lobe at level 4 */
+        assert_true(other > 0.5 && mean > 0.2);
+        long mism;
+        double p = chi2_test(&s, &s, wi, N_SAMPLES, &mism);
+        assert_true(p >= 1.0 - sqrt(1.0 - 0.01)); /* 0.01, Sidak over the 2 bands */
+        assert_true(mism <= N_SAMPLES / 100000);
+        bwh_sampler_free(&s);
+    }
+    bwh_brdf_data_free(&d);
+}
+
 static void chi_square_rejects_a_different_brdf(void **state)
 {
     (void)state;
@@ -815,6 +883,7 @@ int main(void)
         cmocka_unit_test(sampler_ward_passes_chi_square),
         cmocka_unit_test(sampler_decoded_measured_passes_chi_square),
         cmocka_unit_test(sampler_draws_from_the_tables_of_wi),
+        cmocka_unit_test(a_sampler_per_channel_follows_its_band),
         cmocka_unit_test(chi_square_rejects_a_different_brdf),
         cmocka_unit_test(pdf_integrates_to_one),
         cmocka_unit_test(albedo_estimator_is_unbiased),
