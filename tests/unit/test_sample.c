@@ -168,6 +168,41 @@ static int build_ward(bwh_sampler_t *s, double mix)
     return bwh_sampler_build(s, BWH_SAMPLER_FULL, 4, 64, NULL, 2, ward_cb, (void *)&ward, 1, mix);
 }
 
+/* An isotropic BRDF of `bands` channels tabulated in the codec's layout
+ * [n_in][n_out][bands]: fn(ctx, wi, wo, out) at the incidences
+ * (i + 1/2) 90 / n_in degrees (phi = 0) and the centres of the triangles of
+ * `level`. NULL when out of memory. */
+typedef void (*rgb_fn)(void *ctx, const double wi[3], const double wo[3], double *out);
+
+static float *tabulate(unsigned level, size_t n_in, size_t bands, rgb_fn fn, void *ctx)
+{
+    size_t n_out = bwh_grid_count(level);
+    double(*c)[3] = malloc(n_out * sizeof *c), v[8];
+    float *x = malloc(n_in * n_out * bands * sizeof *x);
+    if (!c || !x || bands > 8) {
+        free(c);
+        free(x);
+        return NULL;
+    }
+    bwh_grid_centres(level, c, NULL);
+    for (size_t i = 0; i < n_in; i++) {
+        double wi[3];
+        dir((i + 0.5) * 90.0 / (double)n_in, 0.0, wi);
+        for (size_t o = 0; o < n_out; o++) {
+            fn(ctx, wi, c[o], v);
+            for (size_t k = 0; k < bands; k++)
+                x[(i * n_out + o) * bands + k] = (float)v[k];
+        }
+    }
+    free(c);
+    return x;
+}
+
+static void rgl_rgb(void *ctx, const double wi[3], const double wo[3], double *out)
+{
+    bwr_rgl_eval(ctx, wi, wo, out);
+}
+
 /* measured: satin_rosaline (RGL) at level 4, 16 incidences, 3 bands, through
  * the codec at 20:1, as brdfwave import-rgl + encode --ratio 20 + decode */
 static bwh_brdf_data_t measured;
@@ -183,23 +218,10 @@ static int load_measured(void)
     }
     const unsigned level = 4;
     const size_t n_in = 16, n_out = bwh_grid_count(level), bands = 3;
-    double(*c)[3] = malloc(n_out * sizeof *c);
-    float *x = malloc(n_in * n_out * bands * sizeof *x);
-    if (!c || !x)
-        return -1;
-    bwh_grid_centres(level, c, NULL);
-    for (size_t i = 0; i < n_in; i++) {
-        double wi[3];
-        dir((i + 0.5) * 90.0 / (double)n_in, 0.0, wi);
-        for (size_t o = 0; o < n_out; o++) {
-            double rgb[3];
-            bwr_rgl_eval(&rgl, wi, c[o], rgb);
-            for (size_t k = 0; k < bands; k++)
-                x[(i * n_out + o) * bands + k] = (float)rgb[k];
-        }
-    }
+    float *x = tabulate(level, n_in, bands, rgl_rgb, &rgl);
     bwr_rgl_free(&rgl);
-    free(c);
+    if (!x)
+        return -1;
     bw_dims_t dims = {.shape = BW_SHAPE_BRDF_ISO, .level_out = level, .n_in = (uint32_t)n_in,
                       .n_out = (uint32_t)n_out, .bands = (uint32_t)bands};
     bwh_encode_opts_t o;
@@ -445,31 +467,23 @@ static void sampler_draws_from_the_tables_of_wi(void **state)
 
 /* Three bands of different shapes: a lobe about the mirror direction, a
  * constant, a lobe about the incoming direction (back-scatter). */
+static void three_lobes(void *ctx, const double wi[3], const double wo[3], double *out)
+{
+    (void)ctx;
+    double cm = -wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2];
+    double cb = wi[0] * wo[0] + wi[1] * wo[1] + wi[2] * wo[2];
+    out[0] = cm > 0.0 ? pow(cm, 30.0) : 0.0;
+    out[1] = 0.3;
+    out[2] = cb > 0.0 ? pow(cb, 30.0) : 0.0;
+}
+
 static int synth_bands(bwh_brdf_data_t *d)
 {
     const unsigned level = 4;
     const size_t n_in = 8, n_out = bwh_grid_count(level), bands = 3;
-    double(*c)[3] = malloc(n_out * sizeof *c);
-    float *x = malloc(n_in * n_out * bands * sizeof *x);
-    if (!c || !x) {
-        free(c);
-        free(x);
+    float *x = tabulate(level, n_in, bands, three_lobes, NULL);
+    if (!x)
         return -1;
-    }
-    bwh_grid_centres(level, c, NULL);
-    for (size_t i = 0; i < n_in; i++) {
-        double wi[3];
-        dir((i + 0.5) * 90.0 / (double)n_in, 0.0, wi);
-        for (size_t o = 0; o < n_out; o++) {
-            double cm = -wi[0] * c[o][0] - wi[1] * c[o][1] + wi[2] * c[o][2];
-            double cb = wi[0] * c[o][0] + wi[1] * c[o][1] + wi[2] * c[o][2];
-            float *v = x + (i * n_out + o) * bands;
-            v[0] = (float)(cm > 0.0 ? pow(cm, 30.0) : 0.0);
-            v[1] = 0.3f;
-            v[2] = (float)(cb > 0.0 ? pow(cb, 30.0) : 0.0);
-        }
-    }
-    free(c);
     bw_dims_t dims = {.shape = BW_SHAPE_BRDF_ISO, .level_out = level, .n_in = (uint32_t)n_in,
                       .n_out = (uint32_t)n_out, .bands = (uint32_t)bands};
     int rc = bwh_brdf_data_init(d, &dims, x, NULL, 0.0, 0.0);
