@@ -6,7 +6,7 @@
  * max(0, f(wi, wo)) cos(theta_o) over each triangle, and above them the sums
  * of the children up to the 4 base triangles: every node's integral over its
  * subtree. f is a scalar: the BRDF integrated over wavelength (or one
- * channel), given by a callback, so analytic models and decoded payloads are
+ * channel: bwh_brdf_data_band_cb), given by a callback, so analytic models and decoded payloads are
  * sampled the same way. What it keeps is each node's share of its parent's
  * integral, in 15-bit fixed point (the 4 shares of a group add up to 2^15 and
  * a child with a positive integral gets at least 1): 8 bytes per group of 4
@@ -20,8 +20,9 @@
  *            descent forms the same product as the build, so sample's pdf
  *            and pdf() agree to the bit away from leaf edges.
  *
- * Negative values (left by lossy compression) are clamped to 0 once, when the
- * leaf integrals are formed, so sample and pdf see the same function. A
+ * Negative values (left by lossy compression) and values that are not finite
+ * count as 0, by one clamp used for the leaf integrals and for sample's
+ * value, so sample, pdf and the value see the same function. A
  * cosine lobe with weight `mix` is mixed in: the pdf is
  *   mix * cos(theta_o) / pi + (1 - mix) * p_tree(wo),
  * positive over the whole hemisphere, hence wherever the BRDF is.
