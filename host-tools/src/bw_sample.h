@@ -5,12 +5,13 @@
  * triangles of one level (the "level of accuracy"), the integral of
  * max(0, f(wi, wo)) cos(theta_o) over each triangle, and above them the sums
  * of the children up to the 4 base triangles: every node's integral over its
- * subtree. f is a scalar: the BRDF integrated over wavelength (or one
- * channel: bwh_brdf_data_band_cb), given by a callback, so analytic models and decoded payloads are
- * sampled the same way. What it keeps is each node's share of its parent's
- * integral, in 15-bit fixed point (the 4 shares of a group add up to 2^15 and
- * a child with a positive integral gets at least 1): 8 bytes per group of 4
- * siblings, and each leaf's probability, the product of the shares above it.
+ * subtree. f is a scalar given by a callback: the BRDF integrated over
+ * wavelength, or one channel (bwh_brdf_data_band_cb), so analytic models and
+ * decoded payloads are sampled the same way. What it keeps is each node's
+ * share of its parent's integral, in 15-bit fixed point (the 4 shares of a
+ * group add up to 2^15 and a child with a positive integral gets at least
+ * 1): 8 bytes per group of 4 siblings, and each leaf's probability, the
+ * product of the shares above it.
  *
  *   sample   descend from the base triangles, picking a child with
  *            probability its share (O(log4 n)), then a uniform direction in
