@@ -233,8 +233,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->level_in = level_in;
     s->n_tables = n_tables;
     s->n_leaves = bwh_grid_count(level);
-    s->n_groups = level_offset(level + 1) / 4;
     size_t n_nodes = level_offset(level + 1);
+    s->n_groups = n_nodes / 4; /* groups of 4 siblings */
     s->mix = mix;
     s->f = f;
     s->ctx = ctx;
@@ -483,20 +483,22 @@ static size_t descend(const bwh_sampler_t *s, const uint16_t (*sp)[4], double u,
     return idx;
 }
 
-/* the same leaf by the running sum of the leaf masses */
-static size_t scan(const bwh_sampler_t *s, const double *mass, double u)
+/* the same leaf by the running sum of the leaf masses; *leaf_mass its mass */
+static size_t scan(const bwh_sampler_t *s, const double *mass, double u, double *leaf_mass)
 {
     double acc = 0.0;
-    size_t last = 0;
-    for (size_t k = 0; k < s->n_leaves; k++) {
+    size_t k = 0, last = 0;
+    for (; k < s->n_leaves; k++) {
         if (!(mass[k] > 0.0))
             continue;
         acc += mass[k];
         last = k;
         if (u < acc)
-            return k;
+            break;
     }
-    return last;
+    k = k < s->n_leaves ? k : last;
+    *leaf_mass = mass[k];
+    return k;
 }
 
 static int sample_with(const bwh_sampler_t *s, const double wi[3], const double u[3],
@@ -505,36 +507,33 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     select_t sel;
     if (!select_tables(s, wi, &sel))
         return -1;
-    double u0 = u[0];
+    double u0 = u[0], m = 0.0;
+    int chosen = -1; /* the table drawn from, when the tree is */
+    size_t k;
     if (u0 < s->mix) {
         bwh_sample_cosine(u[1], u[2], wo);
-        *pdf = mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2], -1, 0.0);
-        if (value)
-            *value = clamp_f(s->f(s->ctx, wi, wo));
-        return 0;
-    }
-    if (s->mix > 0.0)
-        u0 = (u0 - s->mix) / (1.0 - s->mix);
-    int chosen = 0;
-    if (sel.n == 2) {
-        if (u0 < sel.w[1]) {
-            chosen = 1;
-            u0 /= sel.w[1];
-        } else {
-            u0 = (u0 - sel.w[1]) / sel.w[0];
+        k = leaf_of(s, &sel, wo);
+    } else {
+        if (s->mix > 0.0)
+            u0 = (u0 - s->mix) / (1.0 - s->mix);
+        chosen = 0;
+        if (sel.n == 2) {
+            if (u0 < sel.w[1]) {
+                chosen = 1;
+                u0 /= sel.w[1];
+            } else {
+                u0 = (u0 - sel.w[1]) / sel.w[0];
+            }
         }
+        if (u0 >= 1.0)
+            u0 = nextafter(1.0, 0.0);
+        size_t t = sel.t[chosen];
+        k = linear ? scan(s, s->mass + t * s->n_leaves, u0, &m)
+                   : descend(s, s->split + t * s->n_groups, u0, &m);
+        double local[3];
+        bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
+        to_world(&sel, local, wo);
     }
-    if (u0 >= 1.0)
-        u0 = nextafter(1.0, 0.0);
-    size_t t = sel.t[chosen];
-    double m = 0.0;
-    size_t k = linear ? scan(s, s->mass + t * s->n_leaves, u0)
-                      : descend(s, s->split + t * s->n_groups, u0, &m);
-    if (linear)
-        m = s->mass[t * s->n_leaves + k];
-    double local[3];
-    bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
-    to_world(&sel, local, wo);
     *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]), chosen, m);
     if (value)
         *value = clamp_f(s->f(s->ctx, wi, wo));
