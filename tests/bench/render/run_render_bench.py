@@ -25,6 +25,7 @@ SIZE = os.environ.get("BENCH_RENDER_SIZE", "160x120")
 SPP = int(os.environ.get("BENCH_RENDER_SPP", "64"))
 THREADS = os.environ.get("BENCH_RENDER_THREADS", "2")
 PHONG = "phong:0.05,0.9,60"
+SEEDS = [2, 3, 4]  # the equal-time comparison repeated
 RGL = ["cc_ibiza_sunset_rgb", "satin_rosaline_rgb", "paper_white_rgb"]
 
 
@@ -53,9 +54,10 @@ def blocks(text):
     return head, out
 
 
-def render(name, strategies, extra, spp=None, time=None, level=4):
+def render(name, strategies, extra, spp=None, time=None, level=4, seed=1):
     args = [BW, "render", "--size", SIZE, "--threads", THREADS, "--sampling",
-            ",".join(strategies), "--level", str(level), "-o", os.path.join(IMG, name + ".png")]
+            ",".join(strategies), "--level", str(level), "--seed", str(seed),
+            "-o", os.path.join(IMG, name + ".png")]
     args += ["--time", "%.3f" % time] if time else ["--spp", str(spp)]
     head, b = blocks(run(args + extra))
     for x in b:
@@ -124,6 +126,33 @@ def main():
     wav_t = min((x for x in et if x["sampling"] == "wavelet"), key=lambda x: f(x, "variance"))
     r_time = f(wav_t, "variance") / f(ana, "variance")
     md.append("")
+
+    # the same equal-time runs with other seeds: how far the ratios move with
+    # the random numbers and with the machine's timing
+    md.append("Again with other seeds (each line: the analytic lobe and the hierarchy, %.2f CPU "
+              "seconds each; the ratio is the hierarchy's image variance over the analytic's):\n"
+              % budget)
+    md.append("| seed | analytic | wavelet (level 4) | vs analytic | wavelet (level 6) "
+              "| vs analytic |")
+    md.append("|---|---|---|---|---|---|")
+    ratios = {4: [f(et[2], "variance") / f(ana, "variance")],
+              6: [f(et[3], "variance") / f(ana, "variance")]}
+    for seed in SEEDS:
+        r4 = render("table5_equal_time_seed%d" % seed, ["analytic", "wavelet"], ext,
+                    time=budget, level=4, seed=seed)
+        r6 = render("table5_equal_time_l6_seed%d" % seed, ["wavelet"], ext, time=budget,
+                    level=6, seed=seed)[0]
+        a = f(r4[0], "variance")
+        ratios[4].append(f(r4[1], "variance") / a)
+        ratios[6].append(f(r6, "variance") / a)
+        md.append("| %d | %.5f | %.5f | %.3f x | %.5f | %.3f x |" % (
+            seed, a, f(r4[1], "variance"), ratios[4][-1], f(r6, "variance"), ratios[6][-1]))
+    spread = {lv: (min(v), max(v)) for lv, v in ratios.items()}
+    md.append("\nOver seed 1 (above) and these, the hierarchy's equal-time ratio ranges from "
+              "%.3f to %.3f x at level 4 and from %.3f to %.3f x at level 6.\n"
+              % (spread[4] + spread[6]))
+    # the target holds only if some level is below the analytic at every seed
+    lv_t = min(ratios, key=lambda lv: max(ratios[lv]))
 
     # ---- what the image variance is made of ----
     # V(N) = floor + c / N: the analytic run at 4 N spp gives the floor (the
@@ -253,8 +282,10 @@ def main():
     md.append("| wavelet IS variance <= 0.5 x uniform at equal samples (paper 0.66 x) | "
               "%.2f x (level 4); best level: %.2f x (level %d) | %s |" % (
                   r_eq, f(best, "variance") / f(uni, "variance"), best["level"], met(r_eq <= 0.5)))
-    md.append("| wavelet IS variance < analytic lobe sampling at equal time | %.2f x (%s) | %s |"
-              % (r_time, label(wav_t), met(r_time < 1.0)))
+    md.append("| wavelet IS variance < analytic lobe sampling at equal time, at every seed "
+              "| %.2f x (%s, seed 1); level %d: %.3f to %.3f x over %d seeds | %s |"
+              % (r_time, label(wav_t), lv_t, spread[lv_t][0], spread[lv_t][1],
+                 len(ratios[lv_t]), met(spread[lv_t][1] < 1.0)))
     md.append("| hierarchy throughput >= 10 x linear scan at level 6 | %.1f x | %s |"
               % (r_thr, met(r_thr >= 10.0)))
     md.append("")
