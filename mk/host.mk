@@ -6,7 +6,8 @@ LDLIBS := -lm
 
 HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c host-tools/src/brdf_models.c \
             firmware/link/bw_frame.c host-tools/src/link.c \
-            host-tools/src/bw_sample.c host-tools/src/brdf_eval.c
+            host-tools/src/bw_sample.c host-tools/src/brdf_eval.c \
+            host-tools/src/bw_mesh.c
 CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
            host-tools/src/cmd_synth.c host-tools/src/cmd_device.c \
            host-tools/src/cmd_render.c host-tools/src/render_png.c

@@ -7,9 +7,10 @@
 
 # libbrdfwave.so: the library's sources again, position independent
 PYLIB := $(BUILD)/libbrdfwave.so
-# (the sampler and the evaluation of decoded BRDFs, which need the reference
-# model's library, stay out: the package does not use them)
-PY_HOST_SRC := $(filter-out host-tools/src/bw_sample.c host-tools/src/brdf_eval.c,$(HOST_SRC))
+# (the sampler, the evaluation of decoded BRDFs, which needs the reference
+# model's library, and the render meshes stay out: the package does not use them)
+PY_HOST_SRC := $(filter-out host-tools/src/bw_sample.c host-tools/src/brdf_eval.c \
+                              host-tools/src/bw_mesh.c,$(HOST_SRC))
 PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(CORE_SRC) $(PY_HOST_SRC))
 
 $(BUILD)/pic/%.o: %.c

@@ -3,8 +3,9 @@
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
 # trips. Compiles the sources directly (firmware/codec/*.c, host-tools/src/
-# bwhost.c, geodesic.c and brdf_models.c, each test) into $SANITIZE_BUILD (default
-# build/sanitize), independent of the Makefile's build. The codec core is
+# bwhost.c, geodesic.c, brdf_models.c, the sampler and the mesh, each test)
+# into $SANITIZE_BUILD (default build/sanitize), independent of the
+# Makefile's build. The codec core is
 # compiled for size (-Os, as for the device's flash budget), so that the
 # forms its loops take in that build (BW_SMALL) run here; the other builds
 # run the -O2 forms. test_codec then runs once more with the core built
@@ -22,7 +23,8 @@ CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-
         -Ifirmware/codec -Ifirmware/link -Ihost-tools/src -Ihost-tools/ref -Itests/unit"
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c host-tools/src/bwhost.c host-tools/src/link.c
          host-tools/src/geodesic.c host-tools/src/brdf_models.c
-         host-tools/src/bw_sample.c host-tools/src/brdf_eval.c host-tools/ref/bwr_interp.c
+         host-tools/src/bw_sample.c host-tools/src/brdf_eval.c host-tools/src/bw_mesh.c
+         host-tools/ref/bwr_interp.c
          host-tools/ref/bwr_rgl.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}

@@ -30,6 +30,7 @@
 
 #include "brdf_eval.h"
 #include "brdf_models.h"
+#include "bw_mesh.h"
 #include "bw_sample.h"
 #include "bwhost.h"
 #include "commands.h"
@@ -157,6 +158,8 @@ typedef struct {
     sphere_t *sph;
     size_t n_sph;
     flake_t *flake; /* NULL or the root */
+    bwh_mesh_t mesh; /* triangles, all of material mesh_mat */
+    int mesh_mat;
     v3 eye, look, up;
     double fov_deg;
     material_t mat[MAX_MATERIALS + 3];
@@ -308,6 +311,16 @@ static int intersect(const scene_t *s, v3 o, v3 d, hit_t *h)
     }
     if (s->flake)
         flake_hit(s->flake, o, d, h);
+    if (s->mesh.n_tri) {
+        long k = bwh_mesh_hit(&s->mesh, (const double[3]){o.x, o.y, o.z},
+                              (const double[3]){d.x, d.y, d.z}, R_EPS, &h->t);
+        if (k >= 0) {
+            const double *n = s->mesh.tri[k].n;
+            h->p = add(o, mul(d, h->t));
+            h->n = vec(n[0], n[1], n[2]);
+            h->mat = s->mesh_mat;
+        }
+    }
     return h->mat >= 0;
 }
 
@@ -502,7 +515,8 @@ static void render_usage(FILE *f)
         "ceiling, and writes a PNG. Objects take the --material options in order\n"
         "(repeated when fewer are given):\n"
         "  sphereflake  one sphereflake (91 spheres) on the floor\n"
-        "  room         a table (box), a large and a small sphere, a sphereflake\n"
+        "  room         a table (box), a sphere, a torus (6,144 triangles) on the\n"
+        "               table, a sphereflake\n"
         "\n"
         "  --material SPEC    phong:KD,KS,N       modified Phong (default phong:0.05,0.9,60)\n"
         "                     ward:KD,KS,AX,AY    Ward anisotropic\n"
@@ -791,8 +805,13 @@ int bw_cmd_render(int argc, char **argv)
     }
     t_build = wall_seconds() - t_build;
     sc.n_mat = MAT_SLOT0 + n_spec;
+    size_t npx = (size_t)w * h, W = (size_t)w * n_strat;
+    double *sum = calloc(npx * 3, sizeof *sum);
+    uint8_t *rgb = malloc(npx * 3 * n_strat);
+    pthread_t *tid = malloc((size_t)threads * sizeof *tid);
+    int rc = 0;
     quad_t quads[7 + 6];
-    sphere_t sph[2];
+    sphere_t sph[1];
     flake_t root;
     sc.quad = quads;
     sc.sph = sph;
@@ -809,19 +828,20 @@ int bw_cmd_render(int argc, char **argv)
             m3 = MAT_SLOT0 + 3 % n_spec;
         add_box(&sc, vec(-0.85, 0.1, 0.0), vec(0.05, 0.85, 0.5), m0); /* table */
         sph[0] = (sphere_t){vec(0.5, 0.45, 0.38), 0.38, m1};
-        sph[1] = (sphere_t){vec(-0.35, 0.45, 0.68), 0.18, m2};
-        sc.n_sph = 2;
+        sc.n_sph = 1;
+        /* a torus of 6,144 triangles lying on the table */
+        if (bwh_mesh_torus(&sc.mesh, (const double[3]){-0.38, 0.45, 0.56}, 0.17, 0.06, 96, 32) !=
+            0) {
+            rc = rfail("%s", bwh_last_error());
+            goto done;
+        }
+        sc.mesh_mat = m2;
         flake_build(&root, vec(0.45, -0.25, 0.16), 0.16, vec(0, 0, 1), 2, m3);
         sc.flake = &root;
         sc.eye = vec(0, -0.97, 1.2);
         sc.look = vec(0, 0.3, 0.45);
     }
 
-    size_t npx = (size_t)w * h, W = (size_t)w * n_strat;
-    double *sum = calloc(npx * 3, sizeof *sum);
-    uint8_t *rgb = malloc(npx * 3 * n_strat);
-    pthread_t *tid = malloc((size_t)threads * sizeof *tid);
-    int rc = 0;
     if (!sum || !rgb || !tid) {
         rc = rfail("out of memory");
         goto done;
@@ -894,6 +914,7 @@ int bw_cmd_render(int argc, char **argv)
 done:
     if (sc.flake)
         flake_free(sc.flake);
+    bwh_mesh_free(&sc.mesh);
     for (int k = 0; k < n_spec; k++)
         material_free(&sc.mat[MAT_SLOT0 + k]);
     free(sum);

@@ -194,7 +194,7 @@ def main():
     # ---- Table 6 style room ----
     mats = []
     md.append("## Table 6 style: room with measured BRDFs\n")
-    md.append("Materials (table, large sphere, small sphere, sphereflake): RGL %s, each "
+    md.append("Materials (table, sphere, torus of 6,144 triangles, sphereflake): RGL %s, each "
               "`brdfwave import-rgl --level 4 --incoming 16 --channel rgb`, "
               "`brdfwave encode --ratio 20` (95 %% compression, as the paper's room) and "
               "decoded by the renderer; the fourth object reuses the first material.\n"
