@@ -7,7 +7,7 @@ BR_SAMPLING := $(BR_DIR)/bench_sampling
 
 $(BR_SAMPLING): tests/bench/render/bench_sampling.c $(LIB)
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(CFLAGS) $< $(LIB) -lm -o $@
+	$(Q)$(CC) $(CFLAGS) -Itests/unit $< $(LIB) -lm -o $@
 
 .PHONY: bench-render
 bench-render: $(BW_CLI) $(BR_SAMPLING)

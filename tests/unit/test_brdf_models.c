@@ -21,6 +21,7 @@
 
 #include "brdf_models.h"
 #include "geodesic.h"
+#include "test_rng.h"
 
 #define PI BWH_BRDF_PI
 
@@ -73,13 +74,7 @@ static double albedo(brdf_fn f, const bwh_brdf_params_t *p, const double wi[3], 
 
 static uint64_t rng = 0x853c49e6748fea9bull;
 
-static double uniform(void)
-{
-    rng ^= rng >> 12;
-    rng ^= rng << 25;
-    rng ^= rng >> 27;
-    return (double)((rng * 0x2545f4914f6cdd1dull) >> 11) * (1.0 / 9007199254740992.0);
-}
+static double uniform(void) { return test_uniform(&rng); }
 
 /* uniform on the upper hemisphere (z = cos theta uniform in (0, 1]) */
 static void random_direction(double d[3])

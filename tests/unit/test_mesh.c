@@ -20,18 +20,13 @@
 
 #include "bw_mesh.h"
 #include "bwhost.h"
+#include "test_rng.h"
 
 #define PI 3.14159265358979323846
 
 static uint64_t rng = 0x2545f4914f6cdd1dull;
 
-static double uniform(void)
-{
-    rng ^= rng >> 12;
-    rng ^= rng << 25;
-    rng ^= rng >> 27;
-    return (double)((rng * 0x2545f4914f6cdd1dull) >> 11) * 0x1.0p-53;
-}
+static double uniform(void) { return test_uniform(&rng); }
 
 static void random_dir(double d[3])
 {

@@ -40,6 +40,7 @@
 #include "bwhost.h"
 #include "bwr_rgl.h"
 #include "geodesic.h"
+#include "test_rng.h"
 
 #define PI BWH_BRDF_PI
 /* samples per incoming direction: 1M, or 100k with BW_TEST_QUICK=1 (the
@@ -50,13 +51,7 @@ static long N_SAMPLES = 1000000L;
 
 static uint64_t rng_state = 0x853c49e6748fea9bull;
 
-static double rnd(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return (double)((rng_state * 0x2545f4914f6cdd1dull) >> 11) * 0x1.0p-53;
-}
+static double rnd(void) { return test_uniform(&rng_state); }
 
 /* ---- chi-square ----------------------------------------------------------- */
 

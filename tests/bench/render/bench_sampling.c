@@ -20,6 +20,7 @@
 
 #include "brdf_models.h"
 #include "bw_sample.h"
+#include "test_rng.h"
 
 static double cpu(void)
 {
@@ -29,13 +30,7 @@ static double cpu(void)
 }
 
 static uint64_t st = 0x9e3779b97f4a7c15ull;
-static double rnd(void)
-{
-    st ^= st >> 12;
-    st ^= st << 25;
-    st ^= st >> 27;
-    return (double)((st * 0x2545f4914f6cdd1dull) >> 11) * 0x1.0p-53;
-}
+static double rnd(void) { return test_uniform(&st); }
 
 static double phong(void *ctx, const double wi[3], const double wo[3])
 {
