@@ -3,7 +3,8 @@
 
 Writes build/bench/render.md and the images in build/bench/render/:
   - Table 5: Phong metallic sphereflake, uniform vs analytic-lobe vs wavelet
-    importance sampling at equal samples, and at equal CPU time;
+    importance sampling at equal samples, and at equal CPU time (the analytic
+    lobe and the hierarchy once more with seeds 2 to 4);
   - Table 6 style: the room with three measured RGL BRDFs (import-rgl,
     encoded at 20:1 and decoded), uniform vs wavelet sampling;
   - what the image variance is made of (an analytic run at 4x the paths);
@@ -80,7 +81,8 @@ def main():
     md = []
     md.append("# Path tracing with wavelet importance sampling (sec. 6.2)\n")
     md.append("Written by `make bench-render` (tests/bench/render/run_render_bench.py) with "
-              "`brdfwave render`: image %s, %s threads, depth 5, seed 1. Image variance as in "
+              "`brdfwave render`: image %s, %s threads, depth 5, seed 1 where no other is given. "
+              "Image variance as in "
               "sec. 6.2: per pixel the variance of the displayed intensity over its 3 x 3 block, "
               "averaged over the image (lower is better; it includes the image's own edges, "
               "which no sampler removes). `radiance` is the unclamped image mean: strategies "
