@@ -84,7 +84,7 @@ static double weight_relvar(const bwh_sampler_t *s, const bwh_brdf_params_t *p, 
     for (long i = 0; i < n; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf = 0.0, w = 0.0;
         if (draw(s, p, how, wi, u, wo, &pdf) == 0 && wo[2] > 0.0 && pdf > 0.0)
-            w = bwh_brdf_phong((void *)p, wi, wo) * wo[2] / pdf;
+            w = bwh_brdf_phong(p, wi, wo) * wo[2] / pdf;
         m += w;
         m2 += w * w;
     }
