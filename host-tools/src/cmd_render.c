@@ -9,7 +9,9 @@
  * the analytic lobe, or the wavelet hierarchy); the diffuse walls always
  * sample the cosine. Paths end on the light or after --depth bounces; the
  * value carried is f cos / pdf with the BRDF's own values (the sampling
- * structure only picks directions).
+ * structure only picks directions). With --direct mis every hit also takes
+ * one sample of the light panel, and the two ways of reaching the light are
+ * weighted by the power heuristic (Veach 1997) with the strategy's pdf.
  *
  * Output: a PNG (sRGB-encoded) and key: value lines, among them the image
  * variance of sec. 6.2: for every interior pixel the variance of the
@@ -164,6 +166,8 @@ typedef struct {
     double fov_deg;
     material_t mat[MAX_MATERIALS + 3];
     int n_mat;
+    const quad_t *light; /* the emitting panel */
+    double light_area;
 } scene_t;
 
 enum { MAT_WALL = 0, MAT_WALL_RED, MAT_LIGHT_ID, MAT_SLOT0 };
@@ -201,6 +205,9 @@ static void add_room(scene_t *s)
     add_quad(s, vec(-1, -1, 0), vec(0, 2, 0), vec(0, 0, 2), MAT_WALL_RED); /* left */
     add_quad(s, vec(1, -1, 0), vec(0, 0, 2), vec(0, 2, 0), MAT_WALL);      /* right */
     add_quad(s, vec(-0.8, -0.8, 1.999), vec(0, 1.6, 0), vec(1.6, 0, 0), MAT_LIGHT_ID);
+    s->light = &s->quad[s->n_quad - 1];
+    v3 c = cross(s->light->u, s->light->v);
+    s->light_area = sqrt(dot(c, c));
 }
 
 static void flake_build(flake_t *f, v3 c, double r, v3 up, int depth, int mat)
@@ -330,6 +337,7 @@ typedef struct {
     const scene_t *scene;
     enum strategy strat;
     int depth;
+    int direct; /* sample the light at every hit, weighted by the power heuristic */
     unsigned w, h;
     uint64_t seed;
     double *sum; /* w * h * 3 */
@@ -339,18 +347,44 @@ typedef struct {
     unsigned long long samples; /* strategy samples drawn (all threads) */
 } job_t;
 
+/* the strategy used at a hit on m: the diffuse walls, and payloads under
+ * --sampling analytic, sample the cosine */
+static enum strategy strategy_for(const job_t *j, const material_t *m)
+{
+    enum strategy st = j->strat;
+    if (m->kind == MAT_DIFFUSE || (st == S_ANALYTIC && m->kind == MAT_DATA))
+        st = S_COSINE;
+    if (st == S_WAVELET && !m->has_sampler)
+        st = S_COSINE;
+    return st;
+}
+
+/* the density sample_dir draws wo with (local frame) */
+static double strategy_pdf(const job_t *j, const material_t *m, const double wi[3],
+                           const double wo[3])
+{
+    if (!(wo[2] > 0.0))
+        return 0.0;
+    switch (strategy_for(j, m)) {
+    case S_UNIFORM:
+        return 1.0 / (2.0 * R_PI);
+    case S_COSINE:
+        return wo[2] / R_PI;
+    case S_ANALYTIC:
+        return m->kind == MAT_PHONG ? bwh_phong_pdf(&m->p, wi, wo) : bwh_ward_pdf(&m->p, wi, wo);
+    case S_WAVELET:
+        return bwh_sampler_pdf(&m->sampler, wi, wo);
+    }
+    return 0.0;
+}
+
 /* one direction for the material at a hit; wo and pdf in the local frame.
  * 0: no direction (the path ends). */
 static int sample_dir(const job_t *j, const material_t *m, const double wi[3], rng_t *r,
                       double wo[3], double *pdf)
 {
     double u[3] = {rnd(r), rnd(r), rnd(r)};
-    enum strategy st = j->strat;
-    if (m->kind == MAT_DIFFUSE || (st == S_ANALYTIC && m->kind == MAT_DATA))
-        st = S_COSINE;
-    if (st == S_WAVELET && !m->has_sampler)
-        st = S_COSINE;
-    switch (st) {
+    switch (strategy_for(j, m)) {
     case S_UNIFORM: {
         double z = u[0], rr = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * R_PI * u[1];
         wo[0] = rr * cos(phi);
@@ -380,18 +414,62 @@ static int sample_dir(const job_t *j, const material_t *m, const double wi[3], r
     return 0;
 }
 
+/* Veach's power heuristic (exponent 2): the weight of a strategy of density
+ * p where another of density q could have drawn the same direction */
+static double power_heuristic(double p, double q)
+{
+    return p * p / (p * p + q * q);
+}
+
+/* --direct mis: the light reflected at a hit p (shading frame n, t, b; wi
+ * local) from one point drawn uniformly on the panel's area, if nothing is in
+ * the way, weighted against the chance that the material's strategy draws
+ * the same direction */
+static v3 light_sample(const job_t *j, const material_t *m, v3 p, v3 n, v3 t, v3 b,
+                       const double wi[3], rng_t *r)
+{
+    const scene_t *s = j->scene;
+    const quad_t *lq = s->light;
+    double su = rnd(r), sv = rnd(r);
+    v3 to = sub(add(lq->o, add(mul(lq->u, su), mul(lq->v, sv))), p);
+    double d2 = dot(to, to);
+    v3 dl = mul(to, 1.0 / sqrt(d2));
+    double cl = -dot(dl, lq->n), wl[3] = {dot(dl, t), dot(dl, b), dot(dl, n)};
+    if (!(cl > 0.0 && wl[2] > 0.0))
+        return vec(0, 0, 0);
+    v3 f = mat_eval(m, wi, wl);
+    if (!(f.x + f.y + f.z > 0.0))
+        return vec(0, 0, 0);
+    hit_t hs;
+    if (!intersect(s, add(p, mul(n, 1e-5)), dl, &hs) || hs.mat != MAT_LIGHT_ID)
+        return vec(0, 0, 0);
+    double pl = d2 / (s->light_area * cl); /* per solid angle */
+    double w = power_heuristic(pl, strategy_pdf(j, m, wi, wl)) * wl[2] / pl;
+    const v3 *e = &s->mat[MAT_LIGHT_ID].albedo;
+    return vec(f.x * e->x * w, f.y * e->y * w, f.z * e->z * w);
+}
+
 static v3 trace(const job_t *j, v3 o, v3 d, rng_t *r, unsigned long long *n_samples)
 {
     const scene_t *s = j->scene;
     v3 L = vec(0, 0, 0), beta = vec(1, 1, 1);
+    double prev_pdf = 0.0; /* density of d from the last hit; 0: a camera ray */
     for (int bounce = 0; bounce <= j->depth; bounce++) {
         hit_t h;
         if (!intersect(s, o, d, &h))
             break;
         const material_t *m = &s->mat[h.mat];
         if (m->kind == MAT_LIGHT) {
-            if (dot(d, h.n) < 0.0)
-                L = add(L, vec(beta.x * m->albedo.x, beta.y * m->albedo.y, beta.z * m->albedo.z));
+            double cl = -dot(d, h.n); /* the panel emits on its front face only */
+            if (cl > 0.0) {
+                /* a direction drawn by the last hit's strategy: with --direct
+                 * mis the light sample covers it too, so it takes its weight */
+                double wgt = j->direct && prev_pdf > 0.0
+                                 ? power_heuristic(prev_pdf, h.t * h.t / (s->light_area * cl))
+                                 : 1.0;
+                L = add(L, mul(vec(beta.x * m->albedo.x, beta.y * m->albedo.y,
+                                   beta.z * m->albedo.z), wgt));
+            }
             break;
         }
         if (bounce == j->depth)
@@ -403,9 +481,14 @@ static v3 trace(const job_t *j, v3 o, v3 d, rng_t *r, unsigned long long *n_samp
         double wi[3] = {dot(vdir, t), dot(vdir, b), dot(vdir, n)}, wo[3], pdf;
         if (!(wi[2] > 0.0))
             break;
+        if (j->direct) {
+            v3 e = light_sample(j, m, h.p, n, t, b, wi, r);
+            L = add(L, vec(beta.x * e.x, beta.y * e.y, beta.z * e.z));
+        }
         (*n_samples)++;
         if (!sample_dir(j, m, wi, r, wo, &pdf))
             break;
+        prev_pdf = pdf;
         v3 f = mat_eval(m, wi, wo);
         double w = wo[2] / pdf;
         beta = vec(beta.x * f.x * w, beta.y * f.y * w, beta.z * f.z * w);
@@ -509,7 +592,8 @@ static void render_usage(FILE *f)
         "usage: brdfwave render [--scene sphereflake|room] [--material SPEC]...\n"
         "                       [--sampling uniform|cosine|analytic|wavelet] [--level J]\n"
         "                       [--spp N | --time SECONDS] [--size WxH] [--threads T]\n"
-        "                       [--depth D] [--seed S] [--exposure E] -o OUT.png\n"
+        "                       [--depth D] [--direct off|mis] [--seed S] [--exposure E]\n"
+        "                       -o OUT.png\n"
         "\n"
         "Path-traces a closed room with diffuse walls and a light panel under the\n"
         "ceiling, and writes a PNG. Objects take the --material options in order\n"
@@ -538,6 +622,11 @@ static void render_usage(FILE *f)
         "  --size WxH         image size (default 160x120)\n"
         "  --threads T        worker threads (default: the online CPUs)\n"
         "  --depth D          bounces (default 5)\n"
+        "  --direct off|mis   off (default): paths reach the light only along the\n"
+        "                     strategies' directions, as in sec. 6.2; mis: at every hit\n"
+        "                     also one point drawn on the light panel, both weighted by\n"
+        "                     the power heuristic with the strategy's pdf (multiple\n"
+        "                     importance sampling: the same mean, less noise)\n"
         "  --seed S           random seed (default 1); images do not depend on --threads\n"
         "  --exposure E       scale before display (default 1)\n"
         "  -o, --output FILE  the PNG\n"
@@ -689,6 +778,7 @@ int bw_cmd_render(int argc, char **argv)
     long spp = 16;
     double time_budget = 0.0, exposure = 1.0, v;
     unsigned w = 160, h = 120, depth = 5;
+    int direct = 0;
     long threads = sysconf(_SC_NPROCESSORS_ONLN);
     uint64_t seed = 1;
 
@@ -766,6 +856,13 @@ int bw_cmd_render(int argc, char **argv)
             if (parse_num(val, 1, 64, &v) != 0 || v != floor(v))
                 return rfail("--depth needs an integer 1..64");
             depth = (unsigned)v;
+        } else if (!strcmp(a, "--direct")) {
+            if (!strcmp(val, "off"))
+                direct = 0;
+            else if (!strcmp(val, "mis"))
+                direct = 1;
+            else
+                return rfail("--direct needs off or mis");
         } else if (!strcmp(a, "--seed")) {
             if (parse_num(val, 0, 4294967295.0, &v) != 0 || v != floor(v))
                 return rfail("--seed needs an integer 0..2^32-1");
@@ -849,12 +946,13 @@ int bw_cmd_render(int argc, char **argv)
     printf("scene: %s\n", scene_name);
     for (int k = 0; k < n_spec; k++)
         printf("material: %s\n", sc.mat[MAT_SLOT0 + k].spec);
-    printf("size: %ux%u\nbuild_seconds: %.3f\n", w, h, t_build);
+    printf("size: %ux%u\ndirect: %s\nbuild_seconds: %.3f\n", w, h, direct ? "mis" : "off",
+           t_build);
     int tty = isatty(2);
     for (int si = 0; si < n_strat; si++) {
         enum strategy strat = strats[si];
         memset(sum, 0, npx * 3 * sizeof *sum);
-        job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .w = w, .h = h,
+        job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .direct = direct, .w = w, .h = h,
                      .seed = splitmix(seed), .sum = sum};
         pthread_mutex_init(&job.lock, NULL);
         double c0 = cpu_seconds(), w0 = wall_seconds();

@@ -66,6 +66,32 @@ else
     bad "render failed: $(head -3 "$T/a.err")"
 fi
 
+# --direct mis: light samples weighted against the strategies' own directions.
+# The weights of the two ways to reach the light add up to 1, so every
+# strategy keeps the mean of the plain path tracer, with less noise.
+D="$BW render --size 40x30 --spp 64 --depth 4 --threads 2"
+if $D --sampling analytic -o "$T/d0.png" >"$T/d0.txt" 2>&1 &&
+   $D --sampling cosine -o "$T/d1.png" >"$T/d1.txt" 2>&1 &&
+   $D --direct mis --sampling uniform,cosine,analytic,wavelet -o "$T/d2.png" >"$T/d2.txt" 2>&1
+then
+    ok
+    r0=$(val radiance 1 "$T/d0.txt"); v1=$(val variance 1 "$T/d1.txt")
+    # within 2 % (5 % for uniform sampling of the metallic lobe, the noisiest);
+    # a light sample weighted with the cosine's pdf instead of the lobe's is
+    # 11 % off
+    for k in 1 2 3 4; do
+        rk=$(val radiance $k "$T/d2.txt"); tol=0.02; [ $k = 1 ] && tol=0.05
+        if awk -v a="$r0" -v b="$rk" -v t=$tol 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(a > 0 && d < t * a)}'
+        then ok; else bad "--direct mis strategy $k: mean $rk, without light samples $r0"; fi
+    done
+    vm=$(val variance 2 "$T/d2.txt")
+    echo "direct mis: radiance $(val radiance 2 "$T/d2.txt") (off $r0); cosine variance $vm (off $v1)"
+    if awk -v a="$vm" -v b="$v1" 'BEGIN {exit !(a > 0 && a < 0.8 * b)}'; then ok
+    else bad "--direct mis: cosine variance $vm not below 0.8 x $v1"; fi
+else
+    bad "--direct runs failed: $(tail -2 "$T/d2.txt")"
+fi
+
 # the same image with 1 thread
 if $R --sampling wavelet --threads 1 -o "$T/b1.png" >/dev/null 2>&1 &&
    $R --sampling wavelet --threads 2 -o "$T/b2.png" >/dev/null 2>&1 &&
@@ -94,6 +120,7 @@ $BW encode -i "$T/s.f32" -o "$T/refl.bwv" --bands 2 --level 2 --max-error 0.001 
 expect_error "no output" $BW render --spp 1
 expect_error "unknown option" $BW render --frobnicate 1 -o "$T/bad.png"
 expect_error "bad strategy" $BW render --sampling best -o "$T/bad.png"
+expect_error "bad --direct" $BW render --direct nee -o "$T/bad.png"
 expect_error "spp 0" $BW render --spp 0 -o "$T/bad.png"
 expect_error "level 7" $BW render --level 7 -o "$T/bad.png"
 expect_error "size" $BW render --size 2x2 -o "$T/bad.png"
