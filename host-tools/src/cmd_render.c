@@ -54,6 +54,7 @@ static v3 vec(double x, double y, double z) { return (v3){x, y, z}; }
 static v3 add(v3 a, v3 b) { return vec(a.x + b.x, a.y + b.y, a.z + b.z); }
 static v3 sub(v3 a, v3 b) { return vec(a.x - b.x, a.y - b.y, a.z - b.z); }
 static v3 mul(v3 a, double s) { return vec(a.x * s, a.y * s, a.z * s); }
+static v3 mulv(v3 a, v3 b) { return vec(a.x * b.x, a.y * b.y, a.z * b.z); } /* per channel */
 static double dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static v3 cross(v3 a, v3 b)
 {
@@ -421,6 +422,16 @@ static double power_heuristic(double p, double q)
     return p * p / (p * p + q * q);
 }
 
+/* the density per solid angle with which a point drawn uniformly on the
+ * light panel's area is seen from distance^2 d2 at cosine cl on the panel */
+static double light_pdf(const scene_t *s, double d2, double cl)
+{
+    return d2 / (s->light_area * cl);
+}
+
+/* the origin of a ray leaving a surface at p on the side of its normal n */
+static v3 leave(v3 p, v3 n) { return add(p, mul(n, 1e-5)); }
+
 /* --direct mis: the light reflected at a hit p (shading frame n, t, b; wi
  * local) from one point drawn uniformly on the panel's area, if nothing is in
  * the way, weighted against the chance that the material's strategy draws
@@ -441,12 +452,11 @@ static v3 light_sample(const job_t *j, const material_t *m, v3 p, v3 n, v3 t, v3
     if (!(f.x + f.y + f.z > 0.0))
         return vec(0, 0, 0);
     hit_t hs;
-    if (!intersect(s, add(p, mul(n, 1e-5)), dl, &hs) || hs.mat != MAT_LIGHT_ID)
+    if (!intersect(s, leave(p, n), dl, &hs) || hs.mat != MAT_LIGHT_ID)
         return vec(0, 0, 0);
-    double pl = d2 / (s->light_area * cl); /* per solid angle */
+    double pl = light_pdf(s, d2, cl);
     double w = power_heuristic(pl, strategy_pdf(j, m, wi, wl)) * wl[2] / pl;
-    const v3 *e = &s->mat[MAT_LIGHT_ID].albedo;
-    return vec(f.x * e->x * w, f.y * e->y * w, f.z * e->z * w);
+    return mul(mulv(f, s->mat[MAT_LIGHT_ID].albedo), w);
 }
 
 static v3 trace(const job_t *j, v3 o, v3 d, rng_t *r, unsigned long long *n_samples)
@@ -465,10 +475,9 @@ static v3 trace(const job_t *j, v3 o, v3 d, rng_t *r, unsigned long long *n_samp
                 /* a direction drawn by the last hit's strategy: with --direct
                  * mis the light sample covers it too, so it takes its weight */
                 double wgt = j->direct && prev_pdf > 0.0
-                                 ? power_heuristic(prev_pdf, h.t * h.t / (s->light_area * cl))
+                                 ? power_heuristic(prev_pdf, light_pdf(s, h.t * h.t, cl))
                                  : 1.0;
-                L = add(L, mul(vec(beta.x * m->albedo.x, beta.y * m->albedo.y,
-                                   beta.z * m->albedo.z), wgt));
+                L = add(L, mul(mulv(beta, m->albedo), wgt));
             }
             break;
         }
@@ -481,21 +490,19 @@ static v3 trace(const job_t *j, v3 o, v3 d, rng_t *r, unsigned long long *n_samp
         double wi[3] = {dot(vdir, t), dot(vdir, b), dot(vdir, n)}, wo[3], pdf;
         if (!(wi[2] > 0.0))
             break;
-        if (j->direct) {
-            v3 e = light_sample(j, m, h.p, n, t, b, wi, r);
-            L = add(L, vec(beta.x * e.x, beta.y * e.y, beta.z * e.z));
-        }
+        if (j->direct)
+            L = add(L, mulv(beta, light_sample(j, m, h.p, n, t, b, wi, r)));
         (*n_samples)++;
         if (!sample_dir(j, m, wi, r, wo, &pdf))
             break;
         prev_pdf = pdf;
         v3 f = mat_eval(m, wi, wo);
         double w = wo[2] / pdf;
-        beta = vec(beta.x * f.x * w, beta.y * f.y * w, beta.z * f.z * w);
+        beta = mul(mulv(beta, f), w);
         if (!(beta.x + beta.y + beta.z > 0.0))
             break;
         d = norm(add(add(mul(t, wo[0]), mul(b, wo[1])), mul(n, wo[2])));
-        o = add(h.p, mul(n, 1e-5));
+        o = leave(h.p, n);
     }
     return L;
 }
@@ -952,8 +959,8 @@ int bw_cmd_render(int argc, char **argv)
     for (int si = 0; si < n_strat; si++) {
         enum strategy strat = strats[si];
         memset(sum, 0, npx * 3 * sizeof *sum);
-        job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .direct = direct, .w = w, .h = h,
-                     .seed = splitmix(seed), .sum = sum};
+        job_t job = {.scene = &sc, .strat = strat, .depth = (int)depth, .direct = direct,
+                     .w = w, .h = h, .seed = splitmix(seed), .sum = sum};
         pthread_mutex_init(&job.lock, NULL);
         double c0 = cpu_seconds(), w0 = wall_seconds();
         long pass = 0;
