@@ -619,8 +619,11 @@ static void render_usage(FILE *f)
         "                     payloads) or the wavelet hierarchy (default wavelet); a\n"
         "                     comma list renders each in turn, side by side in one PNG\n"
         "  --level J          level of accuracy of the hierarchy, 0..6 (default 4)\n"
-        "  --tables N         incoming tables for analytic models, every 90/N degrees from\n"
-        "                     the normal (default 32)\n"
+        "  --tables N         incoming tables for analytic models: isotropic, every 90/N\n"
+        "                     degrees from the normal (default 32); anisotropic Ward,\n"
+        "                     one per incoming triangle, at least N (default: the grid\n"
+        "                     level whose triangles are no wider than the lobe, up to\n"
+        "                     1024 triangles)\n"
         "  --supersample S    leaf integrals from 4^S points per leaf, 0..3 (default 1)\n"
         "  --mix M            weight of the cosine lobe in the hierarchy's pdf (default 0.05)\n"
         "  --spp N            paths per pixel (default 16)\n"
@@ -638,7 +641,8 @@ static void render_usage(FILE *f)
         "  --exposure E       scale before display (default 1)\n"
         "  -o, --output FILE  the PNG\n"
         "\n"
-        "Prints key: value lines: build_seconds (the sampling structures), then per\n"
+        "Prints key: value lines: material (with tables, the incoming tables of its\n"
+        "hierarchy), build_seconds (the sampling structures), then per\n"
         "strategy: sampling, spp, cpu_seconds, wall_seconds, samples (directions drawn),\n"
         "samples_per_second (per CPU second), radiance (mean over the image and the\n"
         "channels, unclamped: the same for every strategy up to noise), mean (displayed\n"
@@ -743,19 +747,27 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
                  : bwh_sampler_build(&m->sampler, BWH_SAMPLER_FULL, so->level, d->n_in, NULL,
                                      d->level_in, bwh_brdf_data_mean_cb, &m->data,
                                      so->supersample, so->mix);
-    } else if (m->kind == MAT_PHONG) {
-        double *th = malloc(so->tables * sizeof *th);
+    } else if (m->kind == MAT_PHONG || m->p.ax == m->p.ay) {
+        /* isotropic (Phong, Ward with AX = AY): tables over theta_i only,
+         * turned to the hit's azimuth (sec. 5.2) */
+        unsigned long n = so->tables ? so->tables : 32;
+        double *th = malloc(n * sizeof *th);
         if (!th)
             return rfail("out of memory");
-        for (unsigned long k = 0; k < so->tables; k++)
-            th[k] = k * 0.5 * R_PI / (double)so->tables; /* from normal incidence */
-        rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_ISO, so->level, so->tables, th, 0,
-                               analytic_f, m, so->supersample, so->mix);
+        for (unsigned long k = 0; k < n; k++)
+            th[k] = k * 0.5 * R_PI / (double)n; /* from normal incidence */
+        rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_ISO, so->level, n, th, 0, analytic_f,
+                               m, so->supersample, so->mix);
         free(th);
     } else {
-        /* anisotropic: one table per incoming triangle, about tables of them */
+        /* anisotropic: one table per incoming triangle, at least --tables of
+         * them; by default the level whose triangles, about 1.25 / 2^li
+         * radians across, are at most 1.6 x the narrower roughness wide, so
+         * that the lobe moves by less than its width within one triangle */
         unsigned li = 0;
-        while (li < 4 && bwh_grid_count(li) < so->tables)
+        double a = fmin(m->p.ax, m->p.ay);
+        while (li < 4 && (so->tables ? bwh_grid_count(li) < so->tables
+                                     : 1.2533 / (double)(1u << li) > 1.6 * a))
             li++;
         rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_FULL, so->level, bwh_grid_count(li), NULL,
                                li, analytic_f, m, so->supersample, so->mix);
@@ -781,7 +793,7 @@ int bw_cmd_render(int argc, char **argv)
     int n_spec = 0;
     enum strategy strats[4] = {S_WAVELET};
     int n_strat = 1;
-    sampler_opts_t so = {4, 1, 32, 0.05};
+    sampler_opts_t so = {4, 1, 0, 0.05}; /* tables 0: by the material */
     long spp = 16;
     double time_budget = 0.0, exposure = 1.0, v;
     unsigned w = 160, h = 120, depth = 5;
@@ -951,8 +963,12 @@ int bw_cmd_render(int argc, char **argv)
         goto done;
     }
     printf("scene: %s\n", scene_name);
-    for (int k = 0; k < n_spec; k++)
-        printf("material: %s\n", sc.mat[MAT_SLOT0 + k].spec);
+    for (int k = 0; k < n_spec; k++) {
+        const material_t *m = &sc.mat[MAT_SLOT0 + k];
+        printf("material: %s\n", m->spec);
+        if (m->has_sampler)
+            printf("tables: %zu\n", m->sampler.n_tables);
+    }
     printf("size: %ux%u\ndirect: %s\nbuild_seconds: %.3f\n", w, h, direct ? "mis" : "off",
            t_build);
     int tty = isatty(2);

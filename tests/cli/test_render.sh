@@ -92,6 +92,34 @@ else
     bad "--direct runs failed: $(tail -2 "$T/d2.txt")"
 fi
 
+# Ward: AX = AY is isotropic, so its hierarchy is turned to the hit's azimuth
+# (32 tables over theta_i) and keeps the analytic lobe's mean. A narrow
+# anisotropic lobe gets one table per incoming triangle at the level that
+# resolves it (1024 for AY = 0.05, --tables overrides): with the former 64
+# tables its image variance was 1.4 x the analytic lobe's.
+W="$BW render --size 80x60 --spp 16 --depth 4 --threads 2 --sampling analytic,wavelet"
+if $W --material ward:0.05,0.9,0.3,0.3 -o "$T/wi.png" >"$T/wi.txt" 2>&1 &&
+   $W --material ward:0.05,0.9,0.15,0.05 -o "$T/wa.png" >"$T/wa.txt" 2>&1 &&
+   $BW render --material ward:0.05,0.9,0.15,0.05 --tables 64 --spp 1 --size 8x6 \
+       -o "$T/wt.png" >"$T/wt.txt" 2>&1; then
+    ok
+    ti=$(awk '$1 == "tables:" {print $2}' "$T/wi.txt")
+    ta=$(awk '$1 == "tables:" {print $2}' "$T/wa.txt")
+    tt=$(awk '$1 == "tables:" {print $2}' "$T/wt.txt")
+    [ "$ti" = 32 ] && ok || bad "isotropic Ward: $ti tables, not the 32 turned ones"
+    [ "$ta" = 1024 ] && ok || bad "Ward AY = 0.05: $ta tables, not 1024"
+    [ "$tt" = 64 ] && ok || bad "Ward with --tables 64: $tt tables"
+    ra=$(val radiance 1 "$T/wi.txt"); rw=$(val radiance 2 "$T/wi.txt")
+    if awk -v a="$ra" -v w="$rw" 'BEGIN {d = a - w; if (d < 0) d = -d; exit !(a > 0 && d < 0.02 * a)}'
+    then ok; else bad "isotropic Ward: analytic and wavelet means differ: $ra $rw"; fi
+    va=$(val variance 1 "$T/wa.txt"); vw=$(val variance 2 "$T/wa.txt")
+    echo "Ward AY = 0.05: variance analytic $va wavelet $vw"
+    if awk -v a="$va" -v w="$vw" 'BEGIN {exit !(w > 0 && w < 1.25 * a)}'; then ok
+    else bad "Ward AY = 0.05: wavelet variance $vw not below 1.25 x analytic $va"; fi
+else
+    bad "Ward renders failed: $(tail -2 "$T/wa.txt")"
+fi
+
 # the same image with 1 thread
 if $R --sampling wavelet --threads 1 -o "$T/b1.png" >/dev/null 2>&1 &&
    $R --sampling wavelet --threads 2 -o "$T/b2.png" >/dev/null 2>&1 &&
@@ -123,6 +151,7 @@ expect_error "bad strategy" $BW render --sampling best -o "$T/bad.png"
 expect_error "bad --direct" $BW render --direct nee -o "$T/bad.png"
 expect_error "spp 0" $BW render --spp 0 -o "$T/bad.png"
 expect_error "level 7" $BW render --level 7 -o "$T/bad.png"
+expect_error "tables 0" $BW render --tables 0 -o "$T/bad.png"
 expect_error "size" $BW render --size 2x2 -o "$T/bad.png"
 expect_error "bad material" $BW render --material phong:1,2 -o "$T/bad.png"
 expect_error "missing payload" $BW render --material "payload:$T/none.bwv" -o "$T/bad.png"

@@ -9,6 +9,8 @@ Writes build/bench/render.md and the images in build/bench/render/:
   - Table 6 style: the room with three measured RGL BRDFs (import-rgl,
     encoded at 20:1 and decoded), uniform vs wavelet sampling;
   - what the image variance is made of (an analytic run at 4x the paths);
+  - the same sphereflake in Ward, isotropic and anisotropic: the analytic
+    lobe against the hierarchy at equal samples and at equal time;
   - sampling throughput of the hierarchy at level 6 vs a linear scan, and the
     analytic lobe sampler's for scale;
   - per incoming angle, the relative variance of the path weight f cos / pdf
@@ -27,6 +29,7 @@ SIZE = os.environ.get("BENCH_RENDER_SIZE", "160x120")
 SPP = int(os.environ.get("BENCH_RENDER_SPP", "64"))
 THREADS = os.environ.get("BENCH_RENDER_THREADS", "2")
 PHONG = "phong:0.05,0.9,60"
+WARD = ["ward:0.05,0.9,0.3,0.3", "ward:0.05,0.9,0.15,0.05"]  # isotropic, anisotropic
 SEEDS = [2, 3, 4]  # the equal-time comparison repeated
 RGL = ["cc_ibiza_sunset_rgb", "satin_rosaline_rgb", "paper_white_rgb"]
 
@@ -66,6 +69,7 @@ def render(name, strategies, extra, spp=None, time=None, level=4, seed=1):
         x["image"] = name + ".png"
         x["level"] = level if x["sampling"] == "wavelet" else None
         x["build"] = float(head.get("build_seconds", 0))
+        x["tables"] = head.get("tables", "")
     return b
 
 
@@ -223,6 +227,32 @@ def main():
                   "; ".join(prod), label(wbest), (f(wbest, "variance") - floor) / n_ana,
                   f(wbest, "cpu_seconds") / f(eq[1], "cpu_seconds"),
                   100.0 * floor / f(eq[1], "variance")))
+
+    # ---- Ward ----
+    md.append("## The sphereflake in Ward\n")
+    md.append("The same scene with a Ward material: isotropic (%s; its hierarchy is turned "
+              "about the normal, 32 tables over theta_i) and anisotropic (%s; one table per "
+              "incoming triangle, by default at the grid level that resolves the lobe, "
+              "`--tables 64` for the coarser grid). The hierarchy at level 4; equal time is "
+              "the analytic lobe's time at %d spp.\n" % (WARD[0], WARD[1], SPP))
+    md.append("| material | run | sampling | tables | spp | CPU s | radiance | image variance "
+              "| vs analytic |")
+    md.append("|---|---|---|---|---|---|---|---|---|")
+    for k, wm in enumerate(WARD):
+        ext_w = ["--scene", "sphereflake", "--material", wm]
+        rows = render("ward%d_equal_spp" % k, ["analytic", "wavelet"], ext_w, spp=SPP)
+        if k == 1:
+            rows += render("ward%d_tables64" % k, ["wavelet"], ext_w + ["--tables", "64"],
+                           spp=SPP)
+        n_spp = len(rows)
+        rows += render("ward%d_equal_time" % k, ["wavelet"], ext_w,
+                       time=f(rows[0], "cpu_seconds"))
+        for i, x in enumerate(rows):
+            md.append("| %s | %s | %s | %s | %s | %.2f | %.4f | %.5f | %.3f x |" % (
+                wm, "equal samples" if i < n_spp else "equal time", label(x), x["tables"] if x["sampling"] == "wavelet" else "",
+                x["spp"], f(x, "cpu_seconds"), f(x, "radiance"), f(x, "variance"),
+                f(x, "variance") / f(rows[0], "variance")))
+    md.append("")
 
     # ---- Table 6 style room ----
     mats = []
