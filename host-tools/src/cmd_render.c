@@ -399,13 +399,11 @@ static int sample_dir(const job_t *j, const material_t *m, const double wi[3], r
         *pdf = wo[2] / R_PI;
         return wo[2] > 0.0;
     case S_ANALYTIC:
-        if (m->kind == MAT_PHONG) {
+        if (m->kind == MAT_PHONG)
             bwh_phong_sample(&m->p, wi, u, wo);
-            *pdf = bwh_phong_pdf(&m->p, wi, wo);
-        } else {
+        else
             bwh_ward_sample(&m->p, wi, u, wo);
-            *pdf = bwh_ward_pdf(&m->p, wi, wo);
-        }
+        *pdf = strategy_pdf(j, m, wi, wo);
         return wo[2] > 0.0 && *pdf > 0.0;
     case S_WAVELET:
         if (bwh_sampler_sample(&m->sampler, wi, u, wo, pdf, NULL) != 0)
@@ -761,13 +759,14 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
         free(th);
     } else {
         /* anisotropic: one table per incoming triangle, at least --tables of
-         * them; by default the level whose triangles, about 1.25 / 2^li
-         * radians across, are at most 1.6 x the narrower roughness wide, so
-         * that the lobe moves by less than its width within one triangle */
+         * them; by default the level whose triangles (their width taken as
+         * the square root of their solid angle, 2 pi / count) are at most
+         * 1.6 x the narrower roughness, so that the lobe moves by less than
+         * its width within one triangle */
         unsigned li = 0;
         double a = fmin(m->p.ax, m->p.ay);
         while (li < 4 && (so->tables ? bwh_grid_count(li) < so->tables
-                                     : 1.2533 / (double)(1u << li) > 1.6 * a))
+                                     : sqrt(2.0 * R_PI / (double)bwh_grid_count(li)) > 1.6 * a))
             li++;
         rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_FULL, so->level, bwh_grid_count(li), NULL,
                                li, analytic_f, m, so->supersample, so->mix);

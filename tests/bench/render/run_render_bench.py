@@ -249,8 +249,9 @@ def main():
                        time=f(rows[0], "cpu_seconds"))
         for i, x in enumerate(rows):
             md.append("| %s | %s | %s | %s | %s | %.2f | %.4f | %.5f | %.3f x |" % (
-                wm, "equal samples" if i < n_spp else "equal time", label(x), x["tables"] if x["sampling"] == "wavelet" else "",
-                x["spp"], f(x, "cpu_seconds"), f(x, "radiance"), f(x, "variance"),
+                wm, "equal samples" if i < n_spp else "equal time", label(x),
+                x["tables"] if x["sampling"] == "wavelet" else "", x["spp"],
+                f(x, "cpu_seconds"), f(x, "radiance"), f(x, "variance"),
                 f(x, "variance") / f(rows[0], "variance")))
     md.append("")
 
