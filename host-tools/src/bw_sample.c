@@ -37,7 +37,6 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
 {
     memcpy(t->a, a, sizeof t->a);
     memcpy(t->b, b, sizeof t->b);
-    memcpy(t->c, c, sizeof t->c);
     double tb[3], tc[3], ab = bwg_dot3(a, b), ac = bwg_dot3(a, c);
     for (int k = 0; k < 3; k++) {
         tb[k] = b[k] - ab * a[k];
@@ -65,12 +64,15 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
     double ahat = u1 * t->area, s, c;
     if (t->area <= 0.1) {
         /* sin, cos of ahat - alpha by the sum formulas, with the Taylor
-         * series of the small angle ahat: the first term left out is
-         * below 3e-17 */
-        double x2 = ahat * ahat;
-        double sa =
-            ahat * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
-        double ca = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+         * series of the small angle ahat to x^9 and x^8: the first term
+         * left out is below 3e-17; the powers paired so that the chain of
+         * dependent products stays short */
+        double x2 = ahat * ahat, x4 = x2 * x2;
+        double sa = ahat + ahat * x2 *
+                               ((-1.0 / 6.0 + x2 * (1.0 / 120.0)) +
+                                x4 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0)));
+        double ca = 1.0 + x2 * ((-1.0 / 2.0 + x2 * (1.0 / 24.0)) +
+                                x4 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0)));
         s = sa * t->cos_alpha - ca * t->sin_alpha;
         c = ca * t->cos_alpha + sa * t->sin_alpha;
     } else {
@@ -79,22 +81,30 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
     }
     double uu = c - t->cos_alpha;
     double vv = s + t->sin_alpha * t->cos_c;
-    double q = ((vv * c - uu * s) * t->cos_alpha - vv) / ((vv * s + uu * c) * t->sin_alpha);
+    /* q = cos of the arc from a to c' = num / den, and sqrt(1 - q^2) as
+     * sqrt(den^2 - num^2) / |den|: the square root and the reciprocal run
+     * side by side */
+    double num = (vv * c - uu * s) * t->cos_alpha - vv;
+    double den = (vv * s + uu * c) * t->sin_alpha;
+    double r2 = (den - num) * (den + num);
+    double rden = 1.0 / den, root = sqrt(r2 > 0.0 ? r2 : 0.0);
+    double q = num * rden;
     q = q > 1.0 ? 1.0 : q < -1.0 ? -1.0 : q;
-    double sq = sqrt(1.0 - q * q), cp[3];
+    double sq = root * fabs(rden), cp[3];
+    sq = sq < 1.0 ? sq : 1.0;
     for (int k = 0; k < 3; k++)
         cp[k] = q * t->a[k] + sq * t->e[k];
-    /* on the arc from b to c': z = cos of the angle from b; the direction
-     * along the arc is f = (c' - cb b) / |c' - cb b| */
-    double cb = bwg_dot3(cp, t->b);
-    double z = 1.0 - u2 * (1.0 - cb);
-    double f[3];
+    /* on the arc from b to c': z = cos of the angle from b, with
+     * w = 1 - cos(b, c') = |c' - b|^2 / 2 (no cancellation), 1 - z = u2 w;
+     * along the arc f = c' - (1 - w) b, of length sqrt(w (2 - w)) */
+    double d[3];
     for (int k = 0; k < 3; k++)
-        f[k] = cp[k] - cb * t->b[k];
-    double ff = bwg_dot3(f, f);
-    double g = ff > 0.0 ? sqrt(fmax(0.0, 1.0 - z * z) / ff) : 0.0;
+        d[k] = cp[k] - t->b[k];
+    double w = 0.5 * bwg_dot3(d, d), uw = u2 * w, z = 1.0 - uw;
+    /* g |f| = sqrt(1 - z^2) = sqrt(uw (2 - uw)) */
+    double g = sqrt(u2 * (2.0 - uw) / (2.0 - w));
     for (int k = 0; k < 3; k++)
-        out[k] = z * t->b[k] + g * f[k];
+        out[k] = z * t->b[k] + g * (d[k] + w * t->b[k]);
 }
 
 void bwh_sample_cosine(double u1, double u2, double out[3])
@@ -109,8 +119,8 @@ void bwh_sampler_free(bwh_sampler_t *s)
 {
     free(s->theta);
     free(s->trig);
-    free(s->split);
-    free(s->mass);
+    free(s->cdf);
+    free(s->end);
     free(s->leaf);
     free(s->cut);
     memset(s, 0, sizeof *s);
@@ -134,48 +144,35 @@ static void sum_up(double *node, unsigned level)
     }
 }
 
-#define SHARE_ONE 32768u /* a parent's whole share: 2^15 */
+#define CDF_ONE 0x80000000u /* a table's whole probability: 2^31 */
 
-/* The shares of 4 siblings of values v (>= 0) in their parent, rounded to
- * units of 2^-15 adding up to 2^15: a child of positive value gets at least
- * one unit, a child of value 0 none; the rounding left over goes to the
- * largest. Stored as where each share ends. */
-static void quantise(const double v[4], uint16_t end[4])
+/* Where each leaf's part of [0, 2^31) ends, for leaf values v (>= 0, not
+ * all 0): the running sum rounded, a leaf of positive value at least 1 unit
+ * wide, a leaf of value 0 empty, the last end 2^31. */
+static void leaf_ends(const double *v, size_t n, uint32_t *end)
 {
-    double p = v[0] + v[1] + v[2] + v[3];
-    long w[4], sum = 0;
-    unsigned big = 0;
-    for (unsigned k = 0; k < 4; k++) {
-        if (p > 0.0) {
-            w[k] = v[k] > 0.0 ? lround(SHARE_ONE * (v[k] / p)) : 0;
-            if (v[k] > 0.0 && w[k] < 1)
-                w[k] = 1;
-        } else {
-            w[k] = SHARE_ONE / 4; /* never reached: the parent has no mass */
-        }
-        sum += w[k];
-        big = v[k] > v[big] ? k : big;
+    double total = 0.0, run = 0.0;
+    for (size_t k = 0; k < n; k++)
+        total += v[k];
+    uint64_t prev = 0;
+    for (size_t k = 0; k < n; k++) {
+        run += v[k];
+        double x = (double)CDF_ONE * (run / total);
+        uint64_t e = x < (double)CDF_ONE ? (uint64_t)llround(x) : CDF_ONE;
+        if (v[k] > 0.0 && e <= prev)
+            e = prev + 1;
+        end[k] = (uint32_t)(e < prev ? prev : e); /* may pass 2^31: capped below */
+        prev = end[k];
     }
-    w[big] += (long)SHARE_ONE - sum;
-    long e = 0;
-    for (unsigned k = 0; k < 4; k++) {
-        e += w[k];
-        end[k] = (uint16_t)e;
+    /* room for every positive leaf after k: the caps ascend, so the ends
+     * stay ascending and a positive leaf keeps its unit */
+    size_t after = 0;
+    for (size_t k = n; k-- > 0;) {
+        uint64_t cap = (uint64_t)CDF_ONE - after;
+        if (end[k] > cap || k + 1 == n)
+            end[k] = (uint32_t)cap;
+        after += v[k] > 0.0;
     }
-}
-
-/* the share of child m, from where the shares end */
-static inline unsigned share(const uint16_t end[4], unsigned m)
-{
-    return end[m] - (m ? end[m - 1] : 0u);
-}
-
-/* One level of the descent's arithmetic: the mass of a child whose parent
- * has mass `parent` and whose share is `units` (the build and sample use
- * this same product, so they agree to the bit). */
-static inline double child_mass(double parent, unsigned units)
-{
-    return parent * 0x1p-15 * (double)units;
 }
 
 /* sub-triangle centres and projected solid angles of every leaf */
@@ -234,7 +231,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->n_tables = n_tables;
     s->n_leaves = bwh_grid_count(level);
     size_t n_nodes = level_offset(level + 1);
-    s->n_groups = n_nodes / 4; /* groups of 4 siblings */
+    s->n_groups = level_offset(level) / 4; /* groups of 4 siblings above the leaves */
     s->mix = mix;
     s->f = f;
     s->ctx = ctx;
@@ -244,22 +241,21 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     subgrid_t g = {NULL, NULL, (size_t)1 << (2u * supersample)};
     bwh_tri_t *tri = malloc(bwh_grid_count(cut_levels) * sizeof *tri);
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
-    s->leaf = malloc(s->n_leaves * sizeof *s->leaf);
+    s->leaf = aligned_alloc(64, s->n_leaves * sizeof *s->leaf); /* 2 cache lines each */
     s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
-    double *node = malloc(n_nodes * sizeof *node), *nmass = malloc(n_nodes * sizeof *nmass);
-    s->split = malloc(n_tables * s->n_groups * sizeof *s->split);
-    s->mass = malloc(n_tables * s->n_leaves * sizeof *s->mass);
+    double *node = malloc(n_nodes * sizeof *node);
+    s->cdf = malloc((s->n_groups ? n_tables * s->n_groups : 1) * sizeof *s->cdf);
+    s->end = malloc(n_tables * s->n_leaves * sizeof *s->end);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
     g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
     if (kind == BWH_SAMPLER_ISO) {
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !s->leaf || !s->cut || !node || !nmass || !s->split || !s->mass ||
+    if (!tri || !in_dir || !s->leaf || !s->cut || !node || !s->cdf || !s->end ||
         !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
         free(node);
-        free(nmass);
         free(in_dir);
         free(g.dir);
         free(g.proj);
@@ -310,18 +306,19 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
                 lv[k] = s->leaf[k].proj;
             sum_up(node, level);
         }
-        /* shares of every group; masses from the base triangles down */
-        uint16_t(*sp)[4] = s->split + i * s->n_groups;
-        for (size_t q = 0; q < s->n_groups; q++) {
-            quantise(node + 4 * q, sp[q]);
-            double parent = q ? nmass[q - 1] : 1.0; /* group q: children of node q - 1 */
-            for (unsigned m = 0; m < 4; m++)
-                nmass[4 * q + m] = child_mass(parent, share(sp[q], m));
+        /* the leaves' ends, and above them each group's first 3 ends */
+        uint32_t *end = s->end + i * s->n_leaves;
+        leaf_ends(lv, s->n_leaves, end);
+        bwh_cdf_group_t *grp = s->cdf + i * s->n_groups;
+        for (unsigned l = 0; l < level; l++) {
+            size_t span = (size_t)1 << (2u * (level - l)); /* leaves under a node */
+            size_t n_grp = (size_t)1 << (2u * l);
+            for (size_t q = 0; q < n_grp; q++)
+                for (unsigned m = 0; m < 3; m++)
+                    grp[level_offset(l) / 4 + q].end[m] = end[(4 * q + m + 1) * span - 1];
         }
-        memcpy(s->mass + i * s->n_leaves, nmass + off_leaf, s->n_leaves * sizeof *nmass);
     }
     free(node);
-    free(nmass);
     free(in_dir);
     free(g.dir);
     free(g.proj);
@@ -421,22 +418,26 @@ static void to_world(const select_t *sel, const double w[3], double out[3])
     out[2] = w[2];
 }
 
-/* tree pdf of leaf k (local frame); known: the mass of k in table
- * sel->t[chosen] when sample has it from its descent (chosen < 0: none) */
-static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, int chosen,
-                       double known)
+/* probability of leaf k in table t: its part's width */
+static inline double leaf_prob(const bwh_sampler_t *s, size_t t, size_t k)
+{
+    const uint32_t *end = s->end + t * s->n_leaves;
+    return 0x1p-31 * (double)(end[k] - (k ? end[k - 1] : 0u));
+}
+
+/* tree pdf of leaf k (local frame) */
+static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
 {
     double p = 0.0;
     for (int i = 0; i < sel->n; i++)
-        p += sel->w[i] * (i == chosen ? known : s->mass[sel->t[i] * s->n_leaves + k]);
+        p += sel->w[i] * leaf_prob(s, sel->t[i], k);
     return p * s->leaf[k].inv_area;
 }
 
 /* the mixture's pdf at a direction in leaf k with cos(theta_o) = cos_o */
-static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o,
-                          int chosen, double known)
+static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o)
 {
-    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k, chosen, known);
+    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k);
 }
 
 /* the leaf holding wo (world frame, z >= 0, finite) */
@@ -447,57 +448,44 @@ static size_t leaf_of(const bwh_sampler_t *s, const select_t *sel, const double 
     return locate(s, s->level, local);
 }
 
-/* Picks one of 4 siblings by their shares (ends `end`, units 2^-15 of the
- * parent, whose range of u is [*base, *base + *mass)): the child whose part
- * of the range holds u; *base, *mass become that child's. A child of share 0
- * is never picked: when rounding leaves u just outside the parent's range,
- * the first or last child with a share. */
-static inline unsigned pick4(const uint16_t end[4], double u, double *base, double *mass)
+/* The leaf whose part of [0, 2^31) holds x in table t: at each level the
+ * child is the number of its siblings' ends at or below x (a child of
+ * probability 0 has an empty part and is never picked); the leaves' own
+ * ends give the last step. The reads depend on each other; while one level
+ * is read, the next level's 4 candidates (side by side) are fetched, and
+ * before the last step the 4 candidate leaves' triangles (8 cache lines). */
+static size_t descend(const bwh_sampler_t *s, size_t t, uint32_t x)
 {
-    double q = *mass * 0x1p-15, x = u - *base;
-    unsigned m = (unsigned)(x >= q * end[0]) + (unsigned)(x >= q * end[1]) +
-                 (unsigned)(x >= q * end[2]);
-    if (share(end, m) == 0) { /* only below 0 (m = 0) or at the top (m = 3) */
-        if (m == 0)
-            while (share(end, m) == 0)
-                m++;
+    const bwh_cdf_group_t *g = s->cdf + t * s->n_groups;
+    const uint32_t *leaf_end = s->end + t * s->n_leaves;
+    size_t idx = 0;
+    for (unsigned l = 0; l < s->level; l++) {
+        const bwh_cdf_group_t *next = g + ((size_t)1 << (2u * l)); /* level l + 1's */
+        if (l + 1 < s->level)
+            __builtin_prefetch(next + 4 * idx);
         else
-            while (m > 0 && share(end, m) == 0)
-                m--;
+            __builtin_prefetch(leaf_end + 16 * idx);
+        const uint32_t *e = g[idx].end;
+        idx = 4 * idx + (unsigned)(x >= e[0]) + (unsigned)(x >= e[1]) + (unsigned)(x >= e[2]);
+        g = next;
     }
-    *base += q * (end[m] - share(end, m));
-    *mass = child_mass(*mass, share(end, m));
-    return m;
+    for (int j = 0; j < 8; j++)
+        __builtin_prefetch((const char *)&s->leaf[4 * idx] + 64 * j);
+    const uint32_t *e = leaf_end + 4 * idx;
+    return 4 * idx + (unsigned)(x >= e[0]) + (unsigned)(x >= e[1]) + (unsigned)(x >= e[2]);
 }
 
-/* the leaf for u in [0, 1) in the table of shares sp; *mass its mass */
-static size_t descend(const bwh_sampler_t *s, const uint16_t (*sp)[4], double u, double *mass)
+/* the same leaf by the running sum of the leaves' probabilities, O(n) */
+static size_t scan(const bwh_sampler_t *s, size_t t, uint32_t x)
 {
-    double base = 0.0;
-    *mass = 1.0;
-    size_t idx = pick4(sp[0], u, &base, mass);
-    for (unsigned l = 1; l <= s->level; l++) {
-        sp += (size_t)1 << (2u * (l - 1)); /* level l's groups: after 4^(l-1) more */
-        idx = 4 * idx + pick4(sp[idx], u, &base, mass);
-    }
-    return idx;
-}
-
-/* the same leaf by the running sum of the leaf masses; *leaf_mass its mass */
-static size_t scan(const bwh_sampler_t *s, const double *mass, double u, double *leaf_mass)
-{
-    double acc = 0.0;
-    size_t k = 0, last = 0;
-    for (; k < s->n_leaves; k++) {
-        if (!(mass[k] > 0.0))
-            continue;
-        acc += mass[k];
-        last = k;
-        if (u < acc)
+    const uint32_t *end = s->end + t * s->n_leaves;
+    uint32_t acc = 0;
+    size_t k = 0;
+    for (; k + 1 < s->n_leaves; k++) {
+        acc += end[k] - (k ? end[k - 1] : 0u);
+        if (x < acc)
             break;
     }
-    k = k < s->n_leaves ? k : last;
-    *leaf_mass = mass[k];
     return k;
 }
 
@@ -507,8 +495,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     select_t sel;
     if (!select_tables(s, wi, &sel))
         return -1;
-    double u0 = u[0], m = 0.0;
-    int chosen = -1; /* the table drawn from, when the tree is */
+    double u0 = u[0];
     size_t k;
     if (u0 < s->mix) {
         bwh_sample_cosine(u[1], u[2], wo);
@@ -516,7 +503,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     } else {
         if (s->mix > 0.0)
             u0 = (u0 - s->mix) / (1.0 - s->mix);
-        chosen = 0;
+        int chosen = 0; /* the table drawn from */
         if (sel.n == 2) {
             if (u0 < sel.w[1]) {
                 chosen = 1;
@@ -528,13 +515,13 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
         if (u0 >= 1.0)
             u0 = nextafter(1.0, 0.0);
         size_t t = sel.t[chosen];
-        k = linear ? scan(s, s->mass + t * s->n_leaves, u0, &m)
-                   : descend(s, s->split + t * s->n_groups, u0, &m);
+        uint32_t x = (uint32_t)(u0 * (double)CDF_ONE);
+        k = linear ? scan(s, t, x) : descend(s, t, x);
         double local[3];
         bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
         to_world(&sel, local, wo);
     }
-    *pdf = mixture_pdf(s, &sel, k, fmax(0.0, wo[2]), chosen, m);
+    *pdf = mixture_pdf(s, &sel, k, wo[2] > 0.0 ? wo[2] : 0.0);
     if (value)
         *value = clamp_f(s->f(s->ctx, wi, wo));
     return 0;
@@ -558,7 +545,7 @@ double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double 
     if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0) || !isfinite(wo[0]) ||
         !isfinite(wo[1]) || !isfinite(wo[2]))
         return 0.0;
-    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2], -1, 0.0);
+    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)
@@ -567,7 +554,7 @@ double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t 
     if (leaf >= s->n_leaves || !select_tables(s, wi, &sel))
         return 0.0;
     return s->mix * s->leaf[leaf].proj / S_PI +
-           (1.0 - s->mix) * tree_pdf(s, &sel, leaf, -1, 0.0) * s->leaf[leaf].area;
+           (1.0 - s->mix) * tree_pdf(s, &sel, leaf) * s->leaf[leaf].area;
 }
 
 /* ---- analytic lobes --------------------------------------------------- */

@@ -7,18 +7,22 @@
  * of the children up to the 4 base triangles: every node's integral over its
  * subtree. f is a scalar given by a callback: the BRDF integrated over
  * wavelength, or one channel (bwh_brdf_data_band_cb), so analytic models and
- * decoded payloads are sampled the same way. What it keeps is each node's
- * share of its parent's integral, in 15-bit fixed point (the 4 shares of a
- * group add up to 2^15 and a child with a positive integral gets at least
- * 1): 8 bytes per group of 4 siblings, and each leaf's probability, the
- * product of the shares above it.
+ * decoded payloads are sampled the same way. The integrals are kept as
+ * where each node's part of [0, 2^31) ends, the parts of 4 siblings
+ * following each other inside their parent's (a node's integral, relative
+ * to the whole table, is its part's width; a node of positive integral has
+ * a part at least 1 wide, a node of integral 0 an empty one): per group of
+ * 4 siblings above the leaves the ends of the first 3 (12 bytes), and
+ * where each leaf's part ends (4 bytes a leaf): a leaf's probability is its
+ * part's width / 2^31.
  *
- *   sample   descend from the base triangles, picking a child with
- *            probability its share (O(log4 n)), then a uniform direction in
+ *   sample   descend from the base triangles, picking the child whose part
+ *            holds the point floor(u 2^31), so each child with probability
+ *            its integral over its parent's (O(log4 n)), then a uniform direction in
  *            the leaf's spherical triangle (Arvo 1995); with it the pdf and,
  *            on request, the BRDF's value there;
  *   pdf      leaf probability / leaf solid angle: piecewise constant. The
- *            descent forms the same product as the build, so sample's pdf
+ *            descent's leaf has the width the build gave it, so sample's pdf
  *            and pdf() agree to the bit away from leaf edges.
  *
  * Negative values (left by lossy compression) and values that are not finite
@@ -63,9 +67,16 @@ enum { BWH_SAMPLER_ISO = 2, BWH_SAMPLER_FULL = 3 };
 /* f(wi, wo): scalar BRDF value in 1/sr (may be negative; clamped). */
 typedef double (*bwh_brdf_fn)(void *ctx, const double wi[3], const double wo[3]);
 
-/* One triangle of the sampled level, ready for Arvo's method. */
+/* One group of 4 siblings in a table: where the parts of children 0, 1, 2
+ * end, in units of 2^-31 of the table (child 3 ends where the parent does). */
 typedef struct {
-    double a[3], b[3], c[3];
+    uint32_t end[3];
+} bwh_cdf_group_t;
+
+/* One triangle of the sampled level, ready for Arvo's method (vertices
+ * a, b, c): 128 bytes. */
+typedef struct {
+    double a[3], b[3];
     double alpha, cos_alpha, sin_alpha; /* angle at vertex a */
     double cos_c;                       /* a . b */
     double e[3];                        /* unit, in the plane of a and c, normal to a */
@@ -80,16 +91,14 @@ typedef struct {
     unsigned level_in;   /* FULL: incoming level */
     size_t n_tables;
     size_t n_leaves;     /* 4 * 4^level */
-    size_t n_groups;     /* groups of 4 siblings per table, all levels */
+    size_t n_groups;     /* groups of 4 siblings per table above the leaves */
     double *theta;       /* ISO: ascending zenith angles of the tables (radians) */
     double *trig;        /* ISO: [n_tables][2] cos, sin of theta */
-    uint16_t (*split)[4]; /* [n_tables][n_groups]: where the shares of children
-                            0, 1, 2, 3 end in their parent, in units of 2^-15
-                            (the last is 2^15); the groups of level l (4^l of
-                            them, children of level l - 1's nodes) start at
-                            (4^l - 1) / 3 */
-    double *mass;        /* [n_tables][n_leaves]: probability of each leaf, the
-                            product of its ancestors' shares */
+    bwh_cdf_group_t *cdf; /* [n_tables][n_groups]: the groups above the
+                             leaves; those of level l (4^l of them, children
+                             of level l - 1's nodes) start at (4^l - 1) / 3 */
+    uint32_t *end;       /* [n_tables][n_leaves]: where each leaf's part ends
+                            (the last at 2^31) */
     bwh_leaf_t *leaf;    /* [n_leaves] */
     double (*cut)[3][3]; /* [triangles above the leaves, or above level_in's if
                             finer]: normals of the great circles cutting off

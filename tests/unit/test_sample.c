@@ -385,14 +385,13 @@ static void sampler_decoded_measured_passes_chi_square(void **state)
     bwh_sampler_free(&s);
 }
 
-/* normalize(a + b + c) of a leaf, as bwh_tri_centre */
-static void leaf_centre(const bwh_leaf_t *L, double c[3])
+/* the centres (normalize(a + b + c)) of a sampler's leaves */
+static double (*leaf_centres(const bwh_sampler_t *s))[3]
 {
-    bwh_tri_t t;
-    memcpy(t.v[0], L->a, sizeof t.v[0]);
-    memcpy(t.v[1], L->b, sizeof t.v[1]);
-    memcpy(t.v[2], L->c, sizeof t.v[2]);
-    bwh_tri_centre(&t, c);
+    double(*c)[3] = malloc(s->n_leaves * sizeof *c);
+    assert_non_null(c);
+    assert_int_equal(bwh_grid_centres(s->level, c, NULL), 0);
+    return c;
 }
 
 /* Total variation distance between the sampler's leaf masses for wi and
@@ -403,11 +402,10 @@ static double leaf_mass_distance(const bwh_sampler_t *s, bwh_brdf_fn f, void *ct
                                  const double wi[3], const double wi_frame[3])
 {
     double *m = malloc(s->n_leaves * sizeof *m), sum = 0.0, tv = 0.0;
+    double(*c)[3] = leaf_centres(s);
     assert_non_null(m);
     for (size_t k = 0; k < s->n_leaves; k++) {
-        double c[3];
-        leaf_centre(&s->leaf[k], c);
-        double v = f(ctx, wi_frame, c);
+        double v = f(ctx, wi_frame, c[k]);
         m[k] = (v > 0.0 ? v : 0.0) * s->leaf[k].proj;
         sum += m[k];
     }
@@ -416,6 +414,7 @@ static double leaf_mass_distance(const bwh_sampler_t *s, bwh_brdf_fn f, void *ct
         tv += fabs(bwh_sampler_leaf_mass(s, wi, k) - want);
     }
     free(m);
+    free(c);
     return 0.5 * tv;
 }
 
@@ -765,17 +764,18 @@ static void negative_values_are_clamped_alike_in_sample_and_pdf(void **state)
                                        0.0),
                      0);
     double wi[3] = {0.0, 0.0, 1.0};
-    double c[3];
+    double(*c)[3] = leaf_centres(&s);
     size_t zero = 0;
     long neg = 0;
     for (size_t k = 0; k < s.n_leaves; k++) {
-        leaf_centre(&s.leaf[k], c); /* supersample 0: f at the centre only */
-        if (with_negative(NULL, wi, c) < 0.0) {
+        /* supersample 0: f at the centre only */
+        if (with_negative(NULL, wi, c[k]) < 0.0) {
             assert_true(bwh_sampler_leaf_mass(&s, wi, k) == 0.0);
-            assert_true(bwh_sampler_pdf(&s, wi, c) == 0.0);
+            assert_true(bwh_sampler_pdf(&s, wi, c[k]) == 0.0);
             zero++;
         }
     }
+    free(c);
     assert_true(zero > s.n_leaves / 3);
     for (int i = 0; i < 100000; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf, value;
@@ -799,8 +799,8 @@ static double faint_half(void *ctx, const double wi[3], const double wo[3])
     return wo[0] > 0.0 ? 1.0 : 1e-12; /* half the hemisphere nearly 0, not 0 */
 }
 
-/* The shares are rounded to 2^-15 of the parent, but a child whose integral
- * is positive keeps at least one unit: the tree alone (no cosine lobe) still
+/* The leaves' parts are rounded to 2^-31 of the table, but a leaf whose
+ * integral is positive keeps at least one unit: the tree alone (no cosine lobe) still
  * reaches every direction where f > 0, as often as its pdf says. */
 static void a_faint_region_keeps_a_positive_pdf(void **state)
 {
@@ -809,14 +809,16 @@ static void a_faint_region_keeps_a_positive_pdf(void **state)
     double th[1] = {0.0};
     assert_int_equal(
         bwh_sampler_build(&s, BWH_SAMPLER_ISO, 3, 1, th, 0, faint_half, NULL, 0, 0.0), 0);
-    double wi[3] = {0.0, 0.0, 1.0}, c[3], faint = 0.0;
+    double wi[3] = {0.0, 0.0, 1.0}, (*c)[3] = leaf_centres(&s), faint = 0.0;
     for (size_t k = 0; k < s.n_leaves; k++) {
         double m = bwh_sampler_leaf_mass(&s, wi, k);
         assert_true(m > 0.0);
-        leaf_centre(&s.leaf[k], c);
-        if (c[0] <= 0.0)
+        if (c[k][0] <= 0.0) {
+            assert_true(fabs(m * 0x1p31 - 1.0) < 1e-12); /* its integral rounds to 0: one unit */
             faint += m;
+        }
     }
+    free(c);
     long hits = 0;
     for (long i = 0; i < N_SAMPLES; i++) {
         double u[3] = {rnd(), rnd(), rnd()}, wo[3], pdf;
