@@ -83,10 +83,12 @@ void bwh_tri_cut_normals(const bwh_tri_t *t, double n[3][3]);
 /* The child (0..3) of the triangle with cutting normals n that holds dir. */
 static inline unsigned bwh_cut_child(const double n[3][3], const double dir[3])
 {
-    return bwg_dot3(dir, n[0]) > 0.0   ? 1u
-           : bwg_dot3(dir, n[1]) > 0.0 ? 2u
-           : bwg_dot3(dir, n[2]) > 0.0 ? 3u
-                                       : 0u;
+    /* 1 if past the first cut, else 2 if past the second, else 3 if past
+     * the third, else 0; without branches (the child is data) */
+    unsigned b0 = bwg_dot3(dir, n[0]) > 0.0, b1 = bwg_dot3(dir, n[1]) > 0.0,
+             b2 = bwg_dot3(dir, n[2]) > 0.0;
+    unsigned later = 2u * b1 + (1u - b1) * 3u * b2;
+    return b0 + (1u - b0) * later;
 }
 
 /* Index at `level` of the triangle containing the unit direction dir
