@@ -133,17 +133,6 @@ static double clamp_f(double v)
     return v > 0.0 && isfinite(v) ? v : 0.0;
 }
 
-/* every node above the leaves: the sum of its children, finest to coarsest */
-static void sum_up(double *node, unsigned level)
-{
-    for (unsigned l = level; l-- > 0;) {
-        double *p = node + level_offset(l), *c = node + level_offset(l + 1);
-        size_t n = bwh_grid_count(l);
-        for (size_t k = 0; k < n; k++)
-            p[k] = c[4 * k] + c[4 * k + 1] + c[4 * k + 2] + c[4 * k + 3];
-    }
-}
-
 #define CDF_ONE 0x80000000u /* a table's whole probability: 2^31 */
 
 /* Where each leaf's part of [0, 2^31) ends, for leaf values v (>= 0, not
@@ -230,7 +219,6 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->level_in = level_in;
     s->n_tables = n_tables;
     s->n_leaves = bwh_grid_count(level);
-    size_t n_nodes = level_offset(level + 1);
     s->n_groups = level_offset(level) / 4; /* groups of 4 siblings above the leaves */
     s->mix = mix;
     s->f = f;
@@ -243,7 +231,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     double(*in_dir)[3] = malloc(n_tables * sizeof *in_dir);
     s->leaf = aligned_alloc(64, s->n_leaves * sizeof *s->leaf); /* 2 cache lines each */
     s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
-    double *node = malloc(n_nodes * sizeof *node);
+    double *lv = malloc(s->n_leaves * sizeof *lv); /* one table's leaf integrals */
     s->cdf = malloc((s->n_groups ? n_tables * s->n_groups : 1) * sizeof *s->cdf);
     s->end = malloc(n_tables * s->n_leaves * sizeof *s->end);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
@@ -252,10 +240,10 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !s->leaf || !s->cut || !node || !s->cdf || !s->end ||
+    if (!tri || !in_dir || !s->leaf || !s->cut || !lv || !s->cdf || !s->end ||
         !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
-        free(node);
+        free(lv);
         free(in_dir);
         free(g.dir);
         free(g.proj);
@@ -287,9 +275,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         bwh_grid_centres(level_in, in_dir, NULL);
     }
 
-    size_t off_leaf = level_offset(level);
-    double *lv = node + off_leaf;
     for (size_t i = 0; i < n_tables; i++) {
+        double total = 0.0;
         for (size_t k = 0; k < s->n_leaves; k++) {
             double sum = 0.0;
             for (size_t j = 0; j < g.per_leaf; j++) {
@@ -297,14 +284,12 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
                 sum += clamp_f(f(ctx, in_dir[i], g.dir[q])) * g.proj[q];
             }
             lv[k] = sum;
+            total += sum;
         }
-        sum_up(node, level);
-        double total = node[0] + node[1] + node[2] + node[3];
         if (!(total > 0.0) || !isfinite(total)) {
             /* nothing to follow: the projected solid angle (the cosine lobe) */
             for (size_t k = 0; k < s->n_leaves; k++)
                 lv[k] = s->leaf[k].proj;
-            sum_up(node, level);
         }
         /* the leaves' ends, and above them each group's first 3 ends */
         uint32_t *end = s->end + i * s->n_leaves;
@@ -318,7 +303,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
                     grp[level_offset(l) / 4 + q].end[m] = end[(4 * q + m + 1) * span - 1];
         }
     }
-    free(node);
+    free(lv);
     free(in_dir);
     free(g.dir);
     free(g.proj);
