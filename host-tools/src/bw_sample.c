@@ -460,17 +460,14 @@ static size_t descend(const bwh_sampler_t *s, size_t t, uint32_t x)
     return 4 * idx + (unsigned)(x >= e[0]) + (unsigned)(x >= e[1]) + (unsigned)(x >= e[2]);
 }
 
-/* the same leaf by the running sum of the leaves' probabilities, O(n) */
+/* the same leaf by walking the leaves' ends (their running sum) in order,
+ * O(n): the first that lies above x */
 static size_t scan(const bwh_sampler_t *s, size_t t, uint32_t x)
 {
     const uint32_t *end = s->end + t * s->n_leaves;
-    uint32_t acc = 0;
     size_t k = 0;
-    for (; k + 1 < s->n_leaves; k++) {
-        acc += end[k] - (k ? end[k - 1] : 0u);
-        if (x < acc)
-            break;
-    }
+    while (k + 1 < s->n_leaves && x >= end[k])
+        k++;
     return k;
 }
 
