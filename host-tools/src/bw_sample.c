@@ -10,6 +10,12 @@
 
 #define S_PI 3.14159265358979323846
 
+/* the nodes of level l, padded to a multiple of 16 (64 bytes of ends) */
+static size_t level_padded(unsigned l)
+{
+    return (bwh_grid_count(l) + 15) / 16 * 16;
+}
+
 /* first node of level l: 4 (4^l - 1) / 3 */
 static size_t level_offset(unsigned l)
 {
@@ -37,20 +43,18 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
 {
     memcpy(t->a, a, sizeof t->a);
     memcpy(t->b, b, sizeof t->b);
-    double tb[3], tc[3], ab = bwg_dot3(a, b), ac = bwg_dot3(a, c);
+    double e[3], bxe[3], amb[3], ac = bwg_dot3(a, c);
     for (int k = 0; k < 3; k++) {
-        tb[k] = b[k] - ab * a[k];
-        tc[k] = c[k] - ac * a[k];
+        e[k] = c[k] - ac * a[k];
+        amb[k] = a[k] - b[k];
     }
-    bwg_normalize3(tb);
-    bwg_normalize3(tc);
-    double ca = bwg_dot3(tb, tc);
-    ca = ca > 1.0 ? 1.0 : ca < -1.0 ? -1.0 : ca;
-    t->alpha = acos(ca);
-    t->cos_alpha = ca;
-    t->sin_alpha = sin(t->alpha);
-    t->cos_c = ab;
-    memcpy(t->e, tc, sizeof t->e);
+    bwg_normalize3(e);
+    memcpy(t->e, e, sizeof t->e);
+    t->opc = 1.0 + bwg_dot3(a, b);
+    t->omc = 0.5 * bwg_dot3(amb, amb);
+    bwg_cross3(b, e, bxe);
+    t->k1 = fabs(bwg_dot3(a, bxe));
+    t->k2 = bwg_dot3(b, e);
     t->area = bwh_solid_angle(a, b, c);
     t->inv_area = 1.0 / t->area;
     t->proj = bwh_projected_solid_angle(a, b, c);
@@ -58,53 +62,45 @@ void bwh_leaf_init(bwh_leaf_t *t, const double a[3], const double b[3], const do
 
 /* Arvo, "Stratified sampling of spherical triangles" (SIGGRAPH 1995): u1
  * picks the sub-triangle (a, b, c') of area u1 * area, u2 a point on the
- * arc from b to c'. */
+ * arc from b to c'. Both steps are solved in closed form with two
+ * divisions and one square root side by side:
+ *
+ * c' = cos(phi) a + sin(phi) e. By Van Oosterom and Strackee's formula the
+ * sub-triangle's area s has tan(s / 2) = k1 sin(phi) / ((1 + a.b)(1 +
+ * cos(phi)) + k2 sin(phi)), that is T = k1 t / ((1 + a.b) + k2 t) with
+ * t = tan(phi / 2): so t = N / D with N = T (1 + a.b), D = k1 - T k2, and
+ * (cos(phi), sin(phi)) = (D^2 - N^2, 2 N D) / L, L = D^2 + N^2.
+ *
+ * On the arc from b to c' the point is at z = cos(angle from b) with
+ * 1 - z = u2 w, w = 1 - b.c' = Q / L, Q = (1 - a.b) L + 2 N (N a.b - D k2)
+ * (no cancellation of 1 - cos); it is z b + g (c' - (1 - w) b) with
+ * g = sqrt((1 - z^2) / (1 - (b.c')^2)) = sqrt(u2 (2 L - u2 Q) / (2 L - Q)). */
 void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
 {
-    double ahat = u1 * t->area, s, c;
-    if (t->area <= 0.1) {
-        /* sin, cos of ahat - alpha by the sum formulas, with the Taylor
-         * series of the small angle ahat to x^9 and x^8: the first term
-         * left out is below 3e-17; the powers paired so that the chain of
-         * dependent products stays short */
-        double x2 = ahat * ahat, x4 = x2 * x2;
-        double sa = ahat + ahat * x2 *
-                               ((-1.0 / 6.0 + x2 * (1.0 / 120.0)) +
-                                x4 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0)));
-        double ca = 1.0 + x2 * ((-1.0 / 2.0 + x2 * (1.0 / 24.0)) +
-                                x4 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0)));
-        s = sa * t->cos_alpha - ca * t->sin_alpha;
-        c = ca * t->cos_alpha + sa * t->sin_alpha;
+    double h = (0.5 * u1) * t->area, T;
+    if (t->area <= 0.008) {
+        /* tan to h^7: the first term left out is below 2e-22 of h */
+        double h2 = h * h;
+        T = h + h * h2 * (1.0 / 3.0 + h2 * (2.0 / 15.0 + h2 * (17.0 / 315.0)));
+    } else if (t->area <= 0.1) {
+        /* tan to h^11: the first term left out is below 1e-18 of h; the
+         * powers paired to keep the chain short */
+        double h2 = h * h, h4 = h2 * h2, h8 = h4 * h4;
+        T = h + h * h2 *
+                    ((1.0 / 3.0 + h2 * (2.0 / 15.0)) + h4 * (17.0 / 315.0 + h2 * (62.0 / 2835.0)) +
+                     h8 * (1382.0 / 155925.0));
     } else {
-        s = sin(ahat - t->alpha);
-        c = cos(ahat - t->alpha);
+        T = tan(h);
     }
-    double uu = c - t->cos_alpha;
-    double vv = s + t->sin_alpha * t->cos_c;
-    /* q = cos of the arc from a to c' = num / den, and sqrt(1 - q^2) as
-     * sqrt(den^2 - num^2) / |den|: the square root and the reciprocal run
-     * side by side */
-    double num = (vv * c - uu * s) * t->cos_alpha - vv;
-    double den = (vv * s + uu * c) * t->sin_alpha;
-    double r2 = (den - num) * (den + num);
-    double rden = 1.0 / den, root = sqrt(r2 > 0.0 ? r2 : 0.0);
-    double q = num * rden;
-    q = q > 1.0 ? 1.0 : q < -1.0 ? -1.0 : q;
-    double sq = root * fabs(rden), cp[3];
-    sq = sq < 1.0 ? sq : 1.0;
+    double N = T * t->opc, D = t->k1 - T * t->k2;
+    double N2 = N * N, D2 = D * D, L = D2 + N2;
+    double Q = t->omc * L + 2.0 * N * ((t->opc - 1.0) * N - t->k2 * D);
+    double iL = 1.0 / L, iP = 1.0 / (2.0 * L - Q);
+    double g = sqrt(u2 * (2.0 * L - u2 * Q) * iP);
+    double cphi = (D2 - N2) * iL, sphi = 2.0 * N * D * iL, w = Q * iL;
+    double kb = (1.0 - u2 * w) - g * (1.0 - w);
     for (int k = 0; k < 3; k++)
-        cp[k] = q * t->a[k] + sq * t->e[k];
-    /* on the arc from b to c': z = cos of the angle from b, with
-     * w = 1 - cos(b, c') = |c' - b|^2 / 2 (no cancellation), 1 - z = u2 w;
-     * along the arc f = c' - (1 - w) b, of length sqrt(w (2 - w)) */
-    double d[3];
-    for (int k = 0; k < 3; k++)
-        d[k] = cp[k] - t->b[k];
-    double w = 0.5 * bwg_dot3(d, d), uw = u2 * w, z = 1.0 - uw;
-    /* g |f| = sqrt(1 - z^2) = sqrt(uw (2 - uw)) */
-    double g = sqrt(u2 * (2.0 - uw) / (2.0 - w));
-    for (int k = 0; k < 3; k++)
-        out[k] = z * t->b[k] + g * (d[k] + w * t->b[k]);
+        out[k] = g * (cphi * t->a[k] + sphi * t->e[k]) + kb * t->b[k];
 }
 
 void bwh_sample_cosine(double u1, double u2, double out[3])
@@ -119,10 +115,11 @@ void bwh_sampler_free(bwh_sampler_t *s)
 {
     free(s->theta);
     free(s->trig);
-    free(s->cdf);
+    free(s->node_end);
     free(s->end);
     free(s->leaf);
     free(s->cut);
+    free(s->zmap);
     memset(s, 0, sizeof *s);
 }
 
@@ -187,6 +184,36 @@ static void subdivide(const bwh_tri_t *t, unsigned depth, double (*dir)[3], doub
     }
 }
 
+/* The bucket map of the table search (ISO): buckets narrower than the
+ * smallest gap between the tables' cosines, so each holds at most one; none
+ * (a search) when that would take more than 2^16 buckets. */
+static int build_zmap(bwh_sampler_t *s)
+{
+    size_t n = s->n_tables;
+    double gap = 1.0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        double g = s->trig[2 * i] - s->trig[2 * (i + 1)];
+        gap = g < gap ? g : gap;
+    }
+    size_t m = 64;
+    while (m <= 65536 && !(1.0 / (double)m < gap))
+        m *= 2;
+    if (n < 2 || m > 65536 || n > 65535)
+        return 0;
+    s->zmap = malloc(m * sizeof *s->zmap);
+    if (!s->zmap)
+        return -1;
+    s->n_zmap = m;
+    size_t cnt = n;
+    for (size_t j = 0; j < m; j++) {
+        double top = (double)(j + 1) / (double)m;
+        while (cnt > 0 && s->trig[2 * (cnt - 1)] < top)
+            cnt--;
+        s->zmap[j] = (uint16_t)cnt;
+    }
+    return 0;
+}
+
 int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_tables,
                       const double *theta, unsigned level_in, bwh_brdf_fn f, void *ctx,
                       unsigned supersample, double mix)
@@ -219,7 +246,9 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->level_in = level_in;
     s->n_tables = n_tables;
     s->n_leaves = bwh_grid_count(level);
-    s->n_groups = level_offset(level) / 4; /* groups of 4 siblings above the leaves */
+    s->node_stride = 0;
+    for (unsigned l = (level + 1) % 2; l + 1 <= level; l += 2)
+        s->node_stride += level_padded(l);
     s->mix = mix;
     s->f = f;
     s->ctx = ctx;
@@ -232,15 +261,16 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     s->leaf = aligned_alloc(64, s->n_leaves * sizeof *s->leaf); /* 2 cache lines each */
     s->cut = malloc((cut_levels ? level_offset(cut_levels) : 1) * sizeof *s->cut);
     double *lv = malloc(s->n_leaves * sizeof *lv); /* one table's leaf integrals */
-    s->cdf = malloc((s->n_groups ? n_tables * s->n_groups : 1) * sizeof *s->cdf);
-    s->end = malloc(n_tables * s->n_leaves * sizeof *s->end);
+    s->node_end = aligned_alloc(64, (s->node_stride ? n_tables * s->node_stride : 16) *
+                                        sizeof *s->node_end);
+    s->end = aligned_alloc(64, (n_tables * s->n_leaves + 15) / 16 * 16 * sizeof *s->end);
     g.dir = malloc(s->n_leaves * g.per_leaf * sizeof *g.dir);
     g.proj = malloc(s->n_leaves * g.per_leaf * sizeof *g.proj);
     if (kind == BWH_SAMPLER_ISO) {
         s->theta = malloc(n_tables * sizeof *s->theta);
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
-    if (!tri || !in_dir || !s->leaf || !s->cut || !lv || !s->cdf || !s->end ||
+    if (!tri || !in_dir || !s->leaf || !s->cut || !lv || !s->node_end || !s->end ||
         !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
         free(tri);
         free(lv);
@@ -271,10 +301,21 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             in_dir[i][1] = 0.0;
             in_dir[i][2] = s->trig[2 * i];
         }
+        if (build_zmap(s) != 0) {
+            free(lv);
+            free(in_dir);
+            free(g.dir);
+            free(g.proj);
+            bwh_sampler_free(s);
+            return bwh_fail("sampler: out of memory");
+        }
     } else {
         bwh_grid_centres(level_in, in_dir, NULL);
     }
 
+    double proj_total = 0.0; /* pi, as the leaves add up */
+    for (size_t k = 0; k < s->n_leaves; k++)
+        proj_total += s->leaf[k].proj;
     for (size_t i = 0; i < n_tables; i++) {
         double total = 0.0;
         for (size_t k = 0; k < s->n_leaves; k++) {
@@ -290,17 +331,24 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             /* nothing to follow: the projected solid angle (the cosine lobe) */
             for (size_t k = 0; k < s->n_leaves; k++)
                 lv[k] = s->leaf[k].proj;
+        } else if (mix > 0.0) {
+            /* each leaf's share of the cosine lobe mixed in */
+            for (size_t k = 0; k < s->n_leaves; k++)
+                lv[k] = (1.0 - mix) * (lv[k] / total) + mix * (s->leaf[k].proj / proj_total);
         }
-        /* the leaves' ends, and above them each group's first 3 ends */
+        /* the leaves' ends, and above them the kept levels' node ends (a
+         * node's part ends where its last leaf's does) */
         uint32_t *end = s->end + i * s->n_leaves;
         leaf_ends(lv, s->n_leaves, end);
-        bwh_cdf_group_t *grp = s->cdf + i * s->n_groups;
-        for (unsigned l = 0; l < level; l++) {
+        uint32_t *ne = s->node_end + i * s->node_stride;
+        for (unsigned l = (level + 1) % 2; l + 1 <= level; l += 2) {
             size_t span = (size_t)1 << (2u * (level - l)); /* leaves under a node */
-            size_t n_grp = (size_t)1 << (2u * l);
-            for (size_t q = 0; q < n_grp; q++)
-                for (unsigned m = 0; m < 3; m++)
-                    grp[level_offset(l) / 4 + q].end[m] = end[(4 * q + m + 1) * span - 1];
+            size_t n_node = bwh_grid_count(l), q = 0;
+            for (; q < n_node; q++)
+                ne[q] = end[(q + 1) * span - 1];
+            for (; q < level_padded(l); q++)
+                ne[q] = UINT32_MAX;
+            ne += level_padded(l);
         }
     }
     free(lv);
@@ -322,13 +370,26 @@ static size_t locate(const bwh_sampler_t *s, unsigned level, const double d[3])
 }
 
 /* The tables for wi and their weights, and the rotation taking wi to
- * phi = 0 (ISO). Returns the number of tables (1 or 2), 0 for a bad wi. */
+ * phi = 0 (ISO). Table t[0] has weight b / (a + b), t[1] (when n = 2)
+ * a / (a + b); w[] are these weights. Returns the number of tables (1 or
+ * 2), 0 for a bad wi. */
 typedef struct {
     size_t t[2];
     double w[2];
+    double a, b; /* the weights before normalising (1 table: a = 0, b = 1) */
     int n;
     double c, s; /* cos, sin of phi_i (ISO); 1, 0 otherwise */
 } select_t;
+
+static int one_table(select_t *sel, size_t t)
+{
+    sel->t[0] = sel->t[1] = t;
+    sel->w[0] = 1.0;
+    sel->w[1] = 0.0;
+    sel->a = 0.0;
+    sel->b = 1.0;
+    return sel->n = 1;
+}
 
 static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *sel)
 {
@@ -336,51 +397,63 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
         return 0;
     sel->c = 1.0;
     sel->s = 0.0;
-    if (s->kind == BWH_SAMPLER_FULL) {
-        sel->t[0] = locate(s, s->level_in, wi);
-        sel->w[0] = 1.0;
-        return sel->n = 1;
+    if (s->kind == BWH_SAMPLER_FULL)
+        return one_table(sel, locate(s, s->level_in, wi));
+    double r2 = wi[0] * wi[0] + wi[1] * wi[1], l2 = r2 + wi[2] * wi[2];
+    double r = sqrt(r2), z = wi[2];
+    if (fabs(l2 - 1.0) > 0x1p-40) { /* not a unit vector */
+        double inv_len = 1.0 / sqrt(l2);
+        z *= inv_len;
+        r *= inv_len;
     }
-    double r2 = wi[0] * wi[0] + wi[1] * wi[1], r = sqrt(r2);
-    if (r > 1e-300) {
-        double inv = 1.0 / r;
+    /* the azimuth: off the path to the table search */
+    double len_xy = sqrt(r2);
+    if (len_xy > 1e-300) {
+        double inv = 1.0 / len_xy;
         sel->c = wi[0] * inv;
         sel->s = wi[1] * inv;
     }
-    double inv_len = 1.0 / sqrt(r2 + wi[2] * wi[2]), z = wi[2] * inv_len;
-    r *= inv_len;
     /* the tables around theta_i, by their cosines (no arc tangent) */
     size_t n = s->n_tables;
     const double *tr = s->trig;
-    if (n == 1 || z >= tr[0]) {
-        sel->t[0] = 0;
-        sel->w[0] = 1.0;
-        return sel->n = 1;
-    }
-    if (z <= tr[2 * (n - 1)]) {
-        sel->t[0] = n - 1;
-        sel->w[0] = 1.0;
-        return sel->n = 1;
-    }
-    /* the last table with cos(theta) >= z: theta[lo] <= theta_i < theta[lo + 1]
-     * (a search without branches: its steps do not depend on z) */
-    size_t lo = 0;
-    for (size_t len = n - 1; len > 1;) { /* candidates lo .. lo + len - 1 */
-        size_t half = len / 2;
-        lo = tr[2 * (lo + half)] >= z ? lo + half : lo;
-        len -= half;
+    if (n == 1 || z >= tr[0])
+        return one_table(sel, 0);
+    if (z <= tr[2 * (n - 1)])
+        return one_table(sel, n - 1);
+    /* the last table with cos(theta) >= z: theta[lo] <= theta_i < theta[lo + 1] */
+    size_t lo;
+    if (s->zmap) {
+        /* zmap[j] tables have cos(theta) >= (j + 1) / n_zmap, the top of
+         * z's bucket; at most one more lies in the bucket */
+        size_t j = (size_t)(z * (double)s->n_zmap), cnt;
+        cnt = s->zmap[j < s->n_zmap ? j : s->n_zmap - 1];
+        lo = cnt - 1 + (size_t)(tr[2 * cnt] >= z);
+    } else {
+        /* a search without branches: its steps do not depend on z */
+        lo = 0;
+        for (size_t len = n - 1; len > 1;) { /* candidates lo .. lo + len - 1 */
+            size_t half = len / 2;
+            lo = tr[2 * (lo + half)] >= z ? lo + half : lo;
+            len -= half;
+        }
     }
     size_t hi = lo + 1;
-    /* weights sin(theta_i - theta[lo]), sin(theta[hi] - theta_i), normalised */
+    /* weights sin(theta_i - theta[lo]), sin(theta[hi] - theta_i) */
     double a = r * tr[2 * lo] - z * tr[2 * lo + 1];
     double b = z * tr[2 * hi + 1] - r * tr[2 * hi];
     a = a > 0.0 ? a : 0.0;
     b = b > 0.0 ? b : 0.0;
-    double t = a + b > 0.0 ? a / (a + b) : 0.0;
+    if (!(a + b > 0.0)) {
+        a = 0.0;
+        b = 1.0;
+    }
+    double inv = 1.0 / (a + b);
     sel->t[0] = lo;
-    sel->w[0] = 1.0 - t;
     sel->t[1] = hi;
-    sel->w[1] = t;
+    sel->a = a;
+    sel->b = b;
+    sel->w[0] = b * inv;
+    sel->w[1] = a * inv;
     return sel->n = 2;
 }
 
@@ -419,12 +492,6 @@ static double tree_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k)
     return p * s->leaf[k].inv_area;
 }
 
-/* the mixture's pdf at a direction in leaf k with cos(theta_o) = cos_o */
-static double mixture_pdf(const bwh_sampler_t *s, const select_t *sel, size_t k, double cos_o)
-{
-    return s->mix * cos_o / S_PI + (1.0 - s->mix) * tree_pdf(s, sel, k);
-}
-
 /* the leaf holding wo (world frame, z >= 0, finite) */
 static size_t leaf_of(const bwh_sampler_t *s, const select_t *sel, const double wo[3])
 {
@@ -433,31 +500,40 @@ static size_t leaf_of(const bwh_sampler_t *s, const select_t *sel, const double 
     return locate(s, s->level, local);
 }
 
-/* The leaf whose part of [0, 2^31) holds x in table t: at each level the
- * child is the number of its siblings' ends at or below x (a child of
- * probability 0 has an empty part and is never picked); the leaves' own
- * ends give the last step. The reads depend on each other; while one level
- * is read, the next level's 4 candidates (side by side) are fetched, and
- * before the last step the 4 candidate leaves' triangles (8 cache lines). */
+/* how many of the n ends e[] lie at or below x: the node among those that
+ * holds x (a node of probability 0 has an empty part and is never picked) */
+static inline unsigned count_below(const uint32_t *e, unsigned n, uint32_t x)
+{
+    unsigned c = 0;
+    for (unsigned j = 0; j < n; j++)
+        c += x >= e[j];
+    return c;
+}
+
+/* The leaf whose part of [0, 2^31) holds x in table t. The 4-way choice of
+ * the hierarchy, two levels at a time down to the leaves' parents: from a
+ * node, the one of its 16 grandchildren (side by side in the next kept
+ * level, 64 bytes) whose part holds x; the same node as one level at a
+ * time, in half the dependent reads. The top step chooses among the 4 base
+ * triangles (odd level) or their 16 children (even level). Then the 4
+ * candidate leaves' triangles (8 cache lines) are fetched while their ends
+ * are compared. */
 static size_t descend(const bwh_sampler_t *s, size_t t, uint32_t x)
 {
-    const bwh_cdf_group_t *g = s->cdf + t * s->n_groups;
     const uint32_t *leaf_end = s->end + t * s->n_leaves;
     size_t idx = 0;
-    for (unsigned l = 0; l < s->level; l++) {
-        const bwh_cdf_group_t *next = g + ((size_t)1 << (2u * l)); /* level l + 1's */
-        if (l + 1 < s->level)
-            __builtin_prefetch(next + 4 * idx);
-        else
-            __builtin_prefetch(leaf_end + 16 * idx);
-        const uint32_t *e = g[idx].end;
-        idx = 4 * idx + (unsigned)(x >= e[0]) + (unsigned)(x >= e[1]) + (unsigned)(x >= e[2]);
-        g = next;
+    if (s->level > 0) {
+        const uint32_t *ne = s->node_end + t * s->node_stride;
+        unsigned l = (s->level + 1) % 2;
+        idx = count_below(ne, l ? 16u : 4u, x);
+        for (; l + 3 <= s->level; l += 2) {
+            ne += level_padded(l);
+            idx = 16 * idx + count_below(ne + 16 * idx, 16u, x);
+        }
+        for (int j = 0; j < 8; j++)
+            __builtin_prefetch((const char *)&s->leaf[4 * idx] + 64 * j);
     }
-    for (int j = 0; j < 8; j++)
-        __builtin_prefetch((const char *)&s->leaf[4 * idx] + 64 * j);
-    const uint32_t *e = leaf_end + 4 * idx;
-    return 4 * idx + (unsigned)(x >= e[0]) + (unsigned)(x >= e[1]) + (unsigned)(x >= e[2]);
+    return 4 * idx + count_below(leaf_end + 4 * idx, 4u, x);
 }
 
 /* the same leaf by walking the leaves' ends (their running sum) in order,
@@ -477,33 +553,28 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     select_t sel;
     if (!select_tables(s, wi, &sel))
         return -1;
-    double u0 = u[0];
-    size_t k;
-    if (u0 < s->mix) {
-        bwh_sample_cosine(u[1], u[2], wo);
-        k = leaf_of(s, &sel, wo);
+    /* u0, scaled to [0, 2^31), is the point of the descent */
+    double xf = u[0] * (double)CDF_ONE;
+    xf = xf > 0.0 ? xf : 0.0;
+    xf = xf < (double)(CDF_ONE - 1u) ? xf : (double)(CDF_ONE - 1u);
+    uint32_t x = (uint32_t)xf;
+    /* u2 picks the table, table 1 below a / (a + b), and is rescaled to
+     * [0, 1) inside the chosen one's share: the division waits for Arvo's
+     * second step, not the descent */
+    double u2 = u[2], v = u2 * (sel.a + sel.b);
+    size_t t = sel.t[0];
+    if (v < sel.a) {
+        t = sel.t[1];
+        u2 = v / sel.a;
     } else {
-        if (s->mix > 0.0)
-            u0 = (u0 - s->mix) / (1.0 - s->mix);
-        int chosen = 0; /* the table drawn from */
-        if (sel.n == 2) {
-            if (u0 < sel.w[1]) {
-                chosen = 1;
-                u0 /= sel.w[1];
-            } else {
-                u0 = (u0 - sel.w[1]) / sel.w[0];
-            }
-        }
-        if (u0 >= 1.0)
-            u0 = nextafter(1.0, 0.0);
-        size_t t = sel.t[chosen];
-        uint32_t x = (uint32_t)(u0 * (double)CDF_ONE);
-        k = linear ? scan(s, t, x) : descend(s, t, x);
-        double local[3];
-        bwh_leaf_sample(&s->leaf[k], u[1], u[2], local);
-        to_world(&sel, local, wo);
+        u2 = (v - sel.a) / sel.b;
     }
-    *pdf = mixture_pdf(s, &sel, k, wo[2] > 0.0 ? wo[2] : 0.0);
+    u2 = u2 < 1.0 ? u2 : nextafter(1.0, 0.0);
+    size_t k = linear ? scan(s, t, x) : descend(s, t, x);
+    double local[3];
+    bwh_leaf_sample(&s->leaf[k], u[1], u2, local);
+    to_world(&sel, local, wo);
+    *pdf = tree_pdf(s, &sel, k);
     if (value)
         *value = clamp_f(s->f(s->ctx, wi, wo));
     return 0;
@@ -527,7 +598,7 @@ double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double 
     if (!select_tables(s, wi, &sel) || !(wo[2] >= 0.0) || !isfinite(wo[0]) ||
         !isfinite(wo[1]) || !isfinite(wo[2]))
         return 0.0;
-    return mixture_pdf(s, &sel, leaf_of(s, &sel, wo), wo[2]);
+    return tree_pdf(s, &sel, leaf_of(s, &sel, wo));
 }
 
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf)
@@ -535,8 +606,7 @@ double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t 
     select_t sel;
     if (leaf >= s->n_leaves || !select_tables(s, wi, &sel))
         return 0.0;
-    return s->mix * s->leaf[leaf].proj / S_PI +
-           (1.0 - s->mix) * tree_pdf(s, &sel, leaf) * s->leaf[leaf].area;
+    return tree_pdf(s, &sel, leaf) * s->leaf[leaf].area;
 }
 
 /* ---- analytic lobes --------------------------------------------------- */

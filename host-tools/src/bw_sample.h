@@ -7,30 +7,33 @@
  * of the children up to the 4 base triangles: every node's integral over its
  * subtree. f is a scalar given by a callback: the BRDF integrated over
  * wavelength, or one channel (bwh_brdf_data_band_cb), so analytic models and
- * decoded payloads are sampled the same way. The integrals are kept as
- * where each node's part of [0, 2^31) ends, the parts of 4 siblings
- * following each other inside their parent's (a node's integral, relative
- * to the whole table, is its part's width; a node of positive integral has
- * a part at least 1 wide, a node of integral 0 an empty one): per group of
- * 4 siblings above the leaves the ends of the first 3 (12 bytes), and
- * where each leaf's part ends (4 bytes a leaf): a leaf's probability is its
- * part's width / 2^31.
+ * decoded payloads are sampled the same way. A cosine lobe with weight
+ * `mix` is mixed into every table: leaf k's probability is
+ *   (1 - mix) integral_k / sum of integrals + mix proj_k / pi
+ * (proj_k: the integral of cos(theta_o) over the leaf), positive on every
+ * leaf, hence wherever the BRDF is. These are kept as where each node's
+ * part of [0, 2^31) ends, the parts of 4 siblings following each other
+ * inside their parent's (a node's probability is its part's width / 2^31;
+ * a node of positive probability has a part at least 1 wide, one of
+ * probability 0 an empty one): the ends of every leaf (4 bytes a leaf) and
+ * of the nodes of every other level above them, level - 1, level - 3, ...
+ * (about 4/15 byte more per leaf).
  *
  *   sample   descend from the base triangles, picking the child whose part
- *            holds the point floor(u 2^31), so each child with probability
- *            its integral over its parent's (O(log4 n)), then a uniform direction in
- *            the leaf's spherical triangle (Arvo 1995); with it the pdf and,
- *            on request, the BRDF's value there;
+ *            holds the point floor(u0 2^31), so each child with probability
+ *            its integral over its parent's: two levels a step (the one of
+ *            16 grandchildren whose part holds the point) down to the
+ *            leaves' parents, then the leaf: O(log4 n). Then a uniform
+ *            direction in the leaf's spherical triangle (Arvo 1995, from u1
+ *            and u2); with it the pdf and, on request, the BRDF's value
+ *            there;
  *   pdf      leaf probability / leaf solid angle: piecewise constant. The
  *            descent's leaf has the width the build gave it, so sample's pdf
  *            and pdf() agree to the bit away from leaf edges.
  *
  * Negative values (left by lossy compression) and values that are not finite
  * count as 0, by one clamp used for the leaf integrals and for sample's
- * value, so sample, pdf and the value see the same function. A
- * cosine lobe with weight `mix` is mixed in: the pdf is
- *   mix * cos(theta_o) / pi + (1 - mix) * p_tree(wo),
- * positive over the whole hemisphere, hence wherever the BRDF is.
+ * value, so sample, pdf and the value see the same function.
  *
  * Incoming directions:
  *   BWH_SAMPLER_ISO   tables at zenith angles theta_k in the plane phi = 0;
@@ -40,7 +43,10 @@
  *                     sin(theta_i - theta_lo) and sin(theta_hi - theta_i),
  *                     normalised (within d^2 / 32 of the linear weight for
  *                     tables d radians apart, and no inverse trigonometry);
- *                     sample picks one with its weight, pdf is the mixture;
+ *                     the two are found from cos(theta_i) by a bucket map
+ *                     (a binary search if two tables' cosines lie closer
+ *                     than 2^-16); sample picks one with its weight (by
+ *                     u2, then rescaled for Arvo), pdf is the mixture;
  *   BWH_SAMPLER_FULL  one table per geodesic centre of level level_in; wi
  *                     selects the table of the triangle it falls in.
  *
@@ -67,22 +73,16 @@ enum { BWH_SAMPLER_ISO = 2, BWH_SAMPLER_FULL = 3 };
 /* f(wi, wo): scalar BRDF value in 1/sr (may be negative; clamped). */
 typedef double (*bwh_brdf_fn)(void *ctx, const double wi[3], const double wo[3]);
 
-/* One group of 4 siblings in a table: where the parts of children 0, 1, 2
- * end, in units of 2^-31 of the table (child 3 ends where the parent does). */
-typedef struct {
-    uint32_t end[3];
-} bwh_cdf_group_t;
-
 /* One triangle of the sampled level, ready for Arvo's method (vertices
  * a, b, c): 128 bytes. */
 typedef struct {
     double a[3], b[3];
-    double alpha, cos_alpha, sin_alpha; /* angle at vertex a */
-    double cos_c;                       /* a . b */
-    double e[3];                        /* unit, in the plane of a and c, normal to a */
-    double area;                        /* solid angle */
-    double inv_area;                    /* 1 / area */
-    double proj;                        /* integral of cos(theta) over it */
+    double e[3];     /* unit, in the plane of a and c, normal to a */
+    double opc, omc; /* 1 + a . b, 1 - a . b (as |a - b|^2 / 2) */
+    double k1, k2;   /* |a . (b x e)|, b . e */
+    double area;     /* solid angle */
+    double inv_area; /* 1 / area */
+    double proj;     /* integral of cos(theta) over it */
 } bwh_leaf_t;
 
 typedef struct {
@@ -91,18 +91,24 @@ typedef struct {
     unsigned level_in;   /* FULL: incoming level */
     size_t n_tables;
     size_t n_leaves;     /* 4 * 4^level */
-    size_t n_groups;     /* groups of 4 siblings per table above the leaves */
+    size_t node_stride;  /* node ends per table above the leaves, padded */
     double *theta;       /* ISO: ascending zenith angles of the tables (radians) */
     double *trig;        /* ISO: [n_tables][2] cos, sin of theta */
-    bwh_cdf_group_t *cdf; /* [n_tables][n_groups]: the groups above the
-                             leaves; those of level l (4^l of them, children
-                             of level l - 1's nodes) start at (4^l - 1) / 3 */
+    uint32_t *node_end;  /* [n_tables][node_stride]: where the part of each
+                            node of levels level - 2, level - 4, ... (down
+                            to 1 or 0) ends, the top level first, each level
+                            in node order from a 64-byte boundary (padded
+                            with 2^32 - 1) */
     uint32_t *end;       /* [n_tables][n_leaves]: where each leaf's part ends
-                            (the last at 2^31) */
+                            (the last at 2^31), from a 64-byte boundary */
     bwh_leaf_t *leaf;    /* [n_leaves] */
     double (*cut)[3][3]; /* [triangles above the leaves, or above level_in's if
                             finer]: normals of the great circles cutting off
                             children 1, 2, 3 (leaf and table search) */
+    uint16_t *zmap;      /* ISO, NULL if the cosines lie too close: for bucket
+                            j of n_zmap over [0, 1), how many tables have
+                            cos(theta) >= (j + 1) / n_zmap (table search) */
+    size_t n_zmap;
     double mix;          /* weight of the cosine lobe, 0 .. 1 */
     bwh_brdf_fn f;       /* the BRDF it was built from, and its context: */
     void *ctx;           /* sample's value */
@@ -144,8 +150,7 @@ int bwh_sampler_sample_linear(const bwh_sampler_t *s, const double wi[3], const 
 double bwh_sampler_pdf(const bwh_sampler_t *s, const double wi[3], const double wo[3]);
 
 /* Probability that a sample for wi falls in leaf triangle `leaf` (exact:
- * the tree part is constant on a leaf, the cosine part is the leaf's
- * projected solid angle / pi). */
+ * the mixture of the tables' leaf probabilities). */
 double bwh_sampler_leaf_mass(const bwh_sampler_t *s, const double wi[3], size_t leaf);
 
 /* Uniform direction in a spherical triangle (Arvo's method), u in [0,1)^2. */

@@ -574,8 +574,8 @@ static void arvo_uniform_in(unsigned level, size_t index)
 static void arvo_samples_are_uniform_in_a_triangle(void **state)
 {
     (void)state;
-    arvo_uniform_in(1, 6);   /* a corner child of base 1: sin and cos from libm */
-    arvo_uniform_in(3, 150); /* solid angle below 0.1: their series */
+    arvo_uniform_in(1, 6);   /* a corner child of base 1: tan from libm */
+    arvo_uniform_in(3, 150); /* solid angle below 0.1: its series */
 }
 
 /* With u2 = 1 Arvo's point is the vertex c' that cuts off the triangle
@@ -586,7 +586,7 @@ static void arvo_cuts_the_area_in_proportion_to_u1(void **state)
     static const struct {
         unsigned level;
         size_t index;
-    } leaf_of[] = {{1, 6}, {3, 150}, {6, 9000}};
+    } leaf_of[] = {{0, 1}, {1, 6}, {3, 150}, {6, 9000}};
     for (size_t i = 0; i < sizeof leaf_of / sizeof *leaf_of; i++) {
         static bwh_tri_t t[16384];
         bwh_grid_triangles(leaf_of[i].level, t);
@@ -834,22 +834,64 @@ static void a_faint_region_keeps_a_positive_pdf(void **state)
     bwh_sampler_free(&s);
 }
 
+/* The descent (two levels a step, from the top kept level down) and the
+ * linear scan find the same leaf at every level, odd and even. */
 static void tree_and_linear_scan_pick_the_same_leaf(void **state)
 {
     (void)state;
-    bwh_sampler_t s;
-    assert_int_equal(build_phong(&s, &phong, 6, 0.0), 0);
-    double wi[3];
-    dir(33.0, 10.0, wi);
-    int same = 0;
-    for (int i = 0; i < 20000; i++) {
-        double u[3] = {rnd(), rnd(), rnd()}, a[3], b[3], pa, pb;
-        assert_int_equal(bwh_sampler_sample(&s, wi, u, a, &pa, NULL), 0);
-        assert_int_equal(bwh_sampler_sample_linear(&s, wi, u, b, &pb, NULL), 0);
-        same += a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && pa == pb;
+    for (unsigned level = 0; level <= BWH_SAMPLER_MAX_LEVEL; level++) {
+        bwh_sampler_t s;
+        assert_int_equal(build_phong(&s, &phong, level, 0.0), 0);
+        double wi[3];
+        dir(33.0, 10.0, wi);
+        int same = 0;
+        for (int i = 0; i < 20000; i++) {
+            double u[3] = {rnd(), rnd(), rnd()}, a[3], b[3], pa, pb;
+            assert_int_equal(bwh_sampler_sample(&s, wi, u, a, &pa, NULL), 0);
+            assert_int_equal(bwh_sampler_sample_linear(&s, wi, u, b, &pb, NULL), 0);
+            same += a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && pa == pb;
+        }
+        printf("    level %u: %d of 20000 the same\n", level, same);
+        assert_int_equal(same, 20000);
+        bwh_sampler_free(&s);
     }
-    /* the two sums round differently only at leaf boundaries */
-    assert_true(same >= 19990);
+}
+
+/* The table search by buckets of cos(theta_i) finds the tables the binary
+ * search does (the same sampler with its bucket map taken away draws the
+ * same directions with the same pdf); tables closer than the finest bucket
+ * make the build fall back to the search, which passes chi-square. */
+static void the_table_buckets_agree_with_the_search(void **state)
+{
+    (void)state;
+    bwh_sampler_t s;
+    assert_int_equal(build_phong(&s, &phong, 3, 0.05), 0);
+    assert_non_null(s.zmap);
+    bwh_sampler_t plain = s;
+    plain.zmap = NULL;
+    for (int i = 0; i < 200000; i++) {
+        double wi[3], u[3] = {rnd(), rnd(), rnd()}, a[3], b[3], pa, pb;
+        dir(90.0 * rnd(), 360.0 * rnd(), wi);
+        if (i % 1000 == 0) /* exactly at a table */
+            dir((i / 1000 % 32 + 0.5) * 90.0 / 32.0, 45.0, wi);
+        int ra = bwh_sampler_sample(&s, wi, u, a, &pa, NULL);
+        int rb = bwh_sampler_sample(&plain, wi, u, b, &pb, NULL);
+        assert_int_equal(ra, rb);
+        if (ra == 0)
+            assert_true(a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && pa == pb);
+    }
+    bwh_sampler_free(&s);
+
+    const double th[6] = {0.0, 0.002, 0.4, 0.8, 1.2, 1.5}; /* cosines 2e-6 apart */
+    assert_int_equal(
+        bwh_sampler_build(&s, BWH_SAMPLER_ISO, 4, 6, th, 0, phong_cb, (void *)&phong, 1, 0.05),
+        0);
+    assert_null(s.zmap);
+    double wi[3][3];
+    dir(0.06, 0.0, wi[0]); /* between the two close tables */
+    dir(30.0, 80.0, wi[1]);
+    dir(75.0, 200.0, wi[2]);
+    chi2_brdf(&s, (const double(*)[3])wi, 3);
     bwh_sampler_free(&s);
 }
 
@@ -901,6 +943,7 @@ int main(void)
         cmocka_unit_test(negative_values_are_clamped_alike_in_sample_and_pdf),
         cmocka_unit_test(a_faint_region_keeps_a_positive_pdf),
         cmocka_unit_test(tree_and_linear_scan_pick_the_same_leaf),
+        cmocka_unit_test(the_table_buckets_agree_with_the_search),
         cmocka_unit_test(bad_input_is_refused),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
