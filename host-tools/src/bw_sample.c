@@ -271,15 +271,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         s->trig = malloc(2 * n_tables * sizeof *s->trig);
     }
     if (!tri || !in_dir || !s->leaf || !s->cut || !lv || !s->node_end || !s->end ||
-        !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig))) {
-        free(tri);
-        free(lv);
-        free(in_dir);
-        free(g.dir);
-        free(g.proj);
-        bwh_sampler_free(s);
-        return bwh_fail("sampler: out of memory");
-    }
+        !g.dir || !g.proj || (kind == BWH_SAMPLER_ISO && (!s->theta || !s->trig)))
+        goto out_of_memory;
     for (unsigned l = 0; l < cut_levels; l++) {
         bwh_grid_triangles(l, tri);
         for (size_t k = 0; k < bwh_grid_count(l); k++)
@@ -292,6 +285,7 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
         subdivide(&tri[k], supersample, g.dir, g.proj, &j);
     }
     free(tri);
+    tri = NULL;
     if (kind == BWH_SAMPLER_ISO) {
         for (size_t i = 0; i < n_tables; i++) {
             s->theta[i] = theta[i];
@@ -301,14 +295,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
             in_dir[i][1] = 0.0;
             in_dir[i][2] = s->trig[2 * i];
         }
-        if (build_zmap(s) != 0) {
-            free(lv);
-            free(in_dir);
-            free(g.dir);
-            free(g.proj);
-            bwh_sampler_free(s);
-            return bwh_fail("sampler: out of memory");
-        }
+        if (build_zmap(s) != 0)
+            goto out_of_memory;
     } else {
         bwh_grid_centres(level_in, in_dir, NULL);
     }
@@ -356,6 +344,15 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
     free(g.dir);
     free(g.proj);
     return 0;
+
+out_of_memory:
+    free(tri);
+    free(lv);
+    free(in_dir);
+    free(g.dir);
+    free(g.proj);
+    bwh_sampler_free(s);
+    return bwh_fail("sampler: out of memory");
 }
 
 /* The triangle of `level` holding d (z >= 0, finite): bwh_grid_locate's
