@@ -79,7 +79,7 @@ void bwh_leaf_sample(const bwh_leaf_t *t, double u1, double u2, double out[3])
 {
     double h = (0.5 * u1) * t->area, T;
     if (t->area <= 0.008) {
-        /* tan to h^7: the first term left out is below 2e-22 of h */
+        /* tan to h^7: the first term left out is below 2e-21 of h */
         double h2 = h * h;
         T = h + h * h2 * (1.0 / 3.0 + h2 * (2.0 / 15.0 + h2 * (17.0 / 315.0)));
     } else if (t->area <= 0.1) {
@@ -397,14 +397,13 @@ static int select_tables(const bwh_sampler_t *s, const double wi[3], select_t *s
     if (s->kind == BWH_SAMPLER_FULL)
         return one_table(sel, locate(s, s->level_in, wi));
     double r2 = wi[0] * wi[0] + wi[1] * wi[1], l2 = r2 + wi[2] * wi[2];
-    double r = sqrt(r2), z = wi[2];
+    double len_xy = sqrt(r2), r = len_xy, z = wi[2];
     if (fabs(l2 - 1.0) > 0x1p-40) { /* not a unit vector */
         double inv_len = 1.0 / sqrt(l2);
         z *= inv_len;
         r *= inv_len;
     }
     /* the azimuth: off the path to the table search */
-    double len_xy = sqrt(r2);
     if (len_xy > 1e-300) {
         double inv = 1.0 / len_xy;
         sel->c = wi[0] * inv;

@@ -17,7 +17,7 @@
  * a node of positive probability has a part at least 1 wide, one of
  * probability 0 an empty one): the ends of every leaf (4 bytes a leaf) and
  * of the nodes of every other level above them, level - 1, level - 3, ...
- * (about 4/15 byte more per leaf).
+ * (4/15 of a node per leaf: about 1 byte more per leaf).
  *
  *   sample   descend from the base triangles, picking the child whose part
  *            holds the point floor(u0 2^31), so each child with probability
