@@ -355,10 +355,17 @@ def main():
     md.append("| wavelet IS variance <= 0.5 x uniform at equal samples (paper 0.66 x) | "
               "%.2f x (level 4); best level: %.2f x (level %d) | %s |" % (
                   r_eq, f(best, "variance") / f(uni, "variance"), best["level"], met(r_eq <= 0.5)))
+    def mean_se(v):
+        m = sum(v) / len(v)
+        var = sum((x - m) ** 2 for x in v) / (len(v) - 1) if len(v) > 1 else 0.0
+        return m, (var / len(v)) ** 0.5
+    pooled = "; ".join("level %d: mean %.3f +- %.3f" % ((lv,) + mean_se(v))
+                       for lv, v in sorted(ratios.items()))
     md.append("| wavelet IS variance < analytic lobe sampling at equal time, at every seed "
-              "| %.2f x (%s, seed 1); level %d: %.3f to %.3f x over %d seeds | %s |"
+              "| %.2f x (%s, seed 1); level %d: %.3f to %.3f x over %d seeds (%s, "
+              "standard error) | %s |"
               % (r_time, label(wav_t), lv_t, spread[lv_t][0], spread[lv_t][1],
-                 len(ratios[lv_t]), met(spread[lv_t][1] < 1.0)))
+                 len(ratios[lv_t]), pooled, met(spread[lv_t][1] < 1.0)))
     md.append("| the same with light samples (`--direct mis`), seed 1 | level 4: %.3f x; "
               "level 6: %.3f x | %s |" % (r_direct[4], r_direct[6],
                                           met(min(r_direct.values()) < 1.0)))
