@@ -543,6 +543,13 @@ static size_t scan(const bwh_sampler_t *s, size_t t, uint32_t x)
     return k;
 }
 
+/* u clamped into [0, 1) (NaN to 0) */
+static inline double unit_interval(double u)
+{
+    u = u > 0.0 ? u : 0.0;
+    return u < 0x1.fffffffffffffp-1 ? u : 0x1.fffffffffffffp-1;
+}
+
 static int sample_with(const bwh_sampler_t *s, const double wi[3], const double u[3],
                        double wo[3], double *pdf, double *value, int linear)
 {
@@ -557,7 +564,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     /* u2 picks the table, table 1 below a / (a + b), and is rescaled to
      * [0, 1) inside the chosen one's share: the division waits for Arvo's
      * second step, not the descent */
-    double u2 = u[2], v = u2 * (sel.a + sel.b);
+    double u1 = unit_interval(u[1]), u2 = unit_interval(u[2]), v = u2 * (sel.a + sel.b);
     size_t t = sel.t[0];
     if (v < sel.a) {
         t = sel.t[1];
@@ -568,7 +575,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     u2 = u2 < 1.0 ? u2 : nextafter(1.0, 0.0);
     size_t k = linear ? scan(s, t, x) : descend(s, t, x);
     double local[3];
-    bwh_leaf_sample(&s->leaf[k], u[1], u2, local);
+    bwh_leaf_sample(&s->leaf[k], u1, u2, local);
     to_world(&sel, local, wo);
     *pdf = tree_pdf(s, &sel, k);
     if (value)

@@ -130,7 +130,8 @@ int bwh_sampler_build(bwh_sampler_t *s, int kind, unsigned level, size_t n_table
 void bwh_sampler_free(bwh_sampler_t *s);
 
 /*
- * Draws wo for wi (z > 0) from u[0..2] in [0, 1). Returns 0 with *pdf the
+ * Draws wo for wi (z > 0) from u[0..2] in [0, 1) (values outside, or NaN,
+ * are clamped into it). Returns 0 with *pdf the
  * pdf (per solid angle) of wo and, when value is not NULL, *value the BRDF
  * the sampler was built from at (wi, wo), clamped as the tables are (0 where
  * f is negative or not finite): a path's weight is *value * wo[2] / *pdf.

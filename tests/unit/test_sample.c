@@ -923,6 +923,18 @@ static void bad_input_is_refused(void **state)
     assert_true(wo[0] == 9.0 && pdf == -1.0);
     assert_true(bwh_sampler_pdf(&s, below, up) == 0.0);
     assert_true(bwh_sampler_pdf(&s, up, below) == 0.0);
+    /* random numbers outside [0, 1) are clamped: a unit wo with a positive
+     * pdf (at 0 or 1 - 2^-53 it lies on its leaf's edge or vertex, where
+     * pdf() may take the neighbour's) */
+    const double bad_u[4][3] = {
+        {-0.5, 1.5, 0.5}, {1.0, 1.0, 1.0}, {NAN, NAN, NAN}, {0.5, -1e300, 1e300}};
+    double wi[3];
+    dir(40.0, 30.0, wi);
+    for (int i = 0; i < 4; i++) {
+        assert_int_equal(bwh_sampler_sample(&s, wi, bad_u[i], wo, &pdf, NULL), 0);
+        assert_true(fabs(bwg_dot3(wo, wo) - 1.0) < 1e-14 && wo[2] >= 0.0);
+        assert_true(pdf > 0.0 && isfinite(pdf) && bwh_sampler_pdf(&s, wi, wo) > 0.0);
+    }
     bwh_sampler_free(&s);
 }
 
