@@ -557,10 +557,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     if (!select_tables(s, wi, &sel))
         return -1;
     /* u0, scaled to [0, 2^31), is the point of the descent */
-    double xf = u[0] * (double)CDF_ONE;
-    xf = xf > 0.0 ? xf : 0.0;
-    xf = xf < (double)(CDF_ONE - 1u) ? xf : (double)(CDF_ONE - 1u);
-    uint32_t x = (uint32_t)xf;
+    uint32_t x = (uint32_t)(unit_interval(u[0]) * (double)CDF_ONE);
     /* u2 picks the table, table 1 below a / (a + b), and is rescaled to
      * [0, 1) inside the chosen one's share: the division waits for Arvo's
      * second step, not the descent */
@@ -572,7 +569,7 @@ static int sample_with(const bwh_sampler_t *s, const double wi[3], const double 
     } else {
         u2 = (v - sel.a) / sel.b;
     }
-    u2 = u2 < 1.0 ? u2 : nextafter(1.0, 0.0);
+    u2 = unit_interval(u2); /* the rescaling may round up to 1 */
     size_t k = linear ? scan(s, t, x) : descend(s, t, x);
     double local[3];
     bwh_leaf_sample(&s->leaf[k], u1, u2, local);
