@@ -32,7 +32,7 @@ THREADS = os.environ.get("BENCH_RENDER_THREADS", "2")
 PHONG = "phong:0.05,0.9,60"
 WARD = ["ward:0.05,0.9,0.3,0.3", "ward:0.05,0.9,0.15,0.05"]  # isotropic, anisotropic
 SEEDS = [2, 3, 4]  # the equal-time comparison repeated
-SWEEP_N = [10, 20, 60, 200]  # Phong exponents of the equal-time sweep
+SWEEP_N = [10, 20, 60, 200]  # Phong exponents of the equal-time sweep (60: Table 5's runs)
 SWEEP_SEEDS = [1, 2, 3]
 RGL = ["cc_ibiza_sunset_rgb", "satin_rosaline_rgb", "paper_white_rgb"]
 
@@ -85,6 +85,15 @@ def mean_se(v):
     m = sum(v) / len(v)
     var = sum((x - m) ** 2 for x in v) / (len(v) - 1) if len(v) > 1 else 0.0
     return m, (var / len(v)) ** 0.5
+
+
+def equal_time(name, ext, budget, seed):
+    """the analytic lobe and the hierarchy at levels 4 and 6, budget CPU seconds each:
+    the analytic's image variance and the hierarchy's per level"""
+    r4 = render(name + "_seed%d" % seed, ["analytic", "wavelet"], ext, time=budget, level=4,
+                seed=seed)
+    r6 = render(name + "_l6_seed%d" % seed, ["wavelet"], ext, time=budget, level=6, seed=seed)
+    return f(r4[0], "variance"), {4: f(r4[1], "variance"), 6: f(r6[0], "variance")}
 
 
 def label(x):
@@ -155,15 +164,11 @@ def main():
     ratios = {4: [f(et[2], "variance") / f(ana, "variance")],
               6: [f(et[3], "variance") / f(ana, "variance")]}
     for seed in SEEDS:
-        r4 = render("table5_equal_time_seed%d" % seed, ["analytic", "wavelet"], ext,
-                    time=budget, level=4, seed=seed)
-        r6 = render("table5_equal_time_l6_seed%d" % seed, ["wavelet"], ext, time=budget,
-                    level=6, seed=seed)[0]
-        a = f(r4[0], "variance")
-        ratios[4].append(f(r4[1], "variance") / a)
-        ratios[6].append(f(r6, "variance") / a)
+        a, w = equal_time("table5_equal_time", ext, budget, seed)
+        for lv in ratios:
+            ratios[lv].append(w[lv] / a)
         md.append("| %d | %.5f | %.5f | %.3f x | %.5f | %.3f x |" % (
-            seed, a, f(r4[1], "variance"), ratios[4][-1], f(r6, "variance"), ratios[6][-1]))
+            seed, a, w[4], ratios[4][-1], w[6], ratios[6][-1]))
     spread = {lv: (min(v), max(v)) for lv, v in ratios.items()}
     md.append("\nOver seed 1 (above) and these, the hierarchy's equal-time ratio ranges from "
               "%.3f to %.3f x at level 4 and from %.3f to %.3f x at level 6.\n"
@@ -280,24 +285,26 @@ def main():
               "the Phong exponent N of phong:0.05,0.9,N varied: the analytic lobe leaves out "
               "the cosine and loses what its lobe puts under the horizon, which weighs more as "
               "the lobe widens. Each cell: the hierarchy's image variance over the analytic "
-              "lobe's, seeds %s; their mean with its standard error.\n"
-              % (budget, ", ".join(str(s) for s in SWEEP_SEEDS)))
+              "lobe's, seeds %s (N = %s: Table 5's runs above, seeds 1 to %d); their mean with "
+              "its standard error.\n"
+              % (budget, ", ".join(str(s) for s in SWEEP_SEEDS), PHONG.split(",")[-1],
+                 len(ratios[4])))
     md.append("| N | analytic (seed %d) | wavelet (level 4) vs analytic | mean | "
               "wavelet (level 6) vs analytic | mean |" % SWEEP_SEEDS[0])
     md.append("|---|---|---|---|---|---|")
     sweep = {}
     for n in SWEEP_N:
-        ext_n = ["--scene", "sphereflake", "--material", "phong:0.05,0.9,%d" % n]
-        rs, a0 = {4: [], 6: []}, None
-        for seed in SWEEP_SEEDS:
-            r4 = render("phong%d_equal_time_seed%d" % (n, seed), ["analytic", "wavelet"], ext_n,
-                        time=budget, level=4, seed=seed)
-            r6 = render("phong%d_equal_time_l6_seed%d" % (n, seed), ["wavelet"], ext_n,
-                        time=budget, level=6, seed=seed)[0]
-            a = f(r4[0], "variance")
-            a0 = a if a0 is None else a0
-            rs[4].append(f(r4[1], "variance") / a)
-            rs[6].append(f(r6, "variance") / a)
+        material = "phong:0.05,0.9,%d" % n
+        if material == PHONG:
+            rs, a0 = ratios, f(ana, "variance")
+        else:
+            ext_n = ["--scene", "sphereflake", "--material", material]
+            rs, a0 = {4: [], 6: []}, None
+            for seed in SWEEP_SEEDS:
+                a, w = equal_time("phong%d_equal_time" % n, ext_n, budget, seed)
+                a0 = a if a0 is None else a0
+                for lv in rs:
+                    rs[lv].append(w[lv] / a)
         sweep[n] = rs
         md.append("| %d | %.5f | %s | %.3f +- %.3f | %s | %.3f +- %.3f |" % (
             (n, a0, ", ".join("%.3f" % r for r in rs[4])) + mean_se(rs[4])
