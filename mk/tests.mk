@@ -11,6 +11,9 @@ $(BUILD)/tests/%: tests/unit/%.c $(LIB)
 	$(if $(Q),@echo "  TEST-CC $@")
 	$(Q)$(CC) $(TEST_CFLAGS) -MMD -MP $< $(LIB) $(TEST_LIBS) -o $@
 
+# the device application against a scripted link (it includes app.c)
+$(BUILD)/tests/test_app: TEST_CFLAGS += -Ihal -Ifirmware/app
+
 tests: $(UNIT_BIN)
 
 deps:

@@ -20,7 +20,7 @@ OUT=${SANITIZE_BUILD:-build/sanitize}
 CC=${SANITIZE_CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
         -fsanitize=address,undefined -fno-sanitize-recover=all
-        -Ifirmware/codec -Ifirmware/link -Ihost-tools/src -Ihost-tools/ref -Itests/unit"
+        -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/src -Ihost-tools/ref -Itests/unit"
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c host-tools/src/bwhost.c host-tools/src/link.c
          host-tools/src/geodesic.c host-tools/src/brdf_models.c
          host-tools/src/bw_sample.c host-tools/src/brdf_eval.c host-tools/src/bw_mesh.c

@@ -58,24 +58,34 @@ static void send(const bw_hal_t *hal, uint8_t type, uint16_t seq, const uint8_t 
     bw_hal_link_write(hal, txbuf, n);
 }
 
+static const bw_limits_t limits = {APP_MAX_SAMPLES, APP_MAX_BANDS, APP_STREAM_BANDS,
+                                   APP_PAYLOAD_CAP, APP_STREAM_LEVEL};
+
 static void send_error(const bw_hal_t *hal, int status)
 {
-    uint8_t d[4];
-    bw_put_u32(d, (uint32_t)status);
-    send(hal, BW_FT_ERROR, 0, d, 4);
+    uint8_t d[BW_ERROR_SIZE];
+    send(hal, BW_FT_ERROR, 0, d, (uint16_t)bw_error_pack(status, &limits, d));
 }
+
+/* Bytes read from the link and not yet given to the frame receiver: a read
+ * can bring several frames (an ACK and a QUIT back to back), and every one
+ * of them is kept for the next call. */
+static uint8_t rxbuf[64];
+static size_t rx_pos, rx_len;
 
 /* Next frame from the host, or false after `wait` instructions (0: forever). */
 static bool receive(const bw_hal_t *hal, uint64_t wait)
 {
     uint64_t t0 = bw_hal_counter(hal);
-    uint8_t b[64];
     for (;;) {
-        int n = bw_hal_link_read(hal, b, sizeof b);
-        for (int i = 0; i < n; i++)
-            if (bw_frame_rx_byte(&rx, b[i], &frame))
-                return true; /* bytes after it are dropped: the host waits for us */
-        if (wait && bw_hal_counter(hal) - t0 > wait)
+        bool got;
+        rx_pos += bw_frame_rx_feed(&rx, rxbuf + rx_pos, rx_len - rx_pos, &frame, &got);
+        if (got)
+            return true;
+        int n = bw_hal_link_read(hal, rxbuf, sizeof rxbuf);
+        rx_pos = 0;
+        rx_len = n > 0 ? (size_t)n : 0u;
+        if (n <= 0 && wait && bw_hal_counter(hal) - t0 > wait)
             return false;
     }
 }
@@ -225,6 +235,7 @@ static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent)
 int bw_app_run(const bw_hal_t *hal)
 {
     bw_frame_rx_init(&rx);
+    rx_pos = rx_len = 0;
     uint32_t id = 0;
     for (;;) {
         receive(hal, 0);

@@ -38,9 +38,10 @@ static void resync(bw_frame_rx_t *rx)
     rx->have -= i;
 }
 
-bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out)
+/* Takes a complete, valid frame off the front of the buffered bytes, if
+ * there is one; drops what cannot start a frame on the way. */
+static bool extract(bw_frame_rx_t *rx, bw_frame_t *out)
 {
-    rx->buf[rx->have++] = byte;
     for (;;) {
         if (rx->have >= 1 && rx->buf[0] != BW_FRAME_SYNC0) {
             resync(rx);
@@ -71,11 +72,39 @@ bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out)
         out->seq = bw_get_u16(rx->buf + 4);
         out->len = len;
         memcpy(out->data, rx->buf + BW_FRAME_HEADER, len);
-        /* keep any bytes past this frame */
+        /* keep the bytes past this frame: after a resynchronisation they
+         * may hold further frames */
         memmove(rx->buf, rx->buf + total, rx->have - total);
         rx->have -= total;
         return true;
     }
+}
+
+size_t bw_frame_rx_feed(bw_frame_rx_t *rx, const uint8_t *in, size_t len, bw_frame_t *out,
+                        bool *got)
+{
+    *got = extract(rx, out);
+    if (*got)
+        return 0;
+    for (size_t i = 0; i < len; i++) {
+        rx->buf[rx->have++] = in[i];
+        if (extract(rx, out)) {
+            *got = true;
+            return i + 1u;
+        }
+    }
+    return len;
+}
+
+bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out)
+{
+    bool got;
+    size_t used = bw_frame_rx_feed(rx, &byte, 1, out, &got);
+    if (!got || used == 1)
+        return got;
+    /* a frame that was already buffered: the byte goes in behind it */
+    rx->buf[rx->have++] = byte;
+    return true;
 }
 
 size_t bw_job_pack(const bw_job_t *j, uint8_t *o)
@@ -122,4 +151,31 @@ bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
             break;
     }
     return i < sizeof j->source - 1u; /* NUL-terminated within the field */
+}
+
+size_t bw_error_pack(int32_t status, const bw_limits_t *lim, uint8_t *o)
+{
+    bw_put_u32(o, (uint32_t)status);
+    bw_put_u32(o + 4, lim->max_samples);
+    bw_put_u32(o + 8, lim->max_bands);
+    bw_put_u32(o + 12, lim->stream_bands);
+    bw_put_u32(o + 16, lim->payload_cap);
+    o[20] = lim->stream_level;
+    return BW_ERROR_SIZE;
+}
+
+bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t *lim)
+{
+    memset(lim, 0, sizeof *lim);
+    if (len < 4)
+        return false;
+    *status = (int32_t)bw_get_u32(in);
+    if (len >= BW_ERROR_SIZE) {
+        lim->max_samples = bw_get_u32(in + 4);
+        lim->max_bands = bw_get_u32(in + 8);
+        lim->stream_bands = bw_get_u32(in + 12);
+        lim->payload_cap = bw_get_u32(in + 16);
+        lim->stream_level = in[20];
+    }
+    return true;
 }

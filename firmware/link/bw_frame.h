@@ -43,7 +43,8 @@ typedef enum {
     BW_FT_ACK = 0x20,     /* host -> device: payload id u32, verified          */
     BW_FT_RESEND = 0x21,  /* host -> device: payload id u32, then chunk
                            * numbers u16 (none: everything)                   */
-    BW_FT_ERROR = 0x30    /* device -> host: status i32 (bw_status_t)         */
+    BW_FT_ERROR = 0x30    /* device -> host: status i32 (bw_status_t), then
+                           * the device's limits (bw_limits_t)               */
 } bw_frame_type_t;
 
 typedef struct {
@@ -68,6 +69,17 @@ typedef struct {
 
 void bw_frame_rx_init(bw_frame_rx_t *rx);
 
+/* Takes bytes from in[len] until a frame is complete and returns how many
+ * it took; *got says whether *out now holds a complete, valid frame. The
+ * receiver keeps its state between calls, and after a frame the caller
+ * keeps in[used..len): call again with the rest (or with len 0, which
+ * only looks at the bytes already buffered) until a call takes no bytes
+ * and gives no frame. After a resynchronisation the buffer can hold
+ * more than one frame, which is why a call may return a frame and take
+ * nothing. */
+size_t bw_frame_rx_feed(bw_frame_rx_t *rx, const uint8_t *in, size_t len, bw_frame_t *out,
+                        bool *got);
+
 /* Feeds one byte; returns true when a complete, valid frame is in *out. */
 bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out);
 
@@ -79,6 +91,23 @@ typedef struct {
 } bw_job_t;
 
 #define BW_JOB_SIZE 160u
+
+/* What a device can take, sent after the status in an ERROR frame so that
+ * the host can say what to do instead: jobs held whole in memory have at
+ * most max_samples samples and max_bands bands; streamed jobs (stream order,
+ * a fixed basis, LOSSLESS, MAX_ERROR or STEP, not BRDF_FULL) have any number
+ * of directions at levels up to stream_level with up to stream_bands bands;
+ * no payload is longer than payload_cap bytes. 0: not said. */
+typedef struct {
+    uint32_t max_samples, max_bands, stream_bands, payload_cap;
+    uint8_t stream_level;
+} bw_limits_t;
+
+#define BW_ERROR_SIZE 21u /* status, then the limits */
+size_t bw_error_pack(int32_t status, const bw_limits_t *lim, uint8_t *out); /* BW_ERROR_SIZE */
+/* The status of an ERROR frame's data and, where the device sent them, its
+ * limits (else zeros); false if the data is too short for a status. */
+bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t *lim);
 size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
 

@@ -389,7 +389,7 @@ static void out_frame(const bw_frame_t *f)
         } else {
             st_lost = 1;
         }
-    } else if (f->type == BW_FT_ERROR && f->len == 4u) {
+    } else if (f->type == BW_FT_ERROR && f->len >= 4u) {
         st_error = 1;
         errcode = (uint16_t)bw_get_u32(f->data);
     }

@@ -1,6 +1,7 @@
 /* Link frames: packing, byte-at-a-time reception with resynchronisation,
  * and the job record. */
 #include <setjmp.h>
+#include <stdbool.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -89,6 +90,58 @@ static void a_header_with_an_impossible_length_is_skipped(void **state)
     assert_int_equal(f.seq, 9);
 }
 
+/* A false header that claims 40 data bytes swallows two real frames; when its
+ * CRC fails, both are in the receiver's buffer. Both must come out without
+ * waiting for another byte, and a feed stops at the end of the frame it
+ * completes, leaving the rest to the caller. */
+static void frames_buffered_behind_a_false_header_come_out_without_more_bytes(void **state)
+{
+    (void)state;
+    uint8_t stream[64];
+    uint8_t fake[8] = {BW_FRAME_SYNC0, BW_FRAME_SYNC1, BW_FT_DATA, 0, 0, 0, 40, 0};
+    size_t n = 0;
+    memcpy(stream, fake, sizeof fake);
+    n += sizeof fake;
+    n += bw_frame_pack(stream + n, BW_FT_ACK, 1, NULL, 0);
+    n += bw_frame_pack(stream + n, BW_FT_QUIT, 2, NULL, 0);
+    memset(stream + n, 0x11, BW_FRAME_OVERHEAD + 40 - n); /* the false frame's length */
+    n = BW_FRAME_OVERHEAD + 40;
+    n += bw_frame_pack(stream + n, BW_FT_END, 3, NULL, 0);
+    bw_frame_rx_init(&rx);
+    bool have;
+    bw_frame_t f;
+    size_t used = bw_frame_rx_feed(&rx, stream, n, &f, &have);
+    assert_true(have);
+    assert_int_equal(f.type, BW_FT_ACK);
+    assert_int_equal(used, BW_FRAME_OVERHEAD + 40); /* where the false frame ended */
+    assert_int_equal(bw_frame_rx_feed(&rx, stream + used, 0, &f, &have), 0);
+    assert_true(have); /* from the buffer alone */
+    assert_int_equal(f.type, BW_FT_QUIT);
+    assert_int_equal(bw_frame_rx_feed(&rx, stream + used, 0, &f, &have), 0);
+    assert_false(have);
+    assert_int_equal(bw_frame_rx_feed(&rx, stream + used, n - used, &f, &have), n - used);
+    assert_true(have);
+    assert_int_equal(f.type, BW_FT_END);
+    assert_int_equal(rx.bad_crc, 1);
+    /* the same through the byte-at-a-time call: three frames, none late */
+    bw_frame_rx_init(&rx);
+    uint8_t types[3];
+    int k = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (bw_frame_rx_byte(&rx, stream[i], &f))
+            types[k++] = f.type;
+        if (i + 1 == BW_FRAME_OVERHEAD + 40) {
+            assert_int_equal(k, 1); /* ACK at the byte that failed the false frame */
+            assert_true(bw_frame_rx_feed(&rx, NULL, 0, &f, &have) == 0 && have);
+            types[k++] = f.type;
+        }
+    }
+    assert_int_equal(k, 3);
+    assert_int_equal(types[0], BW_FT_ACK);
+    assert_int_equal(types[1], BW_FT_QUIT);
+    assert_int_equal(types[2], BW_FT_END);
+}
+
 static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
 {
     (void)state;
@@ -125,6 +178,7 @@ int main(void)
         cmocka_unit_test(packed_frames_are_received_intact_at_every_length),
         cmocka_unit_test(receiver_resynchronises_after_noise_and_corrupted_frames),
         cmocka_unit_test(a_header_with_an_impossible_length_is_skipped),
+        cmocka_unit_test(frames_buffered_behind_a_false_header_come_out_without_more_bytes),
         cmocka_unit_test(jobs_round_trip_and_bad_jobs_are_refused),
     };
     return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
