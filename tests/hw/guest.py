@@ -10,10 +10,12 @@ the stub's register pages and raises data-ready; the real acquirers
 import glob
 import os
 import signal
+import struct
 import subprocess
 import sys
 import time
 import traceback
+import zlib
 
 ROOT = sys.argv[1]
 sys.path[:0] = [os.path.join(ROOT, "host-tools", "python"), os.path.join(ROOT, "tests", "hw"),
@@ -114,8 +116,13 @@ def stored(out):
     return sorted(os.listdir(out))
 
 
+def name(pid, data):
+    """The file a payload is stored as: its id and its CRC-32 field."""
+    return "payload-%d-%08x.bwv" % (pid, struct.unpack("<I", data[-4:])[0])
+
+
 def check_stored(out, pid, original):
-    path = os.path.join(out, "payload-%d.bwv" % pid)
+    path = os.path.join(out, name(pid, original))
     with open(path, "rb") as f:
         got = f.read()
     expect(got == original, "stored payload differs from the offered one")
@@ -141,7 +148,7 @@ def acquire_once_stores_the_offered_payload_and_acknowledges_it(cmd):
     DEV.offer(7, A)
     r = run(cmd(out, "--once", "--timeout", "20"))
     expect(r[0] == 0 and "stored" in r[1], "acquire failed", r)
-    expect(stored(out) == ["payload-7.bwv"], "stored files %r" % stored(out), r)
+    expect(stored(out) == [name(7, A)], "stored files %r" % stored(out), r)
     check_stored(out, 7, A)
     expect(DEV.acked == [7] and DEV.retries == [], "device saw acks %r retries %r"
            % (DEV.acked, DEV.retries), r)
@@ -204,6 +211,29 @@ def a_payload_with_a_bad_header_is_not_acknowledged(cmd):
     expect(stored(out) == [] and DEV.acked == [], "stored %r acked %r" % (stored(out), DEV.acked))
 
 
+def a_payload_that_does_not_decode_is_not_acknowledged(cmd):
+    out = outdir(cmd.__name__ + "-nodecode")
+    body = A[:-4 - 16]  # the body cut short, the payload's own CRC made to match it
+    DEV.offer(13, body + struct.pack("<I", zlib.crc32(body)))
+    r = run(cmd(out, "--once", "--timeout", "20"))
+    expect(r[0] == 1 and "does not decode" in r[2] and "not acknowledged" in r[2],
+           "no clear error", r)
+    expect(stored(out) == [] and DEV.acked == [], "stored %r acked %r" % (stored(out), DEV.acked))
+
+
+def ids_repeated_after_a_reboot_never_replace_a_stored_payload(cmd):
+    out = outdir(cmd.__name__ + "-reboot")
+    for data in (A, B, A):  # id 1 from three boots; the third repeats the first's payload
+        DEV.offer(1, data)
+        r = run(cmd(out, "--once", "--timeout", "20"))
+        expect(r[0] == 0 and "stored" in r[1], "acquire failed", r)
+    expect("already stored" in r[1], "the repeat is not reported", r)
+    expect(stored(out) == sorted([name(1, A), name(1, B)]), "stored %r" % stored(out), r)
+    check_stored(out, 1, A)
+    check_stored(out, 1, B)
+    expect(DEV.acked == [1, 1, 1], "acked %r" % DEV.acked)
+
+
 def the_service_stores_payloads_until_sigterm(cmd):
     out = outdir(cmd.__name__ + "-service")
     p = subprocess.Popen(cmd(out, "--retry-interval", "0.5"), stdout=subprocess.PIPE,
@@ -223,7 +253,7 @@ def the_service_stores_payloads_until_sigterm(cmd):
         raise AssertionError("no clean exit on SIGTERM: " + se)
     r = (p.returncode, so, se)
     expect(p.returncode == 0 and "stopped after 2 payload(s)" in se, "no clean shutdown", r)
-    expect(stored(out) == ["payload-20.bwv", "payload-21.bwv"], "stored %r" % stored(out), r)
+    expect(stored(out) == sorted([name(20, A), name(21, B)]), "stored %r" % stored(out), r)
     check_stored(out, 20, A)
     check_stored(out, 21, B)
     expect(DEV.acked == [20, 21], "acked %r" % DEV.acked, r)
@@ -249,6 +279,8 @@ ALL = (acquire_once_stores_the_offered_payload_and_acknowledges_it,
        a_corrupted_page_is_read_again, a_page_that_never_verifies_is_not_acknowledged,
        a_payload_crc_mismatch_is_not_acknowledged,
        a_payload_with_a_bad_header_is_not_acknowledged,
+       a_payload_that_does_not_decode_is_not_acknowledged,
+       ids_repeated_after_a_reboot_never_replace_a_stored_payload,
        the_service_stores_payloads_until_sigterm)
 for f in ALL:
     case(py(f))

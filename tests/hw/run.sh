@@ -5,8 +5,9 @@
 # (TCG, no KVM) with a busybox initramfs that loads i2c-stub (banked as the
 # window of docs/I2C.md), i2c-dev, configfs and gpio-sim (built here out of
 # tree from linux-source-6.1: Debian does not ship it), mounts this machine's
-# root read-only over 9p and runs tests/hw/guest.py there: Debian's python3,
-# numpy, smbus2, gpiod and this tree's build are used as they are.
+# root and this checkout read-only over 9p (the checkout at /tmp/checkout in
+# the guest, wherever it is here) and runs tests/hw/guest.py there: Debian's
+# python3, numpy, smbus2, gpiod and this tree's build are used as they are.
 #
 # Cached in $BW_HW_CACHE (default build/hw-cache): gpio-sim.ko and the
 # initramfs, per kernel version. Prints the guest's case lines and
@@ -92,8 +93,9 @@ B=$BUILD/brdfwave
 log=$D/console.log
 timeout "$VM_TIMEOUT" qemu-system-x86_64 -machine q35 -accel tcg -m 1024 -smp 1 -nographic \
     -no-reboot -nic none -kernel "/boot/vmlinuz-$kver" -initrd "$C/initrd.gz" \
-    -append "console=ttyS0 quiet panic=-1 bwroot=$ROOT" \
+    -append "console=ttyS0 quiet panic=-1" \
     -virtfs local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap \
+    -virtfs "local,path=${ROOT//,/,,},mount_tag=checkout,security_model=none,readonly=on,multidevs=remap" \
     </dev/null 2>&1 | sed -u 's/\r$//' | tee "$log" | grep -E '^(hw|ok|FAIL|RESULT|hw-init)|Error|assert' 
 rc=${PIPESTATUS[0]}
 if [ "$rc" = 124 ]; then
