@@ -1,15 +1,20 @@
-#define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE
 #include "bwhost.h"
 
 #include "link.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "bw_crc32.h"
 
 static _Thread_local char last_error[512];
 
@@ -45,13 +50,17 @@ int bwh_read_file(const char *path, uint8_t **buf, size_t *len)
 {
     *buf = NULL;
     *len = 0;
-    FILE *f = fopen(path, "rb");
+    int std = !strcmp(path, "-");
+    FILE *f = std ? stdin : fopen(path, "rb");
     if (!f)
         return fail("%s: %s", path, strerror(errno));
+    if (std)
+        path = "standard input";
     size_t cap = 1 << 16, n = 0;
     uint8_t *b = malloc(cap);
     if (!b) {
-        fclose(f);
+        if (!std)
+            fclose(f);
         return fail("%s: out of memory", path);
     }
     for (;;) {
@@ -59,7 +68,8 @@ int bwh_read_file(const char *path, uint8_t **buf, size_t *len)
             uint8_t *nb = cap > SIZE_MAX / 2 ? NULL : realloc(b, cap * 2);
             if (!nb) {
                 free(b);
-                fclose(f);
+                if (!std)
+                    fclose(f);
                 return fail("%s: out of memory", path);
             }
             b = nb;
@@ -71,7 +81,8 @@ int bwh_read_file(const char *path, uint8_t **buf, size_t *len)
             break;
     }
     int err = ferror(f);
-    fclose(f);
+    if (!std)
+        fclose(f);
     if (err) {
         free(b);
         return fail("%s: read error", path);
@@ -81,30 +92,168 @@ int bwh_read_file(const char *path, uint8_t **buf, size_t *len)
     return 0;
 }
 
+/* Writes all of buf to fd. */
+static int write_fd(int fd, const void *buf, size_t len)
+{
+    const uint8_t *p = buf;
+    while (len) {
+        ssize_t w = write(fd, p, len);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return -1;
+        p += w;
+        len -= (size_t)w;
+    }
+    return 0;
+}
+
+/* A new file beside `path` (same directory), created exclusively with the
+ * mode a new file would get; its name goes to tmp[cap]. */
+static int temp_beside(const char *path, char *tmp, size_t cap)
+{
+    const char *slash = strrchr(path, '/');
+    int dl = slash ? (int)(slash - path + 1) : 0;
+    if (snprintf(tmp, cap, "%.*s.%s.XXXXXX", dl, path, slash ? slash + 1 : path) >= (int)cap) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+        return -1;
+    mode_t um = umask(0);
+    umask(um);
+    if (fchmod(fd, 0666 & ~um) != 0) {
+        close(fd);
+        unlink(tmp);
+        return -1;
+    }
+    return fd;
+}
+
 int bwh_write_file(const char *path, const void *buf, size_t len)
 {
-    /* write beside the target and rename, so a failure leaves no half file */
-    size_t pl = strlen(path);
-    char *tmp = malloc(pl + 16);
-    if (!tmp)
-        return fail("%s: out of memory", path);
-    snprintf(tmp, pl + 16, "%s.tmp%ld", path, (long)(len % 100000));
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
+    if (!strcmp(path, "-")) {
+        if (write_fd(1, buf, len) != 0)
+            return fail("standard output: %s", strerror(errno));
+        return 0;
+    }
+    struct stat st, lst;
+    int exists = stat(path, &st) == 0;
+    if (!exists && lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode))
+        return fail("%s: a symbolic link to a missing file; not replaced", path);
+    if (exists && !S_ISREG(st.st_mode)) {
+        /* a device, a pipe, a socket: written to as it is, never replaced */
+        if (S_ISDIR(st.st_mode))
+            return fail("%s: is a directory", path);
+        int fd = open(path, O_WRONLY | O_CLOEXEC);
+        if (fd < 0)
+            return fail("%s: %s", path, strerror(errno));
+        int bad = write_fd(fd, buf, len) != 0;
+        int e = errno;
+        if (close(fd) != 0 && !bad) {
+            bad = 1;
+            e = errno;
+        }
+        return bad ? fail("%s: write failed: %s", path, strerror(e)) : 0;
+    }
+    /* a regular file (a symbolic link to one is followed): written beside
+     * its target and renamed over it, so a failure leaves the old file */
+    char *real = NULL;
+    if (exists && lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) {
+        real = realpath(path, NULL);
+        if (!real)
+            return fail("%s: %s", path, strerror(errno));
+        path = real;
+    }
+    char tmp[4096];
+    int fd = temp_beside(path, tmp, sizeof tmp);
+    if (fd < 0) {
         fail("%s: %s", path, strerror(errno));
-        free(tmp);
+        free(real);
         return -1;
     }
-    int ok = fwrite(buf, 1, len, f) == len;
-    ok = (fclose(f) == 0) && ok;
+    int ok = write_fd(fd, buf, len) == 0;
+    if (ok && exists)
+        ok = fchmod(fd, st.st_mode & 07777) == 0;
+    ok = (close(fd) == 0) && ok;
     if (!ok || rename(tmp, path) != 0) {
         fail("%s: write failed: %s", path, strerror(errno));
-        remove(tmp);
-        free(tmp);
+        unlink(tmp);
+        free(real);
         return -1;
     }
-    free(tmp);
+    free(real);
     return 0;
+}
+
+/* fsync of the directory that holds path, so that a rename or link in it
+ * survives a power loss */
+static void sync_dir(const char *dir)
+{
+    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+        fsync(dfd);
+        close(dfd);
+    }
+}
+
+/* 1 when the file at path holds exactly p[n], else 0 */
+static int same_content(const char *path, const uint8_t *p, size_t n)
+{
+    uint8_t *b;
+    size_t bl;
+    if (bwh_read_file(path, &b, &bl) != 0)
+        return 0;
+    int same = bl == n && !memcmp(b, p, n);
+    free(b);
+    return same;
+}
+
+int bwh_store_payload(const char *dir, uint32_t id, const uint8_t *p, size_t n, char *path,
+                      size_t cap)
+{
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s/.payload-%u.XXXXXX", dir, id);
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+        return fail("cannot store payload %u in %s: %s", id, dir, strerror(errno));
+    int ok = fchmod(fd, 0644) == 0 && write_fd(fd, p, n) == 0 && fsync(fd) == 0;
+    int e = errno;
+    ok = close(fd) == 0 && ok;
+    if (!ok) {
+        unlink(tmp);
+        return fail("cannot store payload %u in %s: %s", id, dir, strerror(e));
+    }
+    /* the payload's own CRC-32 (of header and body; the CRC of a whole
+     * payload, its CRC included, is the same constant for every payload) */
+    uint32_t crc = bw_crc32(p, n >= BW_TRAILER_SIZE ? n - BW_TRAILER_SIZE : n);
+    int rc = -1, reported = 0;
+    for (unsigned k = 1; k < 1000; k++) {
+        if (k == 1)
+            snprintf(path, cap, "%s/payload-%u-%08x.bwv", dir, id, crc);
+        else
+            snprintf(path, cap, "%s/payload-%u-%08x-%u.bwv", dir, id, crc, k);
+        if (link(tmp, path) == 0) {
+            rc = 0;
+            break;
+        }
+        if (errno != EEXIST) {
+            fail("cannot store payload %u as %s: %s", id, path, strerror(errno));
+            reported = 1;
+            break;
+        }
+        if (same_content(path, p, n)) {
+            rc = 1; /* the same payload again (its ACK was lost): kept once */
+            break;
+        }
+    }
+    if (rc < 0 && !reported)
+        fail("cannot store payload %u in %s: too many files of that name", id, dir);
+    unlink(tmp);
+    if (rc >= 0)
+        sync_dir(dir);
+    return rc;
 }
 
 /* ---- .sed ------------------------------------------------------------- */
@@ -190,6 +339,16 @@ int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **w
         if (!header_seen) { /* column titles */
             header_seen = 1;
             continue;
+        }
+        if (!strchr(line, '\n')) {
+            int cut = feof(f) || strlen(line) + 1 < sizeof line;
+            free(v);
+            free(wl);
+            fclose(f);
+            if (cut)
+                return fail("%s:%d: the last row has no line end (the file is cut short)", path,
+                            lineno);
+            return fail("%s:%d: line longer than %zu bytes", path, lineno, sizeof line - 1);
         }
         const char *s = line;
         while (*s == ' ' || *s == '\t')
@@ -401,7 +560,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     }
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */
-        bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0};
+        bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0,
+                            SIZE_MAX};
         bwh_received_t r;
         if (strcmp(o->device, "qemu") != 0 && strcmp(o->device, "linux") != 0) {
             free(work);
@@ -569,7 +729,7 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
         bw_header_t h;
         int32_t *s = NULL;
         float *v = NULL;
-        if (bwh_decode(*out, *out_len, &h, &s, &v) != 0) {
+        if (bwh_decode_limit(*out, *out_len, SIZE_MAX, &h, &s, &v) != 0) {
             free(*out);
             *out = NULL;
             return -1;
@@ -592,43 +752,94 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     return 0;
 }
 
-int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values)
+/* The header of p[len], checked, and its sample count against the limit. */
+static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
 {
-    *samples = NULL;
-    if (values)
-        *values = NULL;
     int st = bw_header_read(p, len, h);
     if (st != BW_OK)
         return status_fail(st);
+    size_t n = bw_dims_samples(&h->dims);
+    if (!max_samples)
+        max_samples = BWH_MAX_SAMPLES_DEFAULT;
+    if (n > max_samples)
+        return fail("the payload decodes to %zu samples (%.1f MiB as float32), more than the "
+                    "limit of %zu (raise it with --max-samples)",
+                    n, (double)n * 4 / 1048576.0, max_samples);
+    return 0;
+}
+
+int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
+{
+    if (header_within(p, len, max_samples, h) != 0)
+        return -1;
     size_t n = bw_dims_samples(&h->dims);
     size_t wb = bw_work_bound(n, h->dims.bands);
     int32_t *w = malloc(wb * sizeof *w);
     if (!w)
         return fail("out of memory");
-    st = bw_decode(p, len, w, wb, w, wb, h);
+    int st = bw_decode(p, len, w, wb, w, wb, h);
+    free(w);
+    return st == BW_OK ? 0 : status_fail(st);
+}
+
+int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                     int32_t **samples, float **values)
+{
+    if (samples)
+        *samples = NULL;
+    if (values)
+        *values = NULL;
+    if (header_within(p, len, max_samples, h) != 0)
+        return -1;
+    size_t n = bw_dims_samples(&h->dims);
+    size_t wb = bw_work_bound(n, h->dims.bands);
+    int32_t *w = malloc(wb * sizeof *w);
+    if (!w)
+        return fail("out of memory");
+    int st = bw_decode(p, len, w, wb, w, wb, h);
     if (st != BW_OK) {
         free(w);
         return status_fail(st);
     }
     if (values) {
-        float *v = malloc((n ? n : 1) * sizeof *v);
+        float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
+        if (!isfinite(scale) || !isfinite(off) || scale == 0) {
+            free(w);
+            return fail("payload header has a zero or non-finite scale or offset");
+        }
+        /* without the integers the values take their place */
+        float *v = samples ? malloc((n ? n : 1) * sizeof *v) : (float *)(void *)w;
         if (!v) {
             free(w);
             return fail("out of memory");
         }
-        float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
-        if (!isfinite(scale) || !isfinite(off) || scale == 0) {
-            free(v);
-            free(w);
-            return fail("payload header has a zero or non-finite scale or offset");
-        }
         value_map_t vm = value_map(scale, off, h->flags);
-        for (size_t i = 0; i < n; i++)
-            v[i] = map_value(&vm, w[i]);
+        for (size_t i = 0; i < n; i++) {
+            int32_t q = w[i];
+            float x = map_value(&vm, q);
+            if (!isfinite(x)) {
+                fail("sample %zu (%d) decodes to %g, beyond float32 (scale %g, offset %g%s)", i,
+                     q, (double)x, (double)scale, (double)off,
+                     h->flags & BW_FLAG_LOG_VALUE ? ", logarithmic" : "");
+                if (v != (float *)(void *)w)
+                    free(v);
+                free(w);
+                return -1;
+            }
+            v[i] = x;
+        }
         *values = v;
     }
-    *samples = w;
+    if (samples)
+        *samples = w;
+    else if (!values)
+        free(w);
     return 0;
+}
+
+int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values)
+{
+    return bwh_decode_limit(p, len, 0, h, samples, values);
 }
 
 /* ---- metrics ------------------------------------------------------------ */

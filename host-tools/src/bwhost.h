@@ -21,9 +21,23 @@ extern "C" {
 /* Error text of the last failing bwh_* call (thread-local). */
 const char *bwh_last_error(void);
 
-/* Whole-file I/O. bwh_read_file allocates *buf (free() it). */
+/* Whole-file I/O. bwh_read_file allocates *buf (free() it); "-" is standard
+ * input. bwh_write_file writes "-" to standard output, and a path that is
+ * not a regular file (a device, a pipe) directly; a regular file (or a
+ * symbolic link to one, followed) is written beside it and renamed over it,
+ * so that a failure leaves the old file; a symbolic link to nothing is
+ * refused. */
 int bwh_read_file(const char *path, uint8_t **buf, size_t *len);
 int bwh_write_file(const char *path, const void *buf, size_t len);
+
+/* Stores a received payload in dir as payload-ID-CRC.bwv (ID the device's
+ * payload id, CRC the payload's CRC-32 field in hex: a device that counts ids from 1 again
+ * after a reboot cannot collide with what is stored), through a temporary
+ * file, fsync and a link that never replaces an existing file; the name
+ * goes to path[cap]. 0 when stored, 1 when that very payload was stored
+ * before (a repeat whose acknowledgement was lost), -1 on failure. */
+int bwh_store_payload(const char *dir, uint32_t id, const uint8_t *p, size_t n, char *path,
+                      size_t cap);
 
 /* Spectral Evolution .sed: reflectance column, parsed exactly as decimal
  * text into integers of 10^-5 (the files print 5 decimals). *values is
@@ -77,9 +91,20 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
 int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
                    float scale, float offset, uint8_t **out, size_t *out_len);
 
-/* Decodes a payload. *samples (allocated) receives the integer samples and
- * *values (allocated, may be NULL) the float values. */
+/* Decodes a payload. *samples (allocated, may be NULL) receives the integer
+ * samples and *values (allocated, may be NULL) the float values; a value
+ * that float32 cannot hold is an error. Payloads that decode to more than
+ * max_samples samples are refused before anything is allocated (0: the
+ * default, BWH_MAX_SAMPLES_DEFAULT): a few bytes can describe gigabytes. */
+#define BWH_MAX_SAMPLES_DEFAULT ((size_t)1 << 26) /* 256 MiB of float32 */
+int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                     int32_t **samples, float **values);
+/* bwh_decode_limit with the default limit */
 int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values);
+
+/* Checks a payload as a receiver must before it stores and acknowledges it:
+ * header, CRC, the sample limit (0: the default) and a full decode. */
+int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h);
 
 /* Float value of a header's scale / offset fields. */
 float bwh_bits_to_float(uint32_t bits);

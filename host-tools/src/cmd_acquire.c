@@ -16,11 +16,12 @@
 #include <unistd.h>
 
 #include "bw_crc32.h"
+#include "bw_features.h"
 #include "bw_i2cmap.h"
 #include "bwhost.h"
 #include "commands.h"
 
-#ifndef BW_NO_GPIOD
+#if BW_HAVE_GPIOD
 #include <gpiod.h>
 #include <linux/i2c-dev.h>
 #include <linux/i2c.h>
@@ -32,14 +33,15 @@ static const char acquire_help[] =
     "Stores the payloads the co-processor offers over I2C (docs/I2C.md): waits for\n"
     "a rising edge of its data-ready line (GPIO CHIP, line L), reads the payload\n"
     "page by page from /dev/i2c-N, checks each page's CRC-32 (a bad page is asked\n"
-    "for again), the payload's CRC-32 and header, writes DIR/payload-ID.bwv (a\n"
-    "temporary file, fsync, rename) and then acknowledges it. Runs until SIGTERM\n"
-    "or SIGINT.\n"
+    "for again), the payload's CRC-32 and header, decodes it, stores it as\n"
+    "DIR/payload-ID-CRC.bwv (a temporary file, fsync, then a link that never\n"
+    "replaces a file) and then acknowledges it. Runs until SIGTERM or SIGINT.\n"
     "  --addr A            device address (default 0x42)\n"
     "  --once              one payload, then exit (status 1 if it fails)\n"
     "  --timeout S         with --once: seconds to wait for data-ready (default: forever)\n"
     "  --retries R         reads of a bad page after the first (default 3)\n"
-    "  --retry-interval S  seconds before a failed payload is tried again (default 5)\n";
+    "  --retry-interval S  seconds before a failed payload is tried again (default 5)\n"
+    "  --max-samples N     refuse payloads that decode to more samples (default 67108864)\n";
 
 static volatile sig_atomic_t stop_now;
 static void on_signal(int sig) { (void)sig; stop_now = 1; }
@@ -170,8 +172,8 @@ static int read_page(acq_dev_t *d, unsigned p, unsigned pages, unsigned psize, u
 }
 
 /* Reads and verifies the offered payload. 0, or -1 with d->err set. */
-static int read_payload(acq_dev_t *d, unsigned retries, uint32_t *id, uint8_t **out, size_t *out_len,
-                        unsigned *bad)
+static int read_payload(acq_dev_t *d, unsigned retries, size_t max_samples, uint32_t *id,
+                        uint8_t **out, size_t *out_len, unsigned *bad)
 {
     uint32_t magic, version, status, len, pages, crc;
     *out = NULL;
@@ -244,9 +246,8 @@ static int read_payload(acq_dev_t *d, unsigned retries, uint32_t *id, uint8_t **
         goto out;
     }
     bw_header_t h;
-    int st = bw_header_read(p, len, &h);
-    if (st != BW_OK) {
-        failf(d, "payload %u: %s; payload not acknowledged", *id, bw_strerror(st));
+    if (bwh_payload_check(p, len, max_samples, &h) != 0) {
+        failf(d, "payload %u does not decode: %s; payload not acknowledged", *id, bwh_last_error());
         goto out;
     }
     rc = 0;
@@ -258,37 +259,6 @@ out:
     }
     *out = p;
     *out_len = len;
-    return 0;
-}
-
-/* DIR/payload-ID.bwv through a temporary file, fsync and rename. */
-static int store(const char *dir, uint32_t id, const uint8_t *p, size_t n, char *path, size_t cap)
-{
-    char tmp[4096];
-    snprintf(path, cap, "%s/payload-%u.bwv", dir, id);
-    snprintf(tmp, sizeof tmp, "%s/.payload-%u.bwv.tmp", dir, id);
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0)
-        return -1;
-    size_t off = 0;
-    while (off < n) {
-        ssize_t w = write(fd, p + off, n - off);
-        if (w < 0) {
-            close(fd);
-            unlink(tmp);
-            return -1;
-        }
-        off += (size_t)w;
-    }
-    if (fsync(fd) != 0 || close(fd) != 0 || rename(tmp, path) != 0) {
-        unlink(tmp);
-        return -1;
-    }
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY);
-    if (dfd >= 0) {
-        fsync(dfd);
-        close(dfd);
-    }
     return 0;
 }
 
@@ -328,9 +298,11 @@ int bw_cmd_acquire(int argc, char **argv)
                                          {"timeout", required_argument, 0, 't'},
                                          {"retries", required_argument, 0, 'r'},
                                          {"retry-interval", required_argument, 0, 'i'},
+                                         {"max-samples", required_argument, 0, 'M'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     long bus = -1, addr = BW_I2C_ADDR, line = -1, retries = 3;
+    long long max_samples = 0;
     const char *chip = NULL, *dir = NULL;
     int once = 0, c;
     double timeout = 0, interval = 5;
@@ -348,6 +320,12 @@ int bw_cmd_acquire(int argc, char **argv)
         case 't': if (parse_double(optarg, &timeout)) timeout = -1; break;
         case 'r': retries = strtol(optarg, &e, 10); if (*e) retries = -1; break;
         case 'i': if (parse_double(optarg, &interval)) interval = -1; break;
+        case 'M':
+            errno = 0;
+            max_samples = strtoll(optarg, &e, 10);
+            if (errno || *e || max_samples < 1)
+                max_samples = -1;
+            break;
         case 'h': fputs(acquire_help, stdout); return 0;
         default:
             fprintf(stderr, "brdfwave acquire: unknown option or missing argument (see --help)\n");
@@ -360,9 +338,9 @@ int bw_cmd_acquire(int argc, char **argv)
         return 2;
     }
     if (addr < 0x03 || addr > 0x77 || retries < 0 || retries > 100 || timeout < 0 ||
-        interval < 0) {
+        interval < 0 || max_samples < 0) {
         fprintf(stderr, "brdfwave acquire: --addr must be 0x03..0x77, --retries 0..100, "
-                        "--timeout and --retry-interval >= 0\n");
+                        "--timeout and --retry-interval >= 0, --max-samples > 0\n");
         return 2;
     }
     struct stat sb;
@@ -442,7 +420,7 @@ int bw_cmd_acquire(int argc, char **argv)
         uint8_t *p = NULL;
         size_t n = 0;
         unsigned bad = 0;
-        if (read_payload(&d, (unsigned)retries, &id, &p, &n, &bad) != 0) {
+        if (read_payload(&d, (unsigned)retries, (size_t)max_samples, &id, &p, &n, &bad) != 0) {
             if (stop_now)
                 break;
             logmsg("%s", d.err);
@@ -454,19 +432,20 @@ int bw_cmd_acquire(int argc, char **argv)
             continue;
         }
         char path[4096];
-        if (store(dir, id, p, n, path, sizeof path) != 0) {
-            logmsg("cannot store payload %u in %s: %s", id, dir, strerror(errno));
-            free(p);
+        int kept = bwh_store_payload(dir, id, p, n, path, sizeof path);
+        free(p);
+        if (kept < 0) {
+            logmsg("%s; payload %u not acknowledged", bwh_last_error(), id);
             rc = 1;
             break;
         }
-        free(p);
         int a = acknowledge(&d, id);
         if (a < 0)
             logmsg("payload %u stored, ACK failed: %s", id, d.err);
         else if (a == 0)
             logmsg("payload %u stored, but the device did not confirm the ACK", id);
-        printf("stored %s: %zu bytes, %u page retries\n", path, n, bad);
+        printf("stored %s%s: %zu bytes, %u page retries\n", path,
+               kept == 1 ? " (already stored)" : "", n, bad);
         fflush(stdout);
         stored++;
         if (once)
@@ -480,7 +459,7 @@ int bw_cmd_acquire(int argc, char **argv)
     return rc;
 }
 
-#else /* BW_NO_GPIOD */
+#else /* !BW_HAVE_GPIOD */
 
 int bw_cmd_acquire(int argc, char **argv)
 {

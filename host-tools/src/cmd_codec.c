@@ -406,19 +406,25 @@ out:
 }
 
 static const char decode_help[] =
-    "usage: brdfwave decode -i IN.bwv -o OUT [--output-format f32|i32]\n"
+    "usage: brdfwave decode -i IN.bwv -o OUT [--output-format f32|i32] [--max-samples N]\n"
     "\n"
     "Decodes a payload to raw little-endian samples in the encoder's layout:\n"
-    "float32 values (default) or the codec's int32 samples.\n";
+    "float32 values (default) or the codec's int32 samples. '-' is standard input\n"
+    "or output; an OUT that is a device or a pipe is written to directly.\n"
+    "  --max-samples N  refuse payloads that decode to more than N samples\n"
+    "                   (default 67108864, 256 MiB of float32): a small payload\n"
+    "                   can describe gigabytes\n";
 
 int bw_cmd_decode(int argc, char **argv)
 {
     static const struct option opts[] = {{"input", required_argument, 0, 'i'},
                                          {"output", required_argument, 0, 'o'},
                                          {"output-format", required_argument, 0, 'f'},
+                                         {"max-samples", required_argument, 0, 'M'},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     const char *C = "decode", *inp = NULL, *outp = NULL, *fmt = "f32";
+    uint32_t max_samples = 0;
     int c;
     optind = 1;
     opterr = 0;
@@ -427,6 +433,10 @@ int bw_cmd_decode(int argc, char **argv)
         case 'i': inp = optarg; break;
         case 'o': outp = optarg; break;
         case 'f': fmt = optarg; break;
+        case 'M':
+            if (parse_u32(optarg, BW_MAX_SAMPLES, &max_samples) || !max_samples)
+                return usage_err(C, "--max-samples must be 1..268435456");
+            break;
         case 'h': fputs(decode_help, stdout); return 0;
         default: return usage_err(C, "unknown option or missing argument");
         }
@@ -441,28 +451,22 @@ int bw_cmd_decode(int argc, char **argv)
     if (bwh_read_file(inp, &p, &len) != 0)
         return err(C, bwh_last_error());
     bw_header_t h;
-    int32_t *s;
-    float *v;
-    if (bwh_decode(p, len, &h, &s, &v) != 0) {
+    int32_t *s = NULL;
+    float *v = NULL;
+    /* one array: the integers, or the values in their place */
+    if (bwh_decode_limit(p, len, max_samples, &h, as_int ? &s : NULL, as_int ? NULL : &v) != 0) {
         fprintf(stderr, "brdfwave %s: %s: %s\n", C, inp, bwh_last_error());
         free(p);
         return 1;
     }
     free(p);
     size_t n = bw_dims_samples(&h.dims);
-    uint8_t *raw = malloc(n * 4 + 1);
-    if (!raw) {
-        free(s);
-        free(v);
-        return err(C, "out of memory");
-    }
-    for (size_t i = 0; i < n; i++) {
+    /* little-endian in place */
+    uint8_t *raw = as_int ? (uint8_t *)s : (uint8_t *)v;
+    for (size_t i = 0; i < n; i++)
         bw_put_u32(raw + 4 * i, as_int ? (uint32_t)s[i] : bwh_float_to_bits(v[i]));
-    }
     int rc = bwh_write_file(outp, raw, n * 4);
     free(raw);
-    free(s);
-    free(v);
     return rc ? err(C, bwh_last_error()) : 0;
 }
 

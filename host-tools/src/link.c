@@ -69,111 +69,158 @@ int bwh_send_frame(int fd, uint8_t type, uint16_t seq, const uint8_t *data, uint
     return write_all(fd, buf, n);
 }
 
-static double now(void)
+double bwh_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* Waits for the next valid frame; 1 = frame, 0 = timeout, -1 = error/EOF. */
-static int next_frame(int fd, bw_frame_rx_t *rx, bw_frame_t *f, double timeout_s)
+void bwh_link_init(bwh_link_t *l, int fd)
 {
-    double end = now() + timeout_s;
-    int is_tty = isatty(fd);
+    l->fd = fd;
+    l->is_tty = isatty(fd);
+    bw_frame_rx_init(&l->rx);
+    l->pos = l->len = 0;
+}
+
+int bwh_link_next(bwh_link_t *l, bw_frame_t *f, double deadline)
+{
     for (;;) {
-        uint8_t b;
-        ssize_t r = read(fd, &b, 1);
-        if (r == 1) {
-            if (bw_frame_rx_byte(rx, b, f))
-                return 1;
+        bool got;
+        l->pos += bw_frame_rx_feed(&l->rx, l->in + l->pos, l->len - l->pos, f, &got);
+        if (got)
+            return 1;
+        ssize_t r = read(l->fd, l->in, sizeof l->in);
+        l->pos = 0;
+        l->len = r > 0 ? (size_t)r : 0u;
+        if (r > 0)
             continue;
-        }
         /* a raw terminal with VMIN = 0 reads 0 when it has nothing yet */
-        if (r == 0 && !is_tty)
+        if (r == 0 && !l->is_tty)
             return bwh_fail("link closed"), -1;
         if (r < 0 && errno != EAGAIN && errno != EINTR) {
             if (errno == EIO) /* pty without a peer any more */
                 return bwh_fail("link closed (device gone)"), -1;
             return bwh_fail("link read: %s", strerror(errno)), -1;
         }
-        double left = end - now();
+        double left = deadline - bwh_now();
         if (left <= 0)
             return 0;
-        struct pollfd pf = {fd, POLLIN, 0};
+        struct pollfd pf = {l->fd, POLLIN, 0};
         int ms = left > 0.2 ? 200 : (int)(left * 1000) + 1;
         if (poll(&pf, 1, ms) < 0 && errno != EINTR)
             return bwh_fail("poll: %s", strerror(errno)), -1;
     }
 }
 
-int bwh_receive_payload(int fd, const bwh_rx_opts_t *o, bwh_received_t *r)
+int bwh_acknowledge(bwh_link_t *l, uint32_t id)
+{
+    uint8_t d[4];
+    bw_put_u32(d, id);
+    return bwh_send_frame(l->fd, BW_FT_ACK, 0, d, 4);
+}
+
+/* Asks for the chunks of payload id that have not arrived, as many as fit
+ * in one frame (none missing, or all: the whole payload). */
+static int ask_missing(int fd, uint32_t id, const uint8_t *have, uint16_t chunks)
+{
+    uint8_t d[BW_FRAME_MAX_DATA];
+    uint16_t n = 4, missing = 0;
+    bw_put_u32(d, id);
+    for (uint16_t c = 0; c < chunks; c++)
+        if (!have[c]) {
+            missing++;
+            if (n + 2u <= sizeof d) {
+                bw_put_u16(d + n, c);
+                n += 2;
+            }
+        }
+    if (missing == chunks)
+        n = 4; /* everything: the short form */
+    return bwh_send_frame(fd, BW_FT_RESEND, 0, d, n);
+}
+
+int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r)
 {
     memset(r, 0, sizeof *r);
-    bw_frame_rx_t rx;
     bw_frame_t f;
-    bw_frame_rx_init(&rx);
     uint8_t *buf = NULL, *have = NULL;
-    uint32_t id = 0, crc = 0;
-    size_t len = 0;
+    uint32_t id = 0, crc = 0, bad0 = l->rx.bad_crc, dropped0 = l->rx.dropped;
+    size_t len = 0, arrived = 0;
     uint16_t chunks = 0;
     int started = 0, dropped_once = 0;
+    unsigned verify_failures = 0;
+    /* silence after a start: ask again at this interval, within the timeout */
+    double quiet = o->timeout_s / 8 < 0.2 ? 0.2 : o->timeout_s / 8 > 2.0 ? 2.0 : o->timeout_s / 8;
+    double progress = bwh_now(), last = progress;
     for (;;) {
-        int k = next_frame(fd, &rx, &f, o->timeout_s);
+        double deadline = progress + o->timeout_s;
+        double wake = started && last + quiet < deadline ? last + quiet : deadline;
+        int k = bwh_link_next(l, &f, wake);
         if (k < 0)
             goto fail;
+        double t = bwh_now();
         if (k == 0) {
-            if (!started) {
-                bwh_fail("no payload from the device within %.0f s", o->timeout_s);
+            if (t >= deadline) {
+                if (!started)
+                    bwh_fail("no payload from the device within %g s", o->timeout_s);
+                else
+                    bwh_fail("payload %u: nothing new from the device for %g s (%zu of %u "
+                             "chunks in); not acknowledged",
+                             id, o->timeout_s, arrived, chunks);
                 goto fail;
             }
-            /* silence after a start: ask for everything again */
-            uint8_t d[4];
-            bw_put_u32(d, id);
-            if (++r->resends > 16) {
-                bwh_fail("the device stopped answering resend requests");
+            r->resends++;
+            if (ask_missing(l->fd, id, have, chunks) != 0)
                 goto fail;
-            }
-            if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, 4) != 0)
-                goto fail;
+            last = t;
             continue;
         }
+        last = t;
+        int complete = 0;
         switch (f.type) {
         case BW_FT_ERROR: {
-            int32_t st = f.len >= 4 ? (int32_t)bw_get_u32(f.data) : 0;
-            bwh_fail("the device reports: %s", st == -100 ? "sensor input unavailable"
-                                                          : bw_strerror(st));
+            int32_t st = 0;
+            bw_error_unpack(f.data, f.len, &st, &r->limits);
+            r->device_error = 1;
+            r->device_status = st;
+            bwh_fail("the device reports: %s",
+                     st == -100 ? "sensor input unavailable" : bw_strerror(st));
             goto fail;
         }
-        case BW_FT_START:
-            if (f.len < 22)
-                break;
-            if (started && bw_get_u32(f.data) == id)
-                break; /* a resend of the same payload */
-            free(buf);
-            free(have);
-            id = bw_get_u32(f.data);
-            len = bw_get_u32(f.data + 4);
-            chunks = bw_get_u16(f.data + 8);
-            crc = bw_get_u32(f.data + 10);
-            r->instructions = bw_get_u32(f.data + 14) | (uint64_t)bw_get_u32(f.data + 18) << 32;
-            if (len == 0 || len > ((size_t)1 << 31) ||
-                chunks != (len + BW_FRAME_MAX_DATA - 1) / BW_FRAME_MAX_DATA) {
+        case BW_FT_START: {
+            if (f.len < 22 || (started && bw_get_u32(f.data) == id))
+                break; /* short, or a resend of the same payload: no progress */
+            uint32_t nid = bw_get_u32(f.data);
+            size_t nlen = bw_get_u32(f.data + 4);
+            uint16_t nchunks = bw_get_u16(f.data + 8);
+            if (nlen == 0 || nlen > ((size_t)1 << 31) ||
+                nchunks != (nlen + BW_FRAME_MAX_DATA - 1) / BW_FRAME_MAX_DATA) {
                 bwh_fail("the device announced an inconsistent payload (%zu bytes, %u chunks)",
-                         len, chunks);
-                buf = have = NULL;
+                         nlen, nchunks);
                 goto fail;
             }
+            free(buf);
+            free(have);
+            id = nid;
+            len = nlen;
+            chunks = nchunks;
+            crc = bw_get_u32(f.data + 10);
+            r->instructions = bw_get_u32(f.data + 14) | (uint64_t)bw_get_u32(f.data + 18) << 32;
             buf = malloc(len);
             have = calloc(chunks, 1);
+            arrived = 0;
             if (!buf || !have) {
                 bwh_fail("out of memory");
                 goto fail;
             }
             started = 1;
+            progress = t;
             break;
+        }
         case BW_FT_DATA: {
-            if (!started || f.seq >= chunks)
+            if (!started || f.seq >= chunks || have[f.seq])
                 break;
             if (o->drop_chunk == (int)f.seq && !dropped_once) {
                 dropped_once = 1; /* simulated loss */
@@ -185,57 +232,55 @@ int bwh_receive_payload(int fd, const bwh_rx_opts_t *o, bwh_received_t *r)
                 break;
             memcpy(buf + off, f.data, want);
             have[f.seq] = 1;
+            progress = t;
+            complete = ++arrived == chunks;
             break;
         }
-        case BW_FT_END: {
+        case BW_FT_END:
             if (!started || f.len < 4 || bw_get_u32(f.data) != id)
                 break;
-            /* list the missing chunks, as many as fit in one frame */
-            uint8_t d[BW_FRAME_MAX_DATA];
-            uint16_t n = 4;
-            bw_put_u32(d, id);
-            for (uint16_t c = 0; c < chunks && n + 2u <= sizeof d; c++)
-                if (!have[c]) {
-                    bw_put_u16(d + n, c);
-                    n += 2;
-                }
-            if (n > 4) {
-                if (++r->resends > 16) {
-                    bwh_fail("payload %u still incomplete after %u resend requests", id,
-                             r->resends - 1);
+            if (arrived < chunks) {
+                r->resends++;
+                if (ask_missing(l->fd, id, have, chunks) != 0)
                     goto fail;
-                }
-                if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, n) != 0)
-                    goto fail;
-                break;
             }
-            bw_header_t h;
-            int st = bw_crc32(buf, len) == crc ? bw_header_read(buf, len, &h) : BW_ERR_CRC;
-            if (st != BW_OK) {
-                /* every chunk arrived but the whole does not check: ask again */
-                memset(have, 0, chunks);
-                if (++r->resends > 16) {
-                    bwh_fail("payload %u does not verify: %s", id, bw_strerror(st));
-                    goto fail;
-                }
-                bw_put_u32(d, id);
-                if (bwh_send_frame(fd, BW_FT_RESEND, 0, d, 4) != 0)
-                    goto fail;
-                break;
-            }
-            bw_put_u32(d, id);
-            if (bwh_send_frame(fd, BW_FT_ACK, 0, d, 4) != 0)
-                goto fail;
-            free(have);
-            r->id = id;
-            r->payload = buf;
-            r->len = len;
-            r->bad_frames = rx.bad_crc + (rx.dropped ? 1u : 0u);
-            return 0;
-        }
+            break;
         default:
             break;
         }
+        if (!complete)
+            continue;
+        uint8_t d[4];
+        bw_put_u32(d, id);
+        if (bw_crc32(buf, len) != crc) {
+            /* every chunk arrived but the whole does not match: ask again */
+            if (++verify_failures > 3) {
+                bwh_fail("payload %u: CRC-32 mismatch after %u complete transfers; not "
+                         "acknowledged", id, verify_failures);
+                goto fail;
+            }
+            memset(have, 0, chunks);
+            arrived = 0;
+            r->resends++;
+            if (bwh_send_frame(l->fd, BW_FT_RESEND, 0, d, 4) != 0)
+                goto fail;
+            continue;
+        }
+        /* the transfer is intact; a payload that does not decode would not
+         * come out better by sending it again */
+        bw_header_t h;
+        if (bwh_payload_check(buf, len, o->max_samples, &h) != 0) {
+            char why[400];
+            snprintf(why, sizeof why, "%s", bwh_last_error());
+            bwh_fail("payload %u does not decode: %s; not acknowledged", id, why);
+            goto fail;
+        }
+        free(have);
+        r->id = id;
+        r->payload = buf;
+        r->len = len;
+        r->bad_frames = (l->rx.bad_crc - bad0) + (l->rx.dropped != dropped0 ? 1u : 0u);
+        return 0;
     }
 fail:
     free(buf);
@@ -269,8 +314,8 @@ static int find_pty(int out_fd, char *pty, size_t cap, double timeout_s)
 {
     char acc[4096];
     size_t have = 0;
-    double end = now() + timeout_s;
-    while (now() < end) {
+    double end = bwh_now() + timeout_s;
+    while (bwh_now() < end) {
         struct pollfd pf = {out_fd, POLLIN, 0};
         if (poll(&pf, 1, 100) <= 0)
             continue;
@@ -298,6 +343,39 @@ static int find_pty(int out_fd, char *pty, size_t cap, double timeout_s)
             have = 0;
     }
     return bwh_fail("the emulator did not open its link within %.0f s", timeout_s);
+}
+
+/* Replaces the last error of a device-side failure by one that says what
+ * the device can take and what to do instead. */
+static void explain_device_error(const bw_dims_t *d, int32_t st, const bw_limits_t *lim)
+{
+    size_t n = bw_dims_samples(d);
+    if (st == BW_ERR_WORK && lim->max_samples) {
+        char advice[300];
+        if (d->shape == BW_SHAPE_BRDF_FULL)
+            snprintf(advice, sizeof advice,
+                     "a full BRDF (--level-in) is not streamed: encode it on the host, or as "
+                     "blocks of incoming directions (--incoming)");
+        else if (d->bands <= lim->stream_bands && d->level_out <= lim->stream_level)
+            snprintf(advice, sizeof advice,
+                     "encode it with --stream (a fixed --basis, --lossless or --max-error): the "
+                     "device then holds one spectrum at a time");
+        else
+            snprintf(advice, sizeof advice,
+                     "streamed jobs take up to %u bands at levels up to %u: encode it on the "
+                     "host or split it", lim->stream_bands, lim->stream_level);
+        bwh_fail("the device cannot hold this job: %zu samples of %u bands, it holds at most %u "
+                 "samples of up to %u bands; %s",
+                 n, d->bands, lim->max_samples, lim->max_bands, advice);
+    } else if (st == BW_ERR_OUTPUT_FULL && lim->payload_cap) {
+        bwh_fail("the device reports: the payload would exceed its %u-byte buffer; use a byte "
+                 "budget (--bytes, --ratio), a larger --max-error, or a smaller job",
+                 lim->payload_cap);
+    } else if (st == -100) {
+        bwh_fail("the device reports: its sensor could not deliver the %zu samples", n);
+    } else {
+        bwh_fail("the device reports: %s", bw_strerror(st));
+    }
 }
 
 /* Starts the application as a host process on one end of a socket pair. */
@@ -421,22 +499,34 @@ connected:;
     bw_job_pack(&job, jb);
     if (bwh_send_frame(fd, BW_FT_JOB, 0, jb, BW_JOB_SIZE) != 0)
         goto out;
-    if (bwh_receive_payload(fd, o, r) != 0)
+    bwh_link_t link;
+    bwh_link_init(&link, fd);
+    if (bwh_receive_payload(&link, o, r) != 0) {
+        if (r->device_error)
+            explain_device_error(dims, r->device_status, &r->limits);
         goto out;
-    bwh_send_frame(fd, BW_FT_QUIT, 0, NULL, 0);
+    }
+    if (bwh_acknowledge(&link, r->id) != 0) {
+        free(r->payload);
+        r->payload = NULL;
+        goto out;
+    }
     rc = 0;
 out:
     if (pid > 0) {
-        /* the firmware exits on QUIT; do not wait for ever */
+        /* the session ends now, whatever happened: the device exits on QUIT;
+         * one that does not within a few seconds is stopped */
+        if (fd >= 0)
+            bwh_send_frame(fd, BW_FT_QUIT, 0, NULL, 0);
         int status;
-        double end = now() + 10;
+        double end = bwh_now() + 3;
         while (waitpid(pid, &status, WNOHANG) == 0) {
-            if (now() > end) {
+            if (bwh_now() > end) {
                 kill(pid, SIGKILL);
                 waitpid(pid, &status, 0);
                 break;
             }
-            usleep(20000);
+            usleep(2000);
         }
     }
     if (fd >= 0)

@@ -310,5 +310,68 @@ expect_error "import-rgl bad channel" "$BW" import-rgl -i $R/paper_white_rgb.bsd
 expect_error "import-rgl without output" "$BW" import-rgl -i $R/paper_white_rgb.bsdf
 [ ! -e "$T/rgl_x.f32" ] && ok || bad "a failed import-rgl left an output file"
 
+# ---- files in and out: read exactly, never replace what is not a file -----------
+# a .sed cut inside its last row (the reflectance 0.02230 would read as 0.022,
+# 0.02 or 0.) is refused, not read in part
+S=$DATA/1116037_00041.sed
+for cut in 3 4 5 6; do
+    head -c -$cut "$S" >"$T/cut.sed"
+    expect_error "sed cut $cut bytes short" "$BW" encode --input-format sed -i "$T/cut.sed" -o "$T/cut.bwv"
+    grep -q "no line end" "$T/err" && ok || bad "sed cut $cut: $(cat "$T/err")"
+done
+[ ! -e "$T/cut.bwv" ] && ok || bad "a cut .sed left an output file"
+expect_ok "sed encode" "$BW" encode --input-format sed -i "$S" -o "$T/one.bwv"
+expect_ok "decode to a file" "$BW" decode -i "$T/one.bwv" -o "$T/one.f32"
+# '-' is standard input and output
+"$BW" decode -i - -o - <"$T/one.bwv" >"$T/one_std.f32" 2>"$T/err" && cmp -s "$T/one.f32" "$T/one_std.f32" && ok ||
+    bad "decode -i - -o -: $(cat "$T/err")"
+"$BW" decode -i "$T/one.bwv" -o /dev/stdout 2>"$T/err" | cat >"$T/one_pipe.f32" && cmp -s "$T/one.f32" "$T/one_pipe.f32" && ok ||
+    bad "decode -o /dev/stdout into a pipe: $(cat "$T/err")"
+# a pipe (a FIFO) is written to, not replaced by a file
+mkfifo "$T/fifo"
+cat "$T/fifo" >"$T/one_fifo.f32" &
+reader=$!
+"$BW" decode -i "$T/one.bwv" -o "$T/fifo" 2>"$T/err" || bad "decode -o FIFO: $(cat "$T/err")"
+wait $reader
+[ -p "$T/fifo" ] && cmp -s "$T/one.f32" "$T/one_fifo.f32" && ok || bad "decode -o FIFO replaced it or wrote something else"
+# a symbolic link is followed: the link stays, its target gets the output
+echo old >"$T/target.f32"
+ln -s target.f32 "$T/link.f32"
+expect_ok "decode -o symlink" "$BW" decode -i "$T/one.bwv" -o "$T/link.f32"
+[ -L "$T/link.f32" ] && cmp -s "$T/one.f32" "$T/target.f32" && ok || bad "decode -o symlink replaced the link"
+ln -s missing.f32 "$T/dangling.f32"
+expect_error "decode -o dangling symlink" "$BW" decode -i "$T/one.bwv" -o "$T/dangling.f32"
+[ -L "$T/dangling.f32" ] && [ ! -e "$T/missing.f32" ] && ok || bad "decode -o dangling symlink replaced the link"
+# an existing file keeps its permissions
+chmod 600 "$T/target.f32"
+"$BW" decode -i "$T/one.bwv" -o "$T/target.f32" && [ "$(stat -c %a "$T/target.f32")" = 600 ] && ok ||
+    bad "decode -o changed the file's mode to $(stat -c %a "$T/target.f32")"
+ls -a "$T" | grep -q '^\.target' && bad "decode left a temporary file" || ok
+# a limit on what a payload may expand to (1024 samples here)
+expect_error "decode above --max-samples" "$BW" decode -i "$T/one.bwv" -o "$T/lim.f32" --max-samples 1023
+grep -q "more than the limit of 1023" "$T/err" && ok || bad "max-samples message: $(cat "$T/err")"
+expect_ok "decode at --max-samples" "$BW" decode -i "$T/one.bwv" -o "$T/lim.f32" --max-samples 1024
+expect_error "decode --max-samples 0" "$BW" decode -i "$T/one.bwv" -o "$T/lim2.f32" --max-samples 0
+"$BW" decode --help | grep -q "default 67108864" && ok || bad "decode --help does not state the default limit"
+# values beyond float32 are refused: a huge scale, or LOG_VALUE on large samples
+$PY -c "import struct; open('$T/two.i32','wb').write(struct.pack('<4i', 1, 2, 3, 4))"
+expect_ok "encode with a huge scale" "$BW" encode -i "$T/two.i32" --input-format i32 --bands 4 --scale 3e38 -o "$T/huge.bwv"
+expect_error "decode of values beyond float32" "$BW" decode -i "$T/huge.bwv" -o "$T/huge.f32"
+grep -q "beyond float32" "$T/err" && ok || bad "overflow message: $(cat "$T/err")"
+[ ! -e "$T/huge.f32" ] && ok || bad "an overflowing decode left an output file"
+expect_ok "decode of the same as integers" "$BW" decode -i "$T/huge.bwv" -o "$T/huge.i32" --output-format i32
+cmp -s "$T/two.i32" "$T/huge.i32" && ok || bad "integer decode of the huge-scale payload"
+$PY -c "import struct; open('$T/big.i32','wb').write(struct.pack('<4i', 1000, 1000, 1000, 1000))"
+expect_ok "encode of large samples" "$BW" encode -i "$T/big.i32" --input-format i32 --bands 4 -o "$T/big.bwv"
+$PY - "$T/big.bwv" "$T/log.bwv" <<'PY'
+import struct, sys, zlib
+b = bytearray(open(sys.argv[1], 'rb').read())
+b[5] |= 0x08  # LOG_VALUE: value = exp(sample); exp(1000) is beyond float32
+b[-4:] = struct.pack('<I', zlib.crc32(bytes(b[:-4])))
+open(sys.argv[2], 'wb').write(bytes(b))
+PY
+expect_error "decode of LOG_VALUE beyond float32" "$BW" decode -i "$T/log.bwv" -o "$T/log.f32"
+grep -q "beyond float32" "$T/err" && ok || bad "LOG_VALUE overflow message: $(cat "$T/err")"
+
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -199,6 +199,27 @@ def bad_input_raises_a_clear_error():
 
 
 @case
+def decode_refuses_payloads_beyond_the_sample_limit_and_float32():
+    p = open(tmp("phong.bwv"), "rb").read()
+    n = brdfwave.decode_bytes(p).size
+    assert brdfwave.decode_bytes(p, max_samples=n).size == n
+    try:
+        brdfwave.decode_bytes(p, max_samples=n - 1)
+        raise AssertionError("payload above max_samples decoded")
+    except brdfwave.BrdfwaveError as e:
+        assert "more than the limit of %d" % (n - 1) in str(e), str(e)
+    np.array([1, 2, 3, 4], "<i4").tofile(tmp("two.i32"))
+    bw("encode", "-i", tmp("two.i32"), "--input-format", "i32", "--bands", "4", "--scale", "3e38",
+       "-o", tmp("huge.bwv"))
+    try:
+        brdfwave.decode(tmp("huge.bwv"))
+        raise AssertionError("values beyond float32 decoded")
+    except brdfwave.BrdfwaveError as e:
+        assert "beyond float32" in str(e), str(e)
+    assert list(brdfwave.decode(tmp("huge.bwv"), integers=True).ravel()) == [1, 2, 3, 4]
+
+
+@case
 def register_map_matches_the_c_header():
     with open(os.path.join(ROOT, "firmware", "link", "bw_i2cmap.h")) as f:
         defs = dict(re.findall(r"#define BW_I2C_(\w+) (0x[0-9A-Fa-f]+|\d+)u", f.read()))

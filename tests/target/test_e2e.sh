@@ -15,6 +15,9 @@ trap 'rm -rf "$T"' EXIT
 pass=0
 fail=0
 ok() { pass=$((pass + 1)); }
+# seconds since $1 (a `date +%s.%N`), and whether a number is below a bound
+since() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }'; }
+below() { awk -v t="$1" -v m="$2" 'BEGIN { exit !(t < m) }'; }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
 make --no-print-directory -s TARGET=qemu all || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
@@ -89,35 +92,115 @@ done
     "$BW" encode -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64 -o "$T/host.bwv" &&
     cmp -s "$T/lin.bwv" "$T/host.bwv" && ok || bad "linux device resend: $(cat "$T/err")"
 
-# too large for the device: one clear line, non-zero exit, no output, no hang
+# too large for the device: one clear line that says what the device holds and
+# what to do, non-zero exit, no output, and no wait for a device that is done
 "$BW" synth --model ward --level 4 --level-in 4 -o "$T/wbig.f32"
-if timeout 120 "$BW" encode --device qemu -i "$T/wbig.f32" --bands 1 --level 4 --level-in 4 --ratio 64 -o "$T/x.bwv" 2>"$T/err"; then
-    bad "oversized job accepted"
+for dev in qemu linux; do
+    t0=$(date +%s.%N)
+    if timeout 120 "$BW" encode --device $dev -i "$T/wbig.f32" --bands 1 --level 4 --level-in 4 --ratio 64 -o "$T/x.bwv" 2>"$T/err"; then
+        bad "$dev: oversized job accepted"
+    else
+        t=$(since "$t0")
+        [ "$(wc -l <"$T/err")" = 1 ] && [ ! -e "$T/x.bwv" ] && ok || bad "$dev: oversized job: $(cat "$T/err")"
+        grep -q "holds at most 131072 samples" "$T/err" && grep -q "not streamed" "$T/err" && ok ||
+            bad "$dev: the error does not say what the device holds and what to do: $(cat "$T/err")"
+        below "$t" 5 && ok || bad "$dev: the failed session took $t s"
+    fi
+done
+# a streamable job too large to hold whole: the advice is --stream
+if "$BW" encode --device linux -i "$T/p256.f32" --bands 1 --level 4 --incoming 256 --basis haar --max-error 0.002 -o "$T/x.bwv" 2>"$T/err"; then
+    bad "linux: a job larger than the device's memory accepted"
 else
-    [ "$(wc -l <"$T/err")" = 1 ] && [ ! -e "$T/x.bwv" ] && ok || bad "oversized job: $(cat "$T/err")"
+    grep -q -- "--stream" "$T/err" && ok || bad "linux: no --stream advice: $(cat "$T/err")"
 fi
 "$BW" encode --device qemu --firmware "$T/none.elf" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 8 -o "$T/x.bwv" 2>"$T/err" &&
     bad "missing firmware accepted" || { [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "missing firmware: $(cat "$T/err")"; }
 # an emulator whose brdfwave has exited would be left to init (other runs' are not)
 pgrep -P 1 -f "$PWD/build/host/../qemu/brdfwave-fw.elf" >/dev/null && bad "an emulator was left running" || ok
 
+# a small job ends as soon as the payload is in: the device hears the ACK and
+# the QUIT that follows it at once (5 runs each; a guard against waiting for a
+# device that is done, not a speed benchmark)
+"$BW" synth --model phong --kd 0.6 --ks 0.3 --n 12 --level 3 --incoming 3 -o "$T/small.f32"
+for dev in qemu linux; do
+    times=""
+    for _ in 1 2 3 4 5; do
+        t0=$(date +%s.%N)
+        "$BW" encode --device $dev -i "$T/small.f32" --bands 1 --level 3 --incoming 3 --max-error 0.002 -o "$T/s.bwv" >/dev/null 2>"$T/err" ||
+            bad "$dev: small job: $(cat "$T/err")"
+        times="$times $(since "$t0")"
+    done
+    echo "timing: --device $dev small job, wall seconds:$times"
+    slow=0
+    for t in $times; do below "$t" 2 || slow=1; done
+    [ "$slow" = 0 ] && ok || bad "$dev: a small job took 2 s or more:$times"
+done
+
 # `brdfwave receive` against a scripted device: garbage, a corrupted frame,
 # a lost chunk; the receiver must resynchronise, ask, and store it intact
 "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/src.bwv" --max-error 0.002 >/dev/null
+crc() { $PY -c "import struct,sys; print('%08x' % struct.unpack('<I', open(sys.argv[1],'rb').read()[-4:])[0])" "$1"; }
+# fake MODE ARGS...: runs the scripted device in MODE, its pty in $T/pty
+fake() {
+    local mode=$1
+    shift
+    rm -f "$T/pty"
+    $PY tests/target/fake_device.py "$T/src.bwv" "$T/pty" "$T/dev.log" "$mode" "$@" &
+    fake_pid=$!
+    for _ in $(seq 50); do [ -s "$T/pty" ] && break; sleep 0.1; done
+}
 mkdir -p "$T/rx"
-$PY tests/target/fake_device.py "$T/src.bwv" "$T/pty" "$T/dev.log" &
-fake=$!
-for _ in $(seq 50); do [ -s "$T/pty" ] && break; sleep 0.1; done
+fake damaged
 if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 10 >"$T/rx.out" 2>"$T/rx.err"; then
-    cmp -s "$T/src.bwv" "$T/rx/payload-7.bwv" && ok || bad "receive: stored payload differs"
+    cmp -s "$T/src.bwv" "$T/rx/payload-7-$(crc "$T/src.bwv").bwv" && ok || bad "receive: stored payload differs: $(ls "$T/rx")"
     grep -q "resend request" "$T/rx.out" && ok || bad "receive: no summary line"
 else
     bad "receive: $(cat "$T/rx.err")"
 fi
-wait $fake && ok || bad "scripted device: $(cat "$T/dev.log")"
+wait $fake_pid && ok || bad "scripted device: $(cat "$T/dev.log")"
 grep -q "RESEND" "$T/dev.log" && ok || bad "receive never asked for the damaged chunk"
 grep -q "ACK" "$T/dev.log" && ok || bad "receive never acknowledged"
-ls "$T/rx" | grep -q tmp && bad "receive left a temporary file" || ok
+ls -a "$T/rx" | grep -q '^\.payload' && bad "receive left a temporary file" || ok
+
+# every frame of a payload in one read: all heard, no resend needed
+rm -rf "$T/rx" && mkdir "$T/rx"
+fake one-write
+if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 10 >"$T/rx.out" 2>"$T/rx.err"; then
+    cmp -s "$T/src.bwv" "$T/rx/payload-8-$(crc "$T/src.bwv").bwv" && ok || bad "one read: stored payload differs"
+    grep -q "0 resend request" "$T/rx.out" && ok || bad "one read: frames were lost: $(cat "$T/rx.out")"
+else
+    bad "one read: $(cat "$T/rx.err")"
+fi
+wait $fake_pid && ok || bad "scripted device (one read): $(cat "$T/dev.log")"
+
+# the same id after a reboot: both payloads kept, neither replaced
+"$BW" encode --input-format sed -i $DATA/*.sed -o "$T/src2.bwv" --max-error 0.004 >/dev/null
+rm -rf "$T/rx" && mkdir "$T/rx"
+fake twice "$T/src2.bwv"
+if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --count 2 --timeout 10 >"$T/rx.out" 2>"$T/rx.err"; then
+    cmp -s "$T/src.bwv" "$T/rx/payload-1-$(crc "$T/src.bwv").bwv" &&
+        cmp -s "$T/src2.bwv" "$T/rx/payload-1-$(crc "$T/src2.bwv").bwv" && ok ||
+        bad "repeated id: stored $(ls "$T/rx")"
+else
+    bad "repeated id: $(cat "$T/rx.err")"
+fi
+wait $fake_pid && ok || bad "scripted device (twice): $(cat "$T/dev.log")"
+
+# a device that stops mid-payload and then sends only frames that bring
+# nothing new: receive gives up after --timeout, not later, and stores nothing
+rm -rf "$T/rx" && mkdir "$T/rx"
+fake stall
+t0=$(date +%s.%N)
+if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 2 >"$T/rx.out" 2>"$T/rx.err"; then
+    bad "stalled device: receive reported success"
+else
+    t=$(since "$t0")
+    below "$t" 4 && ok || bad "stalled device: receive gave up after $t s, not about 2"
+    grep -q "nothing new from the device for 2 s" "$T/rx.err" && ok || bad "stalled device: $(cat "$T/rx.err")"
+    [ -z "$(ls -A "$T/rx")" ] && ok || bad "stalled device: files left: $(ls -A "$T/rx")"
+fi
+kill $fake_pid 2>/dev/null
+wait $fake_pid 2>/dev/null
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -65,6 +65,9 @@ def lib():
     L.bwh_decode.restype = ctypes.c_int
     L.bwh_decode.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header),
                              P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
+    L.bwh_decode_limit.restype = ctypes.c_int
+    L.bwh_decode_limit.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_size_t, P(Header),
+                                   P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
     L.bwh_encode_f32.restype = ctypes.c_int
     L.bwh_encode_f32.argtypes = [P(Dims), P(ctypes.c_float), P(EncodeOpts),
                                  P(P(ctypes.c_uint8)), P(ctypes.c_size_t)]
@@ -77,6 +80,11 @@ def lib():
     L.bw_header_read.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
     L.bwh_grid_count.restype = ctypes.c_size_t
     L.bwh_grid_count.argtypes = [ctypes.c_uint]
+    L.bwh_payload_check.restype = ctypes.c_int
+    L.bwh_payload_check.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_size_t, P(Header)]
+    L.bwh_store_payload.restype = ctypes.c_int
+    L.bwh_store_payload.argtypes = [ctypes.c_char_p, ctypes.c_uint32, ctypes.c_char_p,
+                                    ctypes.c_size_t, ctypes.c_char_p, ctypes.c_size_t]
     L.bwh_grid_centres.restype = ctypes.c_int
     L.bwh_grid_centres.argtypes = [ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p]
     _lib = L
@@ -126,3 +134,27 @@ def header_of(payload):
     if st != 0:
         raise BrdfwaveError(L.bw_strerror(st).decode())
     return _header_dict(h)
+
+
+def payload_check(payload, max_samples=0):
+    """What a receiver checks before it stores and acknowledges a payload:
+    header, CRC, the sample limit (0: the library's default) and a full
+    decode (bwh_payload_check). Returns the header as a dict."""
+    L = lib()
+    h = Header()
+    payload = bytes(payload)
+    if L.bwh_payload_check(payload, len(payload), max_samples, ctypes.byref(h)) != 0:
+        raise BrdfwaveError(last_error())
+    return _header_dict(h)
+
+
+def store_payload(outdir, pid, payload):
+    """Stores a received payload as OUTDIR/payload-ID-CRC.bwv without ever
+    replacing a file (bwh_store_payload); returns (path, stored before)."""
+    L = lib()
+    path = ctypes.create_string_buffer(4096)
+    payload = bytes(payload)
+    rc = L.bwh_store_payload(os.fsencode(outdir), pid, payload, len(payload), path, len(path))
+    if rc < 0:
+        raise BrdfwaveError(last_error())
+    return os.fsdecode(path.value), rc == 1

@@ -5,9 +5,10 @@
 Waits for a rising edge of the data-ready line (libgpiod 1.6 edge events, with
 a timeout), reads the offered payload page by page through the register
 window of docs/I2C.md (smbus2), checks every page's CRC-32 (a bad page is
-asked for again, RETRY), the whole payload's CRC-32 and its header, stores it
-as DIR/payload-ID.bwv through a temporary file, fsync and rename, and only then
-acknowledges it. A payload that never verifies is not acknowledged and not
+asked for again, RETRY), the whole payload's CRC-32 and header, and decodes it
+(libbrdfwave), stores it as DIR/payload-ID-CRC.bwv through a temporary file,
+fsync and a link that never replaces a file, and only then acknowledges it. A
+payload that never verifies or does not decode is not acknowledged and not
 stored. SIGTERM or SIGINT stop the service between two transfers.
 """
 import argparse
@@ -95,7 +96,7 @@ def read_page(dev, p, pages, page_size):
     return bytes(data[:plen]), crc
 
 
-def read_payload(dev, retries=3, retry_wait=1.0, log=None, stop=None):
+def read_payload(dev, retries=3, retry_wait=1.0, log=None, stop=None, max_samples=0):
     """Reads and verifies the offered payload; returns (id, bytes, page retries).
     Raises AcquireError when it is not offered or never verifies."""
     log = log or (lambda msg: None)
@@ -152,36 +153,23 @@ def read_payload(dev, retries=3, retry_wait=1.0, log=None, stop=None):
     if zlib.crc32(payload) != crc:
         raise AcquireError("payload %d: CRC-32 0x%08x, the device announced 0x%08x; "
                            "payload not acknowledged" % (pid, zlib.crc32(payload), crc))
-    from . import BrdfwaveError, header_of
+    from ._lib import BrdfwaveError, payload_check
     try:
-        header_of(payload)
+        payload_check(payload, max_samples)
     except BrdfwaveError as e:
-        raise AcquireError("payload %d: %s; payload not acknowledged" % (pid, e)) from None
+        raise AcquireError("payload %d does not decode: %s; payload not acknowledged"
+                           % (pid, e)) from None
     return pid, payload, bad_pages
 
 
 def store(outdir, pid, payload):
-    """Writes DIR/payload-ID.bwv atomically; returns its path."""
-    path = os.path.join(outdir, "payload-%d.bwv" % pid)
-    tmp = os.path.join(outdir, ".payload-%d.bwv.tmp" % pid)
-    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    """Stores the payload as DIR/payload-ID-CRC.bwv (a temporary file, fsync,
+    then a link that never replaces a file); returns (path, stored before)."""
+    from ._lib import BrdfwaveError, store_payload
     try:
-        view = memoryview(payload)
-        while view:
-            view = view[os.write(fd, view):]
-        os.fsync(fd)
-    except BaseException:
-        os.close(fd)
-        os.unlink(tmp)
-        raise
-    os.close(fd)
-    os.rename(tmp, path)
-    dfd = os.open(outdir, os.O_RDONLY)
-    try:
-        os.fsync(dfd)
-    finally:
-        os.close(dfd)
-    return path
+        return store_payload(outdir, pid, payload)
+    except BrdfwaveError as e:
+        raise AcquireError("%s; payload %d not acknowledged" % (e, pid)) from None
 
 
 def acknowledge(dev, pid, timeout=1.0):
@@ -243,7 +231,7 @@ def main(argv=None):
     ap.add_argument("--chip", required=True, help="GPIO chip of the data-ready line "
                                                   "(gpiochipN, or a path)")
     ap.add_argument("--line", type=int, required=True, help="line offset on that chip")
-    ap.add_argument("--out", required=True, help="directory for payload-ID.bwv files")
+    ap.add_argument("--out", required=True, help="directory for payload-ID-CRC.bwv files")
     ap.add_argument("--once", action="store_true",
                     help="store one payload, then exit (status 1 if it fails)")
     ap.add_argument("--timeout", type=float, default=0,
@@ -252,13 +240,15 @@ def main(argv=None):
                                                            "first (default 3)")
     ap.add_argument("--retry-interval", type=float, default=5.0,
                     help="seconds before a failed payload is tried again (default 5)")
+    ap.add_argument("--max-samples", type=int, default=0,
+                    help="refuse payloads that decode to more samples (default 67108864)")
     a = ap.parse_args(argv)
     if not os.path.isdir(a.out):
         print("acquire: %s is not a directory" % a.out, file=sys.stderr)
         return 2
-    if not 0x03 <= a.addr <= 0x77 or a.retries < 0 or a.timeout < 0:
-        print("acquire: --addr must be 0x03..0x77, --retries and --timeout >= 0",
-              file=sys.stderr)
+    if not 0x03 <= a.addr <= 0x77 or a.retries < 0 or a.timeout < 0 or a.max_samples < 0:
+        print("acquire: --addr must be 0x03..0x77, --retries, --timeout and --max-samples "
+              ">= 0", file=sys.stderr)
         return 2
 
     def log(msg):
@@ -307,11 +297,13 @@ def main(argv=None):
                 continue
             try:
                 pid, payload, bad = read_payload(dev, a.retries, log=log,
-                                                 stop=lambda: stop["now"])
-                path = store(a.out, pid, payload)
+                                                 stop=lambda: stop["now"],
+                                                 max_samples=a.max_samples)
+                path, before = store(a.out, pid, payload)
                 if not acknowledge(dev, pid):
                     log("payload %d stored, but the device did not confirm the ACK" % pid)
-                print("stored %s: %d bytes, %d page retries" % (path, len(payload), bad),
+                print("stored %s%s: %d bytes, %d page retries"
+                      % (path, " (already stored)" if before else "", len(payload), bad),
                       flush=True)
                 stored += 1
                 if a.once:

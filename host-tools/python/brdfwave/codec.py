@@ -83,15 +83,16 @@ def _directions(level):
     return np.stack([g["x"], g["y"], g["z"]], axis=1)
 
 
-def decode_bytes(payload, wavelengths=None, integers=False):
+def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0):
     """Decodes a payload held in memory; see decode()."""
     L = lib()
     payload = bytes(payload)
     h = Header()
     s = ctypes.POINTER(ctypes.c_int32)()
     v = ctypes.POINTER(ctypes.c_float)()
-    if L.bwh_decode(payload, len(payload), ctypes.byref(h), ctypes.byref(s),
-                    ctypes.byref(v)) != 0:
+    if L.bwh_decode_limit(payload, len(payload), max_samples, ctypes.byref(h),
+                          ctypes.byref(s) if integers else None,
+                          None if integers else ctypes.byref(v)) != 0:
         raise BrdfwaveError(last_error())
     try:
         d = h.dims
@@ -119,17 +120,19 @@ def decode_bytes(payload, wavelengths=None, integers=False):
     return Measurement(vals.reshape(shape), hd, directions, incoming, wavelengths)
 
 
-def decode(path, wavelengths=None, integers=False):
+def decode(path, wavelengths=None, integers=False, max_samples=0):
     """Decodes the payload file `path` to a Measurement (float32 values, or the
     codec's int32 samples with integers=True), in the layout of
-    `brdfwave decode`: [incoming][outgoing][band]."""
+    `brdfwave decode`: [incoming][outgoing][band]. Payloads that decode to
+    more than max_samples samples (0: the library's default, 2**26) are
+    refused before anything is allocated."""
     try:
         with open(path, "rb") as f:
             payload = f.read()
     except OSError as e:
         raise BrdfwaveError("%s: %s" % (path, e.strerror)) from None
     try:
-        return decode_bytes(payload, wavelengths, integers)
+        return decode_bytes(payload, wavelengths, integers, max_samples)
     except BrdfwaveError as e:
         raise BrdfwaveError("%s: %s" % (path, e)) from None
 
