@@ -24,7 +24,7 @@ CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c host-tools/src/bwhost.c host-tools/src/link.c
          host-tools/src/geodesic.c host-tools/src/brdf_models.c
          host-tools/src/bw_sample.c host-tools/src/brdf_eval.c host-tools/src/bw_mesh.c
-         host-tools/ref/bwr_interp.c
+         host-tools/ref/bwr_interp.c host-tools/ref/bwr_geodesic.c
          host-tools/ref/bwr_rgl.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 /* ---- cubic B-spline ------------------------------------------------------ */
 
@@ -113,11 +113,11 @@ static size_t vertex_id(bwr_sinterp_t *s, const double p[3])
 int bwr_sinterp_init(bwr_sinterp_t *s, unsigned level)
 {
     memset(s, 0, sizeof *s);
-    if (level > BWH_GRID_MAX_LEVEL)
+    if (level > BWR_GRID_MAX_LEVEL)
         return -1;
     s->level = level;
-    s->n = bwh_grid_count(level);
-    bwh_tri_t *tri = malloc(s->n * sizeof *tri);
+    s->n = bwr_grid_count(level);
+    bwr_tri_t *tri = malloc(s->n * sizeof *tri);
     s->centre = malloc(s->n * sizeof *s->centre);
     s->vert = malloc(3 * s->n * sizeof *s->vert);
     s->tv = malloc(s->n * sizeof *s->tv);
@@ -127,11 +127,11 @@ int bwr_sinterp_init(bwr_sinterp_t *s, unsigned level)
         bwr_sinterp_free(s);
         return -1;
     }
-    bwh_grid_triangles(level, tri);
+    bwr_grid_triangles(level, tri);
     double rmax = 0.0;
     for (size_t t = 0; t < s->n; t++) {
-        bwh_tri_centre(&tri[t], s->centre[t]);
-        s->area[t] = bwh_solid_angle(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
+        bwr_tri_direction(&tri[t], s->centre[t]);
+        s->area[t] = bwr_tri_area(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
         for (int k = 0; k < 3; k++) {
             s->tv[t][k] = vertex_id(s, tri[t].v[k]);
             double c = dot3(s->centre[t], tri[t].v[k]);
@@ -180,7 +180,7 @@ static double vertex_value(const bwr_sinterp_t *s, const double *values, size_t 
 
 double bwr_sinterp_linear(const bwr_sinterp_t *s, const double *values, const double d[3])
 {
-    long t = bwh_grid_locate(s->level, d);
+    long t = bwr_grid_locate(s->level, d);
     if (t < 0)
         return NAN;
     const double *c = s->centre[t];

@@ -13,7 +13,7 @@
 
 #include "bwr_project.h"
 #include "bwref.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 #define PROJECT_MAX_COLS 4096
 
@@ -101,8 +101,8 @@ int bwref_cmd_project(int argc, char **argv)
             out = v;
         } else if (strcmp(a, "--level") == 0) {
             long l = strtol(v, &end, 10);
-            if (*end != '\0' || end == v || l < 0 || l > (long)BWH_GRID_MAX_LEVEL)
-                return bwref_fail("project", "--level needs 0..%u", BWH_GRID_MAX_LEVEL);
+            if (*end != '\0' || end == v || l < 0 || l > (long)BWR_GRID_MAX_LEVEL)
+                return bwref_fail("project", "--level needs 0..%u", BWR_GRID_MAX_LEVEL);
             level = (unsigned)l;
         } else if (strcmp(a, "--k") == 0) {
             long l = strtol(v, &end, 10);
@@ -193,7 +193,7 @@ int bwref_cmd_project(int argc, char **argv)
         goto done;
     }
 
-    size_t nt = bwh_grid_count(level);
+    size_t nt = bwr_grid_count(level);
     grid = malloc(nt * bands * sizeof *grid);
     buf = malloc(nt * bands * 4);
     if (grid == NULL || buf == NULL ||

@@ -12,7 +12,7 @@
 
 #include "bwr_rgl.h"
 #include "bwref.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 #define RGL_PI 3.14159265358979323846
 
@@ -81,8 +81,8 @@ int bwref_cmd_import_rgl(int argc, char **argv)
             incoming = v;
         } else if (strcmp(a, "--level") == 0 || strcmp(a, "--level-in") == 0) {
             long l = strtol(v, &end, 10);
-            if (*end != '\0' || l < 0 || l > (long)BWH_GRID_MAX_LEVEL)
-                return bwref_fail("import-rgl", "%s needs 0..%u", a, BWH_GRID_MAX_LEVEL);
+            if (*end != '\0' || l < 0 || l > (long)BWR_GRID_MAX_LEVEL)
+                return bwref_fail("import-rgl", "%s needs 0..%u", a, BWR_GRID_MAX_LEVEL);
             if (a[7] == '\0')
                 level = (int)l;
             else
@@ -106,17 +106,17 @@ int bwref_cmd_import_rgl(int argc, char **argv)
     if (bwr_rgl_load(&b, in, err, sizeof err) != 0)
         return bwref_fail("import-rgl", "%s", err);
 
-    size_t n_out = bwh_grid_count((unsigned)level), n_in = 0;
+    size_t n_out = bwr_grid_count((unsigned)level), n_in = 0;
     double(*wo)[3] = malloc(n_out * sizeof *wo), (*wi)[3] = NULL;
     int rc = 2;
-    if (wo == NULL || bwh_grid_centres((unsigned)level, wo, NULL) != 0) {
+    if (wo == NULL || bwr_grid_centres((unsigned)level, wo, NULL) != 0) {
         rc = bwref_fail("import-rgl", "out of memory");
         goto done;
     }
     if (level_in >= 0) {
-        n_in = bwh_grid_count((unsigned)level_in);
+        n_in = bwr_grid_count((unsigned)level_in);
         wi = malloc(n_in * sizeof *wi);
-        if (wi == NULL || bwh_grid_centres((unsigned)level_in, wi, NULL) != 0) {
+        if (wi == NULL || bwr_grid_centres((unsigned)level_in, wi, NULL) != 0) {
             rc = bwref_fail("import-rgl", "out of memory");
             goto done;
         }
