@@ -1,21 +1,28 @@
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g
-CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/src $(EXTRA_CFLAGS)
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
-HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c host-tools/src/brdf_models.c \
-            firmware/link/bw_frame.c host-tools/src/link.c \
-            host-tools/src/bw_sample.c host-tools/src/brdf_eval.c \
-            host-tools/src/bw_mesh.c
+# libbrdfwave: the codec core, the link frames and host-tools/lib. One list
+# of objects (position independent, in build/host/pic) makes both the static
+# library the tools link and the shared one the Python package loads.
+LIB_SRC := $(CORE_SRC) firmware/link/bw_frame.c $(wildcard host-tools/lib/*.c)
+LIB_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
+
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  CC-PIC  $<")
+	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
+LIB := $(BUILD)/libbrdfwave.a
+PYLIB := $(BUILD)/libbrdfwave.so
+
 CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
            host-tools/src/cmd_synth.c host-tools/src/cmd_device.c \
            host-tools/src/cmd_render.c host-tools/src/render_png.c
-HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 
-LIB := $(BUILD)/libbrdfwave.a
 BW_CLI := $(BUILD)/brdfwave
 
 # the device application as a host process (hal/linux), for tests
@@ -24,14 +31,18 @@ FWL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FWL_SRC))
 FWL := $(BUILD)/brdfwave-fw-linux
 $(FWL_OBJ): CFLAGS += -Ihal -Ifirmware/app
 
-all: $(LIB) $(BW_CLI) $(FWL)
+all: $(LIB) $(PYLIB) $(BW_CLI) $(FWL)
 
 $(FWL): $(FWL_OBJ) $(LIB)
 	$(if $(Q),@echo "  LD      $@")
 	$(Q)$(CC) $(CFLAGS) $(FWL_OBJ) $(LIB) $(LDLIBS) -o $@
 
-$(LIB): $(CORE_OBJ) $(HOST_OBJ)
+$(LIB): $(LIB_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+$(PYLIB): $(LIB_OBJ)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
 
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
@@ -55,8 +66,8 @@ deps-run:
 	$(Q)tests/deps.sh run
 
 # regenerate the committed geodesic tables of the core
-$(BUILD)/gen_geodesic_tables: host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c
-	$(Q)$(CC) $(WARN) -O2 -Ihost-tools/src $^ -lm -o $@
+$(BUILD)/gen_geodesic_tables: host-tools/gen/gen_geodesic_tables.c host-tools/lib/geodesic.c
+	$(Q)$(CC) $(WARN) -O2 -Ihost-tools/lib $^ -lm -o $@
 
 tables: $(BUILD)/gen_geodesic_tables
 	$(Q)$< > firmware/codec/bw_geodesic_tables.c

@@ -28,9 +28,11 @@ $(REF_TESTS): $(BUILD)/tests/%: tests/ref/%.c $(REF_LIB)
 	$(if $(Q),@echo "  TEST-CC $@")
 	$(Q)$(CC) $(CFLAGS) $(REF_INC) $< $(REF_LIB) -lcmocka -lm -o $@
 
-# the codec core's integer transforms and its host grid against the
-# reference: these tests link both (the reference library itself does not)
-REF_CORE_TESTS := $(BUILD)/tests/test_fixed_vs_ref $(BUILD)/tests/test_grid_vs_ref
+# the codec core's integer transforms, its host grid and the product's
+# interpolation against the reference: these tests link both (the reference
+# library itself does not)
+REF_CORE_TESTS := $(BUILD)/tests/test_fixed_vs_ref $(BUILD)/tests/test_grid_vs_ref \
+                  $(BUILD)/tests/test_interp_vs_ref
 
 $(REF_CORE_TESTS): $(BUILD)/tests/%: tests/ref/%.c $(REF_LIB) $(LIB)
 	@mkdir -p $(dir $@)

@@ -1,9 +1,7 @@
-# Importance sampling (bw_sample.c), BRDF evaluation of decoded data
-# (brdf_eval.c, which uses the reference model's interpolants) and
-# `brdfwave render`: extra flags and libraries, the sampling unit test (it
-# links libbwref too) and `make bench-render` (mk/bench-render.mk).
-$(BUILD)/host-tools/src/brdf_eval.o $(BUILD)/host-tools/src/cmd_render.o: CFLAGS += -Ihost-tools/ref
-$(BW_CLI): LDLIBS += $(BUILD)/libbwref.a -lz -lpthread
+# `brdfwave render`: its libraries, the sampling unit test (it reads a
+# measured RGL BRDF with the reference model's loader, so it links libbwref
+# too) and `make bench-render` (mk/bench-render.mk).
+$(BW_CLI): LDLIBS += -lz -lpthread
 
 $(BUILD)/tests/test_sample: tests/unit/test_sample.c $(LIB) $(BUILD)/libbwref.a
 	@mkdir -p $(dir $@)

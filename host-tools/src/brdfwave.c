@@ -1,7 +1,11 @@
 /* brdfwave: the command line. */
+#define _DEFAULT_SOURCE
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "bwh_device.h"
 #include "bwref.h"
 #include "commands.h"
 
@@ -35,8 +39,23 @@ static void usage(FILE *f)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].what);
 }
 
+/* the library looks for the device images beside this program */
+static void tell_the_library_where_we_are(void)
+{
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return;
+    exe[n] = 0;
+    char *slash = strrchr(exe, '/');
+    if (slash)
+        *slash = 0;
+    bwh_device_set_program_dir(exe);
+}
+
 int main(int argc, char **argv)
 {
+    tell_the_library_where_we_are();
     if (argc < 2) {
         usage(stderr);
         return 2;

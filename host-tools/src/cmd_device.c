@@ -10,7 +10,7 @@
 
 #include "bwhost.h"
 #include "commands.h"
-#include "link.h"
+#include "bwh_link.h"
 
 static const char receive_help[] =
     "usage: brdfwave receive --port DEV --out DIR [--count N] [--timeout S]\n"

@@ -22,7 +22,7 @@
 
 #define PI 3.14159265358979323846
 
-/* modified Phong (Lafortune and Willems), as host-tools/src/brdf_models.h */
+/* modified Phong (Lafortune and Willems), as host-tools/lib/brdf_models.h */
 typedef struct {
     double kd, ks, n;
 } phong_t;

@@ -27,8 +27,14 @@ class Header(ctypes.Structure):
                 ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32)]
 
 
+class Shape(ctypes.Structure):
+    """bwh_shape_t (host-tools/lib/bwh_shape.h): the shape options."""
+    _fields_ = [("level", ctypes.c_int), ("level_in", ctypes.c_int),
+                ("incoming", ctypes.c_uint32), ("bands", ctypes.c_uint32)]
+
+
 class EncodeOpts(ctypes.Structure):
-    """bwh_encode_opts_t (host-tools/src/bwhost.h)."""
+    """bwh_encode_opts_t (host-tools/lib/bwh_encode.h)."""
     _fields_ = [("mode", ctypes.c_int), ("max_error", ctypes.c_double),
                 ("byte_budget", ctypes.c_size_t), ("basis", ctypes.c_uint),
                 ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
@@ -71,9 +77,12 @@ def lib():
     L.bwh_encode_f32.restype = ctypes.c_int
     L.bwh_encode_f32.argtypes = [P(Dims), P(ctypes.c_float), P(EncodeOpts),
                                  P(P(ctypes.c_uint8)), P(ctypes.c_size_t)]
-    L.bw_dims_make.restype = ctypes.c_int
-    L.bw_dims_make.argtypes = [P(Dims), ctypes.c_int, ctypes.c_uint, ctypes.c_uint,
-                               ctypes.c_uint32, ctypes.c_uint32]
+    L.bwh_shape_dims.restype = ctypes.c_int
+    L.bwh_shape_dims.argtypes = [P(Shape), ctypes.c_size_t, P(Dims)]
+    L.bwh_basis_from_name.restype = ctypes.c_int
+    L.bwh_basis_from_name.argtypes = [ctypes.c_char_p]
+    L.bwh_symmetry_from_name.restype = ctypes.c_int
+    L.bwh_symmetry_from_name.argtypes = [ctypes.c_char_p]
     L.bw_strerror.restype = ctypes.c_char_p
     L.bw_strerror.argtypes = [ctypes.c_int]
     L.bw_header_read.restype = ctypes.c_int

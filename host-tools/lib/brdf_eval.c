@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bwhost.h"
+#include "bwh_decode.h"
+#include "bwh_error.h"
+#include "bwh_file.h"
 #include "geodesic.h"
 
 #define E_PI 3.14159265358979323846
@@ -17,7 +19,7 @@ void bwh_brdf_data_free(bwh_brdf_data_t *d)
     free(d->planes);
     free(d->mean);
     if (d->s_out.n)
-        bwr_sinterp_free(&d->s_out);
+        bwh_sphere_interp_free(&d->s_out);
     memset(d, 0, sizeof *d);
 }
 
@@ -45,7 +47,7 @@ int bwh_brdf_data_init(bwh_brdf_data_t *d, const bw_dims_t *dims, const float *v
     size_t n = d->n_in * d->n_out;
     d->planes = malloc(n * d->bands * sizeof *d->planes);
     d->mean = malloc(n * sizeof *d->mean);
-    if (!d->planes || !d->mean || bwr_sinterp_init(&d->s_out, d->level_out) != 0) {
+    if (!d->planes || !d->mean || bwh_sphere_interp_init(&d->s_out, d->level_out) != 0) {
         bwh_brdf_data_free(d);
         return bwh_fail("out of memory");
     }
@@ -150,7 +152,7 @@ static double interp(const bwh_brdf_data_t *d, const double *plane_of_in0, size_
     int n = locate_in(d, wi, wo, pl, w, wo_r);
     double v = 0.0;
     for (int i = 0; i < n; i++)
-        v += w[i] * bwr_sinterp_linear(&d->s_out, plane_of_in0 + pl[i] * stride, wo_r);
+        v += w[i] * bwh_sphere_interp(&d->s_out, plane_of_in0 + pl[i] * stride, wo_r);
     return v;
 }
 
@@ -187,8 +189,8 @@ double bwh_brdf_data_eval(const bwh_brdf_data_t *d, const double wi[3], const do
         work[k] = bwh_brdf_data_band(d, wi, wo, k);
     if (isnan(work[0]))
         return NAN;
-    bwr_bspline_coefficients(work, d->bands, work);
+    bwh_bspline_coefficients(work, d->bands, work);
     double span = d->lambda_last - d->lambda_first;
     double x = span != 0.0 ? (lambda - d->lambda_first) / span * (double)(d->bands - 1) : 0.0;
-    return bwr_bspline_eval(work, d->bands, x);
+    return bwh_bspline_eval(work, d->bands, x);
 }

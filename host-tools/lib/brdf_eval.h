@@ -1,7 +1,7 @@
 /*
  * A sampled or decoded BRDF as a function (libbrdfwave): f(wi, wo, lambda)
- * at any directions and wavelength, with the interpolants of the reference
- * model (host-tools/ref/bwr_interp.h; sec. 4.5):
+ * at any directions and wavelength, with the interpolants of sec. 4.5
+ * (bwh_interp.h):
  *
  *   outgoing   barycentric interpolation over the outgoing triangle centres
  *   incoming   isotropic (N directions in the plane phi = 0): both directions
@@ -12,9 +12,8 @@
  *              reflectance: no incoming dependence
  *   spectral   cubic B-spline over the bands on a uniform wavelength grid
  *
- * Unlike bwr_brdf_t this keeps no scratch memory in the object: a loaded
- * BRDF is read-only and can be evaluated from any number of threads.
- * Needs libbwref (the interpolants) at link time.
+ * It keeps no scratch memory in the object: a loaded BRDF is read-only and
+ * can be evaluated from any number of threads.
  */
 #ifndef BW_BRDF_EVAL_H
 #define BW_BRDF_EVAL_H
@@ -22,7 +21,7 @@
 #include <stddef.h>
 
 #include "bw_codec.h"
-#include "bwr_interp.h"
+#include "bwh_interp.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -36,7 +35,7 @@ typedef struct {
     double *theta_in;          /* ISO: radians, ascending */
     double *planes;            /* [n_in][bands][n_out] */
     double *mean;              /* [n_in][n_out]: the mean over the bands */
-    bwr_sinterp_t s_out;
+    bwh_sphere_interp_t s_out;
 } bwh_brdf_data_t;
 
 /* values: [n_in][n_out][bands], the codec's layout. theta_in_deg (ISO, may be

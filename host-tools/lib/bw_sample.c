@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bwhost.h"
+#include "bwh_error.h"
 #include "geodesic.h"
 
 #define S_PI 3.14159265358979323846

@@ -1,15 +1,19 @@
 /*
- * The host side of the device link: serial ports, payload reception with
- * resend requests, and the emulated co-processor (QEMU mps2-an386).
+ * The host end of the device link (docs/LINK.md): serial ports, frames, and
+ * payload reception with resend requests and the receiver's checks.
  */
-#ifndef BW_LINK_H
-#define BW_LINK_H
+#ifndef BWH_LINK_H
+#define BWH_LINK_H
 
 #include <stddef.h>
 #include <stdint.h>
 
 #include "bw_codec.h"
 #include "bw_frame.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* Opens a serial device (or pty) raw, 8N1, non-blocking reads. -1 on error. */
 int bwh_port_open(const char *path);
@@ -68,16 +72,8 @@ int bwh_acknowledge(bwh_link_t *l, uint32_t id);
 /* Sends one frame. */
 int bwh_send_frame(int fd, uint8_t type, uint16_t seq, const uint8_t *data, uint16_t len);
 
-/* Encodes on a device: "qemu" starts the emulated co-processor with the
- * firmware image (firmware = NULL: ../qemu/brdfwave-fw.elf beside this
- * program, or $BW_FIRMWARE) and talks to it over its UART (a
- * pseudo-terminal); "linux" runs the same application as a host process
- * (brdfwave-fw-linux beside this program) on a socket pair. The samples
- * become the device's sensor input, the job goes over the link, and the
- * payload comes back through bwh_receive_payload. The session ends (QUIT)
- * as soon as the payload is in or the device reports an error. */
-int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
-                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
-                      bwh_received_t *r);
+#ifdef __cplusplus
+}
+#endif
 
 #endif
