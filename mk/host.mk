@@ -17,11 +17,20 @@ $(BUILD)/pic/%.o: %.c
 LIB := $(BUILD)/libbrdfwave.a
 PYLIB := $(BUILD)/libbrdfwave.so
 
-CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
-           host-tools/src/cmd_synth.c host-tools/src/cmd_device.c \
-           host-tools/src/cmd_render.c host-tools/src/render_png.c
+# the command line's own modules: options, numbers, exit statuses, shape
+# options (also linked into bwref)
+CLIKIT_SRC := host-tools/cli/cli_args.c host-tools/cli/cli_num.c host-tools/cli/cli_errors.c \
+              host-tools/cli/cli_shape.c
+CLIKIT := $(BUILD)/libbwcli.a
+
+# brdfwave: main.c and one file per command (cmd_acquire.c: mk/hw.mk)
+CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
+           host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
+           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c \
+           host-tools/cli/cmd_render.c host-tools/cli/render_png.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
+$(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
 
 BW_CLI := $(BUILD)/brdfwave
 
@@ -44,13 +53,16 @@ $(PYLIB): $(LIB_OBJ)
 	$(if $(Q),@echo "  LD      $@")
 	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
 
+$(CLIKIT): $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC))
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
-$(BUILD)/host-tools/src/brdfwave.o: CFLAGS += -Ihost-tools/ref/cli
 
-$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB)
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(BUILD)/libbwref.a $(LIB) \
+	    $(LDLIBS) -o $@
 
 include mk/tests.mk
 include mk/ref.mk

@@ -11,7 +11,7 @@
 # What the build probes is recorded in $(FEATURES_H), rewritten only when an
 # answer changes; the objects that include it depend on it, so installing or
 # removing an optional library rebuilds what it affects on the next make.
-CLI_OBJ += $(BUILD)/host-tools/src/cmd_acquire.o
+CLI_OBJ += $(BUILD)/host-tools/cli/cmd_acquire.o
 FEATURES_H := $(BUILD)/gen/bw_features.h
 HAVE_GPIOD := $(shell pkg-config --exists 'libgpiod >= 1.6' 'libgpiod < 2' 2>/dev/null && echo 1 || echo 0)
 FEATURES := /* made by the build (mk/hw.mk): what it found on this machine */\n$\
@@ -19,8 +19,8 @@ FEATURES := /* made by the build (mk/hw.mk): what it found on this machine */\n$
 $(shell mkdir -p $(BUILD)/gen && printf '$(FEATURES)\n' >$(FEATURES_H).new && \
         { cmp -s $(FEATURES_H).new $(FEATURES_H) && rm -f $(FEATURES_H).new || \
           mv -f $(FEATURES_H).new $(FEATURES_H); })
-$(BUILD)/host-tools/src/cmd_acquire.o: $(FEATURES_H)
-$(BUILD)/host-tools/src/cmd_acquire.o: CFLAGS += -I$(BUILD)/gen
+$(BUILD)/host-tools/cli/cmd_acquire.o: $(FEATURES_H)
+$(BUILD)/host-tools/cli/cmd_acquire.o: CFLAGS += -I$(BUILD)/gen
 ifeq ($(HAVE_GPIOD),1)
 $(BUILD)/brdfwave: LDLIBS += -lgpiod
 else

@@ -1,7 +1,9 @@
 # Float reference model of the paper (host-tools/ref): libbwref, the bwref
 # tool, its tests and `make reproduce` (build/report/paper.md).
-# Shares no code with firmware/codec or libbrdfwave, only the numbering of
-# the triangles: its objects are compiled without their include paths.
+# The model shares no code with firmware/codec or libbrdfwave, only the
+# numbering of the triangles: its objects are compiled without their include
+# paths. The bwref tool is a command line like brdfwave's: it uses the
+# command line's modules (libbwcli) and the shape rule of libbrdfwave.
 REF_SRC := $(wildcard host-tools/ref/bwr_*.c)
 REF_CLI_SRC := $(wildcard host-tools/ref/cli/*.c)
 REF_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(REF_SRC))
@@ -10,16 +12,17 @@ REF_LIB := $(BUILD)/libbwref.a
 REF_CLI := $(BUILD)/bwref
 REF_INC := -Ihost-tools/ref
 
-$(REF_OBJ) $(REF_CLI_OBJ): CFLAGS := $(WARN) $(OPT) $(EXTRA_CFLAGS) $(REF_INC)
+$(REF_OBJ): CFLAGS := $(WARN) $(OPT) $(EXTRA_CFLAGS) $(REF_INC)
+$(REF_CLI_OBJ): CFLAGS += $(REF_INC) -Ihost-tools/cli
 
 all: $(REF_LIB) $(REF_CLI)
 
 $(REF_LIB): $(REF_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
-$(REF_CLI): $(REF_CLI_OBJ) $(REF_LIB)
+$(REF_CLI): $(REF_CLI_OBJ) $(REF_LIB) $(CLIKIT) $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(REF_CLI_OBJ) $(REF_LIB) -lm -o $@
+	$(Q)$(CC) $(CFLAGS) $(REF_CLI_OBJ) $(REF_LIB) $(CLIKIT) $(LIB) -lm -o $@
 
 REF_TESTS := $(patsubst tests/ref/%.c,$(BUILD)/tests/%,$(wildcard tests/ref/test_ref_*.c))
 

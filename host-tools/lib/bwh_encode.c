@@ -306,3 +306,30 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     }
     return 0;
 }
+
+int bwh_encode_scaled(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                      float scale, uint8_t **out, size_t *out_len)
+{
+    bwh_encode_opts_t io = *o;
+    if (o->mode == BW_MODE_MAX_ERROR) {
+        /* value units -> sample units. Values scaled by a non-unit step
+         * are rounded to float32 when decoded: keep one ulp of the
+         * largest value in hand for that rounding. */
+        double margin = 0;
+        if (scale != 1.0f) {
+            double maxabs = 0;
+            size_t n = bw_dims_samples(dims);
+            for (size_t i = 0; i < n; i++)
+                maxabs = fmax(maxabs, fabs((double)x[i] * scale));
+            float top = (float)(maxabs + o->max_error);
+            margin = (double)nextafterf(top, INFINITY) - (double)top;
+        }
+        io.max_error = floor((o->max_error - margin) / scale);
+        /* a bound finer than the integer grid: only exact coding meets it */
+        if (io.max_error < 1 && o->max_error > 0)
+            io.mode = BW_MODE_LOSSLESS;
+    }
+    if (bwh_decimal_exponent(scale))
+        io.flags |= BW_FLAG_DECIMAL_SCALE;
+    return bwh_encode_i32(dims, x, &io, scale, 0.0f, out, out_len);
+}

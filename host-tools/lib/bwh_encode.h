@@ -49,9 +49,18 @@ typedef struct {
 int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
                    size_t *out_len);
 
-/* Encodes integer samples with scale 1 (or the given scale/offset bits). */
+/* Encodes integer samples with scale 1 (or the given scale/offset bits);
+ * o->max_error in sample units. */
 int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
                    float scale, float offset, uint8_t **out, size_t *out_len);
+
+/* Encodes integer samples whose value is scale * sample (a .sed file's
+ * 1e-5, or 1), o->max_error in value units: the bound becomes whole sample
+ * units, keeping in hand the float32 rounding of the largest decoded value
+ * (a bound below one unit: exact coding), and a scale of 10^-k is recorded
+ * as exactly that (BW_FLAG_DECIMAL_SCALE). */
+int bwh_encode_scaled(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                      float scale, uint8_t **out, size_t *out_len);
 
 #ifdef __cplusplus
 }

@@ -153,3 +153,35 @@ int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **w
         free(wl);
     return 0;
 }
+
+int bwh_sed_read_set(const char *const *paths, int n, int32_t **values, uint32_t *bands,
+                     size_t *count)
+{
+    int32_t *all = NULL;
+    size_t have = 0;
+    for (int k = 0; k < n; k++) {
+        int32_t *v;
+        uint32_t b;
+        if (bwh_sed_read(paths[k], &v, &b, NULL) != 0) {
+            free(all);
+            return -1;
+        }
+        if (!*bands)
+            *bands = b;
+        int32_t *grown = b == *bands ? realloc(all, (have + b) * sizeof *all) : NULL;
+        if (!grown) {
+            free(v);
+            free(all);
+            if (b != *bands)
+                return bwh_fail("%s has %u channels, expected %u", paths[k], b, *bands);
+            return bwh_fail("out of memory");
+        }
+        all = grown;
+        memcpy(all + have, v, b * sizeof *v);
+        have += b;
+        free(v);
+    }
+    *values = all;
+    *count = have;
+    return 0;
+}

@@ -2,6 +2,7 @@
 #ifndef BWH_SED_H
 #define BWH_SED_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -13,6 +14,12 @@ extern "C" {
  * *bands receives the channel count; wavelengths (optional, allocated) in
  * nm. A row cut short, a row too many or too few are refused. 0, or -1. */
 int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **wavelengths);
+
+/* Several files as one set of spectra: their samples one after the other
+ * in *values (allocated), *count of them. Every file must have *bands
+ * channels (0 on entry: as many as the first). 0, or -1. */
+int bwh_sed_read_set(const char *const *paths, int n, int32_t **values, uint32_t *bands,
+                     size_t *count);
 
 /* the value of one integer unit of bwh_sed_read's samples */
 #define BWH_SED_SCALE 1e-5

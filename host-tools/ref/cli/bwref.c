@@ -3,6 +3,7 @@
  * on the host: coefficient dumps for cross-checks and the paper's tables.
  */
 #include "bwref.h"
+#include "cli_errors.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -22,24 +23,31 @@ static void usage(FILE *f)
           f);
 }
 
+static const struct {
+    const char *name;
+    int (*run)(int, char **);
+} commands[] = {
+    {"wavedec", bwref_cmd_wavedec},
+    {"ratios", bwref_cmd_ratios},
+    {"import-rgl", bwref_cmd_import_rgl},
+    {"project", bwref_cmd_project},
+};
+
 int main(int argc, char **argv)
 {
+    cli_set_name("bwref", "");
     if (argc < 2) {
         usage(stderr);
-        return 2;
+        return CLI_EXIT_USAGE;
     }
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
-        return 0;
+        return CLI_EXIT_OK;
     }
-    if (strcmp(argv[1], "wavedec") == 0)
-        return bwref_cmd_wavedec(argc - 1, argv + 1);
-    if (strcmp(argv[1], "ratios") == 0)
-        return bwref_cmd_ratios(argc - 1, argv + 1);
-    if (strcmp(argv[1], "import-rgl") == 0)
-        return bwref_cmd_import_rgl(argc - 1, argv + 1);
-    if (strcmp(argv[1], "project") == 0)
-        return bwref_cmd_project(argc - 1, argv + 1);
-    fprintf(stderr, "bwref: unknown command '%s' (see --help)\n", argv[1]);
-    return 2;
+    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+        if (!strcmp(argv[1], commands[i].name)) {
+            cli_set_name("bwref", commands[i].name);
+            return commands[i].run(argc - 1, argv + 1);
+        }
+    return cli_usage("unknown command '%s'", argv[1]);
 }

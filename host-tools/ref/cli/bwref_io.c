@@ -1,27 +1,10 @@
-/*
- * Helpers shared by the bwref commands (also linked into `brdfwave`, which
- * runs `import-rgl`): error lines and input readers.
- */
+/* Input readers shared by the bwref commands. */
 #include "bwref.h"
 
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-const char *bwref_progname = "bwref";
-
-int bwref_fail(const char *cmd, const char *fmt, ...)
-{
-    va_list ap;
-    fprintf(stderr, "%s %s: ", bwref_progname, cmd);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-    return 2;
-}
 
 int bwref_read_text(const char *path, double **out, size_t *n)
 {

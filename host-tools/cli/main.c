@@ -1,5 +1,5 @@
-/* brdfwave: the command line. */
-#define _DEFAULT_SOURCE
+/* brdfwave: the command line. Finds the command and runs it. */
+#define _DEFAULT_SOURCE /* readlink */
 #include <limits.h>
 #include <stdio.h>
 #include <string.h>
@@ -7,6 +7,7 @@
 
 #include "bwh_device.h"
 #include "bwref.h"
+#include "cli_errors.h"
 #include "commands.h"
 
 static const struct {
@@ -22,21 +23,20 @@ static const struct {
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},
     {"receive", bw_cmd_receive, "store payloads arriving on a serial port"},
     {"acquire", bw_cmd_acquire, "store payloads offered over I2C on a data-ready edge"},
-    {"import-rgl", bw_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
+    /* the reference model's importer (host-tools/ref/cli/cmd_rgl.c), also `bwref import-rgl` */
+    {"import-rgl", bwref_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
     {"render", bw_cmd_render, "path-trace a scene, comparing sampling strategies"},
 };
-
-int bw_cmd_import_rgl(int argc, char **argv)
-{
-    bwref_progname = "brdfwave";
-    return bwref_cmd_import_rgl(argc, argv);
-}
 
 static void usage(FILE *f)
 {
     fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n\ncommands:\n", f);
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].what);
+    fputs("\nexit status: 0 success; 1 the command failed (one line on standard error says\n"
+          "why: a bad input file, a payload that does not decode, a device that does not\n"
+          "answer); 2 a usage error (an unknown option, a bad or missing value).\n",
+          f);
 }
 
 /* the library looks for the device images beside this program */
@@ -58,15 +58,17 @@ int main(int argc, char **argv)
     tell_the_library_where_we_are();
     if (argc < 2) {
         usage(stderr);
-        return 2;
+        return CLI_EXIT_USAGE;
     }
     if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
         usage(stdout);
-        return 0;
+        return CLI_EXIT_OK;
     }
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        if (!strcmp(argv[1], commands[i].name))
+        if (!strcmp(argv[1], commands[i].name)) {
+            cli_set_name("brdfwave", commands[i].name);
             return commands[i].run(argc - 1, argv + 1);
+        }
     fprintf(stderr, "brdfwave: unknown command '%s' (see 'brdfwave --help')\n", argv[1]);
-    return 2;
+    return CLI_EXIT_USAGE;
 }

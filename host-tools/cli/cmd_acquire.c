@@ -4,7 +4,6 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
-#include <getopt.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -19,6 +18,8 @@
 #include "bw_features.h"
 #include "bw_i2cmap.h"
 #include "bwhost.h"
+#include "cli_args.h"
+#include "cli_errors.h"
 #include "commands.h"
 
 #if BW_HAVE_GPIOD
@@ -279,75 +280,33 @@ static int acknowledge(acq_dev_t *d, uint32_t id)
     return !(st & BW_I2C_ST_READY) || now_id != id;
 }
 
-static int parse_double(const char *s, double *v)
-{
-    char *e;
-    errno = 0;
-    *v = strtod(s, &e);
-    return (errno || *e || !(*v >= 0)) ? -1 : 0;
-}
-
 int bw_cmd_acquire(int argc, char **argv)
 {
-    static const struct option opts[] = {{"bus", required_argument, 0, 'b'},
-                                         {"addr", required_argument, 0, 'a'},
-                                         {"chip", required_argument, 0, 'c'},
-                                         {"line", required_argument, 0, 'l'},
-                                         {"out", required_argument, 0, 'o'},
-                                         {"once", no_argument, 0, '1'},
-                                         {"timeout", required_argument, 0, 't'},
-                                         {"retries", required_argument, 0, 'r'},
-                                         {"retry-interval", required_argument, 0, 'i'},
-                                         {"max-samples", required_argument, 0, 'M'},
-                                         {"help", no_argument, 0, 'h'},
-                                         {0, 0, 0, 0}};
-    long bus = -1, addr = BW_I2C_ADDR, line = -1, retries = 3;
-    long long max_samples = 0;
+    uint32_t bus = 0, addr = BW_I2C_ADDR, line = 0, retries = 3, max_samples = 0;
+    int has_bus = 0, has_line = 0, once = 0;
     const char *chip = NULL, *dir = NULL;
-    int once = 0, c;
     double timeout = 0, interval = 5;
-    char *e;
-    optind = 1;
-    opterr = 0;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        switch (c) {
-        case 'b': bus = strtol(optarg, &e, 10); if (*e || bus < 0) bus = -2; break;
-        case 'a': addr = strtol(optarg, &e, 0); if (*e) addr = -1; break;
-        case 'c': chip = optarg; break;
-        case 'l': line = strtol(optarg, &e, 10); if (*e || line < 0) line = -2; break;
-        case 'o': dir = optarg; break;
-        case '1': once = 1; break;
-        case 't': if (parse_double(optarg, &timeout)) timeout = -1; break;
-        case 'r': retries = strtol(optarg, &e, 10); if (*e) retries = -1; break;
-        case 'i': if (parse_double(optarg, &interval)) interval = -1; break;
-        case 'M':
-            errno = 0;
-            max_samples = strtoll(optarg, &e, 10);
-            if (errno || *e || max_samples < 1)
-                max_samples = -1;
-            break;
-        case 'h': fputs(acquire_help, stdout); return 0;
-        default:
-            fprintf(stderr, "brdfwave acquire: unknown option or missing argument (see --help)\n");
-            return 2;
-        }
-    }
-    if (bus < 0 || line < 0 || !chip || !dir || optind != argc) {
-        fprintf(stderr, "brdfwave acquire: needs --bus N, --chip CHIP, --line L and --out DIR "
-                        "(see --help)\n");
-        return 2;
-    }
-    if (addr < 0x03 || addr > 0x77 || retries < 0 || retries > 100 || timeout < 0 ||
-        interval < 0 || max_samples < 0) {
-        fprintf(stderr, "brdfwave acquire: --addr must be 0x03..0x77, --retries 0..100, "
-                        "--timeout and --retry-interval >= 0, --max-samples > 0\n");
-        return 2;
-    }
+    const cli_opt_t opts[] = {
+        {"bus", 0, CLI_U32, .dest = &bus, .lo = 0, .hi = INT32_MAX, .seen = &has_bus},
+        {"addr", 0, CLI_U32, .dest = &addr, .lo = 0x03, .hi = 0x77, .hex = 1,
+         .what = "--addr must be 0x03..0x77"},
+        {"chip", 0, CLI_STRING, .dest = &chip},
+        {"line", 0, CLI_U32, .dest = &line, .lo = 0, .hi = INT32_MAX, .seen = &has_line},
+        {"out", 0, CLI_STRING, .dest = &dir},
+        {"once", 0, CLI_FLAG, .dest = &once},
+        {"timeout", 0, CLI_REAL, .dest = &timeout, .lo = 0, .hi = 1e9},
+        {"retries", 0, CLI_U32, .dest = &retries, .lo = 0, .hi = 100},
+        {"retry-interval", 0, CLI_REAL, .dest = &interval, .lo = 0, .hi = 1e9},
+        {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = UINT32_MAX},
+        {NULL}};
+    int first, st;
+    if (!cli_parse(argc, argv, opts, acquire_help, &first, &st))
+        return st;
+    if (!has_bus || !has_line || !chip || !dir || first != argc)
+        return cli_usage("needs --bus N, --chip CHIP, --line L and --out DIR");
     struct stat sb;
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        fprintf(stderr, "brdfwave acquire: %s is not a directory\n", dir);
-        return 2;
-    }
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+        return cli_fail("%s is not a directory", dir);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal; /* no SA_RESTART: a wait returns early */
@@ -357,14 +316,14 @@ int bw_cmd_acquire(int argc, char **argv)
     acq_dev_t d;
     memset(&d, 0, sizeof d);
     d.addr = (unsigned)addr;
-    snprintf(d.name, sizeof d.name, "/dev/i2c-%ld", bus);
+    snprintf(d.name, sizeof d.name, "/dev/i2c-%u", bus);
     d.fd = open(d.name, O_RDWR);
     if (d.fd < 0) {
         logmsg("cannot open %s: %s", d.name, strerror(errno));
         return 1;
     }
     if (ioctl(d.fd, I2C_SLAVE, (unsigned long)addr) != 0) {
-        logmsg("cannot address 0x%02lx on %s: %s", addr, d.name, strerror(errno));
+        logmsg("cannot address 0x%02x on %s: %s", addr, d.name, strerror(errno));
         close(d.fd);
         return 1;
     }
@@ -376,7 +335,7 @@ int bw_cmd_acquire(int argc, char **argv)
     }
     struct gpiod_line *gl = gpiod_chip_get_line(gc, (unsigned)line);
     if (!gl || gpiod_line_request_rising_edge_events(gl, "brdfwave-acquire") != 0) {
-        logmsg("cannot request line %ld of %s: %s", line, chip, strerror(errno));
+        logmsg("cannot request line %u of %s: %s", line, chip, strerror(errno));
         gpiod_chip_close(gc);
         close(d.fd);
         return 1;
@@ -387,7 +346,7 @@ int bw_cmd_acquire(int argc, char **argv)
     while (!stop_now) {
         int level = gpiod_line_get_value(gl);
         if (level < 0) {
-            logmsg("cannot read line %ld of %s: %s", line, chip, strerror(errno));
+            logmsg("cannot read line %u of %s: %s", line, chip, strerror(errno));
             rc = 1;
             break;
         }
@@ -396,7 +355,7 @@ int bw_cmd_acquire(int argc, char **argv)
             if (t_end > 0) {
                 double left = t_end - now_s();
                 if (left <= 0) {
-                    logmsg("no data-ready edge on %s line %ld within %g s", chip, line, timeout);
+                    logmsg("no data-ready edge on %s line %u within %g s", chip, line, timeout);
                     rc = 1;
                     break;
                 }
@@ -410,7 +369,7 @@ int bw_cmd_acquire(int argc, char **argv)
                 gpiod_line_event_read(gl, &ev);
                 holdoff = 0;
             } else if (w < 0 && errno != EINTR) {
-                logmsg("waiting for %s line %ld: %s", chip, line, strerror(errno));
+                logmsg("waiting for %s line %u: %s", chip, line, strerror(errno));
                 rc = 1;
                 break;
             }
@@ -465,9 +424,8 @@ int bw_cmd_acquire(int argc, char **argv)
 {
     (void)argc;
     (void)argv;
-    fprintf(stderr, "brdfwave acquire: this brdfwave was built without libgpiod "
-                    "(apt-get install libgpiod-dev, then rebuild)\n");
-    return 1;
+    return cli_fail("this brdfwave was built without libgpiod (apt-get install libgpiod-dev, "
+                    "then rebuild)");
 }
 
 #endif

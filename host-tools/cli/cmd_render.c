@@ -35,6 +35,9 @@
 #include "bw_mesh.h"
 #include "bw_sample.h"
 #include "bwhost.h"
+#include "cli_args.h"
+#include "cli_errors.h"
+#include "cli_num.h"
 #include "commands.h"
 #include "geodesic.h"
 #include "render_png.h"
@@ -591,106 +594,71 @@ static uint8_t srgb8(double v)
 
 /* ---- options ------------------------------------------------------------------ */
 
-static void render_usage(FILE *f)
-{
-    fputs(
-        "usage: brdfwave render [--scene sphereflake|room] [--material SPEC]...\n"
-        "                       [--sampling uniform|cosine|analytic|wavelet] [--level J]\n"
-        "                       [--spp N | --time SECONDS] [--size WxH] [--threads T]\n"
-        "                       [--depth D] [--direct off|mis] [--seed S] [--exposure E]\n"
-        "                       -o OUT.png\n"
-        "\n"
-        "Path-traces a closed room with diffuse walls and a light panel under the\n"
-        "ceiling, and writes a PNG. Objects take the --material options in order\n"
-        "(repeated when fewer are given):\n"
-        "  sphereflake  one sphereflake (91 spheres) on the floor\n"
-        "  room         a table (box), a sphere, a torus (6,144 triangles) on the\n"
-        "               table, a sphereflake\n"
-        "\n"
-        "  --material SPEC    phong:KD,KS,N       modified Phong (default phong:0.05,0.9,60)\n"
-        "                     ward:KD,KS,AX,AY    Ward anisotropic\n"
-        "                     payload:FILE.bwv    a decoded BRDF payload (isotropic or full,\n"
-        "                                         1 band or 3 bands read as R, G, B), e.g.\n"
-        "                                         from brdfwave import-rgl + encode\n"
-        "  --sampling S[,S]   next direction at the material's hits: uniform hemisphere,\n"
-        "                     cosine, the analytic lobe (Phong, Ward; cosine for\n"
-        "                     payloads) or the wavelet hierarchy (default wavelet); a\n"
-        "                     comma list renders each in turn, side by side in one PNG\n"
-        "  --level J          level of accuracy of the hierarchy, 0..6 (default 4)\n"
-        "  --tables N         incoming tables for analytic models: isotropic, every 90/N\n"
-        "                     degrees from the normal (default 32); anisotropic Ward,\n"
-        "                     one per incoming triangle, at least N (default: the grid\n"
-        "                     level whose triangles are no wider than the lobe, up to\n"
-        "                     1024 triangles)\n"
-        "  --supersample S    leaf integrals from 4^S points per leaf, 0..3 (default 1)\n"
-        "  --mix M            weight of the cosine lobe in the hierarchy's pdf (default 0.05)\n"
-        "  --spp N            paths per pixel (default 16)\n"
-        "  --time SECONDS     instead: passes of one path per pixel until the process has\n"
-        "                     spent SECONDS of CPU time rendering (equal-time runs)\n"
-        "  --size WxH         image size (default 160x120)\n"
-        "  --threads T        worker threads (default: the online CPUs)\n"
-        "  --depth D          bounces (default 5)\n"
-        "  --direct off|mis   off (default): paths reach the light only along the\n"
-        "                     strategies' directions, as in sec. 6.2; mis: at every hit\n"
-        "                     also one point drawn on the light panel, both weighted by\n"
-        "                     the power heuristic with the strategy's pdf (multiple\n"
-        "                     importance sampling: the same mean, less noise)\n"
-        "  --seed S           random seed (default 1); images do not depend on --threads\n"
-        "  --exposure E       scale before display (default 1)\n"
-        "  -o, --output FILE  the PNG\n"
-        "\n"
-        "Prints key: value lines: material (with tables, the incoming tables of its\n"
-        "hierarchy), build_seconds (the sampling structures), then per\n"
-        "strategy: sampling, spp, cpu_seconds, wall_seconds, samples (directions drawn),\n"
-        "samples_per_second (per CPU second), radiance (mean over the image and the\n"
-        "channels, unclamped: the same for every strategy up to noise), mean (displayed\n"
-        "intensity), and\n"
-        "variance: the image variance of sec. 6.2 (per pixel the variance over its\n"
-        "3 x 3 block of displayed intensities, mean of R, G, B clamped to [0, 1];\n"
-        "averaged over the interior pixels). A progress line goes to a terminal.\n",
-        f);
-}
+static const char render_help[] =
+    "usage: brdfwave render [--scene sphereflake|room] [--material SPEC]...\n"
+    "                       [--sampling uniform|cosine|analytic|wavelet] [--level J]\n"
+    "                       [--spp N | --time SECONDS] [--size WxH] [--threads T]\n"
+    "                       [--depth D] [--direct off|mis] [--seed S] [--exposure E]\n"
+    "                       -o OUT.png\n"
+    "\n"
+    "Path-traces a closed room with diffuse walls and a light panel under the\n"
+    "ceiling, and writes a PNG. Objects take the --material options in order\n"
+    "(repeated when fewer are given):\n"
+    "  sphereflake  one sphereflake (91 spheres) on the floor\n"
+    "  room         a table (box), a sphere, a torus (6,144 triangles) on the\n"
+    "               table, a sphereflake\n"
+    "\n"
+    "  --material SPEC    phong:KD,KS,N       modified Phong (default phong:0.05,0.9,60)\n"
+    "                     ward:KD,KS,AX,AY    Ward anisotropic\n"
+    "                     payload:FILE.bwv    a decoded BRDF payload (isotropic or full,\n"
+    "                                         1 band or 3 bands read as R, G, B), e.g.\n"
+    "                                         from brdfwave import-rgl + encode\n"
+    "  --sampling S[,S]   next direction at the material's hits: uniform hemisphere,\n"
+    "                     cosine, the analytic lobe (Phong, Ward; cosine for\n"
+    "                     payloads) or the wavelet hierarchy (default wavelet); a\n"
+    "                     comma list renders each in turn, side by side in one PNG\n"
+    "  --level J          level of accuracy of the hierarchy, 0..6 (default 4)\n"
+    "  --tables N         incoming tables for analytic models: isotropic, every 90/N\n"
+    "                     degrees from the normal (default 32); anisotropic Ward,\n"
+    "                     one per incoming triangle, at least N (default: the grid\n"
+    "                     level whose triangles are no wider than the lobe, up to\n"
+    "                     1024 triangles)\n"
+    "  --supersample S    leaf integrals from 4^S points per leaf, 0..3 (default 1)\n"
+    "  --mix M            weight of the cosine lobe in the hierarchy's pdf (default 0.05)\n"
+    "  --spp N            paths per pixel (default 16)\n"
+    "  --time SECONDS     instead: passes of one path per pixel until the process has\n"
+    "                     spent SECONDS of CPU time rendering (equal-time runs)\n"
+    "  --size WxH         image size (default 160x120)\n"
+    "  --threads T        worker threads (default: the online CPUs)\n"
+    "  --depth D          bounces (default 5)\n"
+    "  --direct off|mis   off (default): paths reach the light only along the\n"
+    "                     strategies' directions, as in sec. 6.2; mis: at every hit\n"
+    "                     also one point drawn on the light panel, both weighted by\n"
+    "                     the power heuristic with the strategy's pdf (multiple\n"
+    "                     importance sampling: the same mean, less noise)\n"
+    "  --seed S           random seed (default 1); images do not depend on --threads\n"
+    "  --exposure E       scale before display (default 1)\n"
+    "  -o, --output FILE  the PNG\n"
+    "\n"
+    "Prints key: value lines: material (with tables, the incoming tables of its\n"
+    "hierarchy), build_seconds (the sampling structures), then per\n"
+    "strategy: sampling, spp, cpu_seconds, wall_seconds, samples (directions drawn),\n"
+    "samples_per_second (per CPU second), radiance (mean over the image and the\n"
+    "channels, unclamped: the same for every strategy up to noise), mean (displayed\n"
+    "intensity), and\n"
+    "variance: the image variance of sec. 6.2 (per pixel the variance over its\n"
+    "3 x 3 block of displayed intensities, mean of R, G, B clamped to [0, 1];\n"
+    "averaged over the interior pixels). A progress line goes to a terminal.\n";
 
-static int rfail(const char *fmt, ...)
+/* comma-separated numbers in [0, 1e6]; exactly n of them */
+static int number_list(const char *s, double *v, size_t n)
 {
-    va_list ap;
-    fputs("brdfwave render: ", stderr);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-    return 2;
-}
-
-static int parse_num(const char *s, double lo, double hi, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v) || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
-}
-
-/* comma-separated numbers; exactly n of them */
-static int parse_list(const char *s, double *v, int n)
-{
-    char buf[256];
-    if (strlen(s) >= sizeof buf)
-        return -1;
-    strcpy(buf, s);
-    int k = 0;
-    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
-        if (k == n || parse_num(tok, 0.0, 1e6, &v[k]) != 0)
-            return -1;
-        k++;
-    }
-    return k == n ? 0 : -1;
+    size_t k;
+    return cli_real_list(s, 0.0, 1e6, v, n, &k) != 0 || k != n ? -1 : 0;
 }
 
 typedef struct {
-    unsigned level, supersample;
+    uint32_t level, supersample;
     unsigned long tables;
     double mix;
 } sampler_opts_t;
@@ -702,15 +670,15 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
     snprintf(m->spec, sizeof m->spec, "%s", spec);
     double v[4];
     if (!strncmp(spec, "phong:", 6)) {
-        if (parse_list(spec + 6, v, 3) != 0 || v[2] < 0.0)
-            return rfail("--material phong:KD,KS,N needs three numbers >= 0");
+        if (number_list(spec + 6, v, 3) != 0 || v[2] < 0.0)
+            return cli_usage("--material phong:KD,KS,N needs three numbers >= 0");
         m->kind = MAT_PHONG;
         m->p.kd = v[0];
         m->p.ks = v[1];
         m->p.n = v[2];
     } else if (!strncmp(spec, "ward:", 5)) {
-        if (parse_list(spec + 5, v, 4) != 0 || !(v[2] > 0.0) || !(v[3] > 0.0))
-            return rfail("--material ward:KD,KS,AX,AY needs four numbers, AX, AY > 0");
+        if (number_list(spec + 5, v, 4) != 0 || !(v[2] > 0.0) || !(v[3] > 0.0))
+            return cli_usage("--material ward:KD,KS,AX,AY needs four numbers, AX, AY > 0");
         m->kind = MAT_WARD;
         m->p.kd = v[0];
         m->p.ks = v[1];
@@ -718,20 +686,20 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
         m->p.ay = v[3];
     } else if (!strncmp(spec, "payload:", 8)) {
         if (bwh_brdf_data_load(&m->data, spec + 8) != 0)
-            return rfail("%s", bwh_last_error());
+            return cli_fail("%s", bwh_last_error());
         m->kind = MAT_DATA;
         if (m->data.shape == BW_SHAPE_REFLECTANCE) {
             bwh_brdf_data_free(&m->data);
-            return rfail("%s: a reflectance, not a BRDF (needs --incoming or --level-in)",
+            return cli_fail("%s: a reflectance, not a BRDF (needs --incoming or --level-in)",
                          spec + 8);
         }
         if (m->data.bands != 1 && m->data.bands != 3) {
             bwh_brdf_data_free(&m->data);
-            return rfail("%s: %zu bands; render reads 1 band or 3 (R, G, B)", spec + 8,
+            return cli_fail("%s: %zu bands; render reads 1 band or 3 (R, G, B)", spec + 8,
                          m->data.bands);
         }
     } else {
-        return rfail("unknown material '%s' (phong:..., ward:..., payload:FILE)", spec);
+        return cli_usage("unknown material '%s' (phong:..., ward:..., payload:FILE)", spec);
     }
     if (!want_sampler)
         return 0;
@@ -751,7 +719,7 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
         unsigned long n = so->tables ? so->tables : 32;
         double *th = malloc(n * sizeof *th);
         if (!th)
-            return rfail("out of memory");
+            return cli_fail("out of memory");
         for (unsigned long k = 0; k < n; k++)
             th[k] = k * 0.5 * R_PI / (double)n; /* from normal incidence */
         rc = bwh_sampler_build(&m->sampler, BWH_SAMPLER_ISO, so->level, n, th, 0, analytic_f,
@@ -772,7 +740,7 @@ static int material_parse(material_t *m, const char *spec, const sampler_opts_t 
                                li, analytic_f, m, so->supersample, so->mix);
     }
     if (rc != 0)
-        return rfail("%s", bwh_last_error());
+        return cli_fail("%s", bwh_last_error());
     m->has_sampler = 1;
     return 0;
 }
@@ -785,117 +753,84 @@ static void material_free(material_t *m)
         bwh_sampler_free(&m->sampler);
 }
 
+/* --sampling S[,S...]: up to 4 strategies */
+typedef struct {
+    enum strategy s[4];
+    int n;
+} strategy_list_t;
+
+static int parse_strategies(const char *v, void *dest)
+{
+    strategy_list_t *l = dest;
+    char buf[128];
+    if (strlen(v) >= sizeof buf)
+        return -1;
+    strcpy(buf, v);
+    l->n = 0;
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        int k;
+        for (k = 0; k < 4 && strcmp(tok, strategy_names[k]); k++)
+            ;
+        if (k == 4 || l->n == 4)
+            return -1;
+        l->s[l->n++] = (enum strategy)k;
+    }
+    return l->n ? 0 : -1;
+}
+
+/* --size WxH */
+static int parse_size(const char *v, void *dest)
+{
+    uint32_t *wh = dest;
+    return cli_size2(v, 3, 8192, &wh[0], &wh[1]);
+}
+
 int bw_cmd_render(int argc, char **argv)
 {
-    const char *scene_name = "sphereflake", *out = NULL;
-    const char *mat_spec[MAX_MATERIALS];
-    int n_spec = 0;
-    enum strategy strats[4] = {S_WAVELET};
-    int n_strat = 1;
+    static const char *const scenes[] = {"sphereflake", "room", NULL};
+    static const char *const direct_modes[] = {"off", "mis", NULL};
+    const char *out = NULL, *mat_spec[MAX_MATERIALS];
+    cli_list_t mats = {mat_spec, 0, MAX_MATERIALS};
+    strategy_list_t sl = {{S_WAVELET}, 1};
     sampler_opts_t so = {4, 1, 0, 0.05}; /* tables 0: by the material */
-    long spp = 16;
-    double time_budget = 0.0, exposure = 1.0, v;
-    unsigned w = 160, h = 120, depth = 5;
-    int direct = 0;
-    long threads = sysconf(_SC_NPROCESSORS_ONLN);
-    uint64_t seed = 1;
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            render_usage(stdout);
-            return 0;
-        }
-        if (a[0] != '-')
-            return rfail("unexpected argument '%s'", a);
-        if (i + 1 >= argc)
-            return rfail("%s needs a value", a);
-        const char *val = argv[++i];
-        if (!strcmp(a, "--scene")) {
-            if (strcmp(val, "sphereflake") && strcmp(val, "room"))
-                return rfail("--scene needs sphereflake or room");
-            scene_name = val;
-        } else if (!strcmp(a, "--material")) {
-            if (n_spec == MAX_MATERIALS)
-                return rfail("at most %d --material options", MAX_MATERIALS);
-            mat_spec[n_spec++] = val;
-        } else if (!strcmp(a, "--sampling")) {
-            char buf[128];
-            if (strlen(val) >= sizeof buf)
-                return rfail("--sampling: list too long");
-            strcpy(buf, val);
-            n_strat = 0;
-            for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
-                int k;
-                for (k = 0; k < 4 && strcmp(tok, strategy_names[k]); k++)
-                    ;
-                if (k == 4 || n_strat == 4)
-                    return rfail("--sampling needs uniform, cosine, analytic or wavelet "
-                                 "(or up to 4 of them, comma-separated)");
-                strats[n_strat++] = (enum strategy)k;
-            }
-            if (n_strat == 0)
-                return rfail("--sampling needs uniform, cosine, analytic or wavelet");
-        } else if (!strcmp(a, "--level")) {
-            if (parse_num(val, 0, BWH_SAMPLER_MAX_LEVEL, &v) != 0 || v != floor(v))
-                return rfail("--level needs an integer 0..%u", BWH_SAMPLER_MAX_LEVEL);
-            so.level = (unsigned)v;
-        } else if (!strcmp(a, "--tables")) {
-            if (parse_num(val, 1, 1024, &v) != 0 || v != floor(v))
-                return rfail("--tables needs an integer 1..1024");
-            so.tables = (unsigned long)v;
-        } else if (!strcmp(a, "--supersample")) {
-            if (parse_num(val, 0, BWH_SAMPLER_MAX_SUPERSAMPLE, &v) != 0 || v != floor(v))
-                return rfail("--supersample needs an integer 0..%u", BWH_SAMPLER_MAX_SUPERSAMPLE);
-            so.supersample = (unsigned)v;
-        } else if (!strcmp(a, "--mix")) {
-            if (parse_num(val, 0, 1, &so.mix) != 0)
-                return rfail("--mix needs a number in [0, 1]");
-        } else if (!strcmp(a, "--spp")) {
-            if (parse_num(val, 1, MAX_SPP, &v) != 0 || v != floor(v))
-                return rfail("--spp needs an integer 1..%ld", MAX_SPP);
-            spp = (long)v;
-        } else if (!strcmp(a, "--time")) {
-            if (parse_num(val, 1e-3, 1e6, &time_budget) != 0)
-                return rfail("--time needs a number of seconds > 0");
-        } else if (!strcmp(a, "--size")) {
-            unsigned ww, hh;
-            char extra;
-            if (sscanf(val, "%ux%u%c", &ww, &hh, &extra) != 2 || ww < 3 || hh < 3 || ww > 8192 ||
-                hh > 8192)
-                return rfail("--size needs WxH, 3..8192 each");
-            w = ww;
-            h = hh;
-        } else if (!strcmp(a, "--threads")) {
-            if (parse_num(val, 1, 256, &v) != 0 || v != floor(v))
-                return rfail("--threads needs an integer 1..256");
-            threads = (long)v;
-        } else if (!strcmp(a, "--depth")) {
-            if (parse_num(val, 1, 64, &v) != 0 || v != floor(v))
-                return rfail("--depth needs an integer 1..64");
-            depth = (unsigned)v;
-        } else if (!strcmp(a, "--direct")) {
-            if (!strcmp(val, "off"))
-                direct = 0;
-            else if (!strcmp(val, "mis"))
-                direct = 1;
-            else
-                return rfail("--direct needs off or mis");
-        } else if (!strcmp(a, "--seed")) {
-            if (parse_num(val, 0, 4294967295.0, &v) != 0 || v != floor(v))
-                return rfail("--seed needs an integer 0..2^32-1");
-            seed = (uint64_t)v;
-        } else if (!strcmp(a, "--exposure")) {
-            if (parse_num(val, 1e-6, 1e6, &exposure) != 0)
-                return rfail("--exposure needs a number > 0");
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            out = val;
-        } else {
-            return rfail("unknown option '%s' (see brdfwave render --help)", a);
-        }
-    }
+    uint32_t spp = 16, size[2] = {160, 120}, depth = 5, threads = 0, seed32 = 1, tables = 0;
+    double time_budget = 0.0, exposure = 1.0;
+    int scene = 0, direct = 0;
+    const cli_opt_t opts[] = {
+        {"scene", 0, CLI_CHOICE, .dest = &scene, .choices = scenes},
+        {"material", 0, CLI_LIST, .dest = &mats},
+        {"sampling", 0, CLI_CALL, .dest = &sl, .parse = parse_strategies,
+         .what = "--sampling needs uniform, cosine, analytic or wavelet (or up to 4 of them, "
+                 "comma-separated)"},
+        {"level", 0, CLI_U32, .dest = &so.level, .lo = 0, .hi = BWH_SAMPLER_MAX_LEVEL},
+        {"tables", 0, CLI_U32, .dest = &tables, .lo = 1, .hi = 1024},
+        {"supersample", 0, CLI_U32, .dest = &so.supersample, .lo = 0, .hi = BWH_SAMPLER_MAX_SUPERSAMPLE},
+        {"mix", 0, CLI_REAL, .dest = &so.mix, .lo = 0, .hi = 1},
+        {"spp", 0, CLI_U32, .dest = &spp, .lo = 1, .hi = MAX_SPP},
+        {"time", 0, CLI_REAL, .dest = &time_budget, .lo = 1e-3, .hi = 1e6},
+        {"size", 0, CLI_CALL, .dest = size, .parse = parse_size, .what = "--size needs WxH, 3..8192 each"},
+        {"threads", 0, CLI_U32, .dest = &threads, .lo = 1, .hi = 256},
+        {"depth", 0, CLI_U32, .dest = &depth, .lo = 1, .hi = 64},
+        {"direct", 0, CLI_CHOICE, .dest = &direct, .choices = direct_modes},
+        {"seed", 0, CLI_U32, .dest = &seed32, .lo = 0, .hi = UINT32_MAX},
+        {"exposure", 0, CLI_REAL, .dest = &exposure, .lo = 1e-6, .hi = 1e6},
+        {"output", 'o', CLI_STRING, .dest = &out},
+        {NULL}};
+    int first, st;
+    if (!cli_parse(argc, argv, opts, render_help, &first, &st))
+        return st;
+    if (first < argc)
+        return cli_usage("unexpected argument '%s'", argv[first]);
+    so.tables = tables;
+    const char *scene_name = scenes[scene];
+    int n_spec = mats.n, n_strat = sl.n;
+    enum strategy *strats = sl.s;
+    unsigned w = size[0], h = size[1];
+    uint64_t seed = seed32;
+    if (!threads)
+        threads = (uint32_t)sysconf(_SC_NPROCESSORS_ONLN);
     if (!out)
-        return rfail("no output (-o OUT.png)");
+        return cli_usage("no output (-o OUT.png)");
     if (threads < 1)
         threads = 1;
     if (n_spec == 0)
@@ -947,7 +882,7 @@ int bw_cmd_render(int argc, char **argv)
         /* a torus of 6,144 triangles lying on the table */
         if (bwh_mesh_torus(&sc.mesh, (const double[3]){-0.38, 0.45, 0.56}, 0.17, 0.06, 96, 32) !=
             0) {
-            rc = rfail("%s", bwh_last_error());
+            rc = cli_fail("%s", bwh_last_error());
             goto done;
         }
         sc.mesh_mat = m2;
@@ -958,7 +893,7 @@ int bw_cmd_render(int argc, char **argv)
     }
 
     if (!sum || !rgb || !tid) {
-        rc = rfail("out of memory");
+        rc = cli_fail("out of memory");
         goto done;
     }
     printf("scene: %s\n", scene_name);
@@ -981,7 +916,7 @@ int bw_cmd_render(int argc, char **argv)
         long pass = 0;
         for (;;) {
             if (time_budget > 0.0 ? (pass > 0 && cpu_seconds() - c0 >= time_budget)
-                                  : pass >= spp)
+                                  : pass >= (long)spp)
                 break;
             job.pass = pass;
             job.next_row = 0;
@@ -1001,7 +936,7 @@ int bw_cmd_render(int argc, char **argv)
                     fprintf(stderr, "\rrender %s: %ld spp, %.1f / %.1f s CPU ",
                             strategy_names[strat], pass, cpu_seconds() - c0, time_budget);
                 else
-                    fprintf(stderr, "\rrender %s: %ld / %ld spp (%3.0f%%) ",
+                    fprintf(stderr, "\rrender %s: %ld / %u spp (%3.0f%%) ",
                             strategy_names[strat], pass, spp, 100.0 * pass / spp);
             }
         }
@@ -1030,7 +965,7 @@ int bw_cmd_render(int argc, char **argv)
                radiance / (3.0 * (double)npx), mean / (double)npx, image_variance(sum, w, h, exposure));
     }
     if (bw_png_write(out, rgb, (unsigned)W, h) != 0)
-        rc = rfail("%s", bwh_last_error());
+        rc = cli_fail("%s", bwh_last_error());
 done:
     if (sc.flake)
         flake_free(sc.flake);
