@@ -23,14 +23,19 @@ CLIKIT_SRC := host-tools/cli/cli_args.c host-tools/cli/cli_num.c host-tools/cli/
               host-tools/cli/cli_shape.c
 CLIKIT := $(BUILD)/libbwcli.a
 
+# the renderer of `brdfwave render` (scene, tracer, materials, meshes,
+# image, PNG): librender
+RENDER_SRC := $(wildcard host-tools/render/*.c)
+RENDER_LIB := $(BUILD)/librender.a
+
 # brdfwave: main.c and one file per command (cmd_acquire.c: mk/hw.mk)
 CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
            host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
-           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c \
-           host-tools/cli/cmd_render.c host-tools/cli/render_png.c
+           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 $(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
+$(CLI_OBJ): CFLAGS += -Ihost-tools/render
 
 BW_CLI := $(BUILD)/brdfwave
 
@@ -56,13 +61,16 @@ $(PYLIB): $(LIB_OBJ)
 $(CLIKIT): $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC))
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
+$(RENDER_LIB): $(patsubst %.c,$(BUILD)/%.o,$(RENDER_SRC))
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
 
-$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(BUILD)/libbwref.a $(LIB)
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(BUILD)/libbwref.a $(LIB) \
-	    $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a \
+	    $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
 include mk/ref.mk

@@ -85,7 +85,7 @@ grep -q "option '--input' needs a value" "$T/err" && ok || bad "missing value: $
 expect_status "a flag with a value" 2 "$BW" encode --lossless=1 -i x -o y
 expect_status "an ambiguous abbreviation" 2 "$BW" encode --le 3 -i x -o y
 expect_status "a bad number" 2 "$BW" synth --model phong --incoming 2 --level 2x -o "$T/x.f32"
-grep -q "'--level' \|--level needs an integer 0..6, got '2x'" "$T/err" && ok || bad "bad number: $(cat "$T/err")"
+grep -q -- "--level needs an integer 0..6, got '2x'" "$T/err" && ok || bad "bad number: $(cat "$T/err")"
 expect_status "shape options that exclude each other" 2 "$BW" synth --model phong --incoming 2 --level-in 1 -o "$T/x.f32"
 expect_status "a missing input file" 1 "$BW" decode -i "$T/none.bwv" -o "$T/x.f32"
 expect_status "a missing input file (compare)" 1 "$BW" compare "$T/none.f32" "$T/none2.f32"

@@ -1,11 +1,11 @@
 /* Triangle meshes and their bounding volume hierarchy (bw_mesh.h). */
-#include "bw_mesh.h"
+#include "render_mesh.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "bwhost.h"
+#include "bwh_error.h"
 #include "geodesic.h"
 
 #define M_TWO_PI 6.28318530717958647692
@@ -49,10 +49,10 @@ static void select_kth(keyed_t *a, size_t n, size_t k)
 }
 
 typedef struct {
-    const bwh_mesh_tri_t *tri;
+    const render_mesh_tri_t *tri;
     const double (*centroid)[3];
     keyed_t *order;
-    bwh_mesh_node_t *node;
+    render_mesh_node_t *node;
     size_t n_node;
 } builder_t;
 
@@ -61,14 +61,14 @@ typedef struct {
 static uint32_t build(builder_t *b, size_t first, size_t count, unsigned depth)
 {
     uint32_t k = (uint32_t)b->n_node++;
-    bwh_mesh_node_t *nd = &b->node[k];
+    render_mesh_node_t *nd = &b->node[k];
     double clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (unsigned a = 0; a < 3; a++) {
         nd->lo[a] = INFINITY;
         nd->hi[a] = -INFINITY;
     }
     for (size_t q = first; q < first + count; q++) {
-        const bwh_mesh_tri_t *t = &b->tri[b->order[q].i];
+        const render_mesh_tri_t *t = &b->tri[b->order[q].i];
         const double *c = b->centroid[b->order[q].i];
         for (unsigned a = 0; a < 3; a++) {
             double p[3] = {t->v0[a], t->v0[a] + t->e1[a], t->v0[a] + t->e2[a]};
@@ -87,7 +87,7 @@ static uint32_t build(builder_t *b, size_t first, size_t count, unsigned depth)
         nd->lo[a] -= pad;
         nd->hi[a] += pad;
     }
-    if (count <= BWH_MESH_LEAF || depth + 1u >= MAX_DEPTH) {
+    if (count <= RENDER_MESH_LEAF || depth + 1u >= MAX_DEPTH) {
         nd->first = (uint32_t)first;
         nd->count = (uint32_t)count;
         return k;
@@ -107,12 +107,12 @@ static uint32_t build(builder_t *b, size_t first, size_t count, unsigned depth)
     return k;
 }
 
-int bwh_mesh_build(bwh_mesh_t *m, const double (*vert)[3], size_t n_vert,
+int render_mesh_build(render_mesh_t *m, const double (*vert)[3], size_t n_vert,
                    const uint32_t (*idx)[3], size_t n_idx)
 {
     memset(m, 0, sizeof *m);
-    if (n_idx > BWH_MESH_MAX_TRI)
-        return bwh_fail("mesh: %zu triangles, at most %u", n_idx, BWH_MESH_MAX_TRI);
+    if (n_idx > RENDER_MESH_MAX_TRI)
+        return bwh_fail("mesh: %zu triangles, at most %u", n_idx, RENDER_MESH_MAX_TRI);
     for (size_t i = 0; i < n_idx; i++)
         for (unsigned c = 0; c < 3; c++) {
             if (idx[i][c] >= n_vert)
@@ -123,7 +123,7 @@ int bwh_mesh_build(bwh_mesh_t *m, const double (*vert)[3], size_t n_vert,
         }
     if (n_idx == 0)
         return 0;
-    bwh_mesh_tri_t *tri = malloc(n_idx * sizeof *tri);
+    render_mesh_tri_t *tri = malloc(n_idx * sizeof *tri);
     double(*centroid)[3] = malloc(n_idx * sizeof *centroid);
     keyed_t *order = malloc(n_idx * sizeof *order);
     m->node = malloc((2 * n_idx - 1) * sizeof *m->node);
@@ -132,12 +132,12 @@ int bwh_mesh_build(bwh_mesh_t *m, const double (*vert)[3], size_t n_vert,
         free(tri);
         free(centroid);
         free(order);
-        bwh_mesh_free(m);
+        render_mesh_free(m);
         return bwh_fail("mesh: out of memory");
     }
     size_t n = 0;
     for (size_t i = 0; i < n_idx; i++) {
-        bwh_mesh_tri_t *t = &tri[n];
+        render_mesh_tri_t *t = &tri[n];
         const double *a = vert[idx[i][0]], *b = vert[idx[i][1]], *c = vert[idx[i][2]];
         for (unsigned k = 0; k < 3; k++) {
             t->v0[k] = a[k];
@@ -172,7 +172,7 @@ int bwh_mesh_build(bwh_mesh_t *m, const double (*vert)[3], size_t n_vert,
     return 0;
 }
 
-int bwh_mesh_torus(bwh_mesh_t *m, const double centre[3], double major, double minor,
+int render_mesh_torus(render_mesh_t *m, const double centre[3], double major, double minor,
                    unsigned n_around, unsigned n_tube)
 {
     memset(m, 0, sizeof *m);
@@ -180,9 +180,9 @@ int bwh_mesh_torus(bwh_mesh_t *m, const double centre[3], double major, double m
         !isfinite(centre[1]) || !isfinite(centre[2]))
         return bwh_fail("torus: needs 0 < tube radius < ring radius, finite");
     if (n_around < 3 || n_around > 4096 || n_tube < 3 || n_tube > 4096 ||
-        2u * n_around * n_tube > BWH_MESH_MAX_TRI)
+        2u * n_around * n_tube > RENDER_MESH_MAX_TRI)
         return bwh_fail("torus: %u x %u quads: each 3..4096, %u triangles at most", n_around,
-                        n_tube, BWH_MESH_MAX_TRI);
+                        n_tube, RENDER_MESH_MAX_TRI);
     size_t nv = (size_t)n_around * n_tube;
     double(*v)[3] = malloc(nv * sizeof *v);
     uint32_t(*idx)[3] = malloc(2 * nv * sizeof *idx);
@@ -213,20 +213,20 @@ int bwh_mesh_torus(bwh_mesh_t *m, const double centre[3], double major, double m
             idx[q][0] = a, idx[q][1] = c, idx[q][2] = d, q++;
         }
     }
-    int rc = bwh_mesh_build(m, (const double(*)[3])v, nv, (const uint32_t(*)[3])idx, q);
+    int rc = render_mesh_build(m, (const double(*)[3])v, nv, (const uint32_t(*)[3])idx, q);
     free(v);
     free(idx);
     return rc;
 }
 
-void bwh_mesh_free(bwh_mesh_t *m)
+void render_mesh_free(render_mesh_t *m)
 {
     free(m->tri);
     free(m->node);
     memset(m, 0, sizeof *m);
 }
 
-int bwh_tri_hit(const bwh_mesh_tri_t *tri, const double o[3], const double d[3], double tmin,
+int render_tri_hit(const render_mesh_tri_t *tri, const double o[3], const double d[3], double tmin,
                 double tmax, double *t)
 {
     double p[3], s[3], q[3];
@@ -252,7 +252,7 @@ int bwh_tri_hit(const bwh_mesh_tri_t *tri, const double o[3], const double d[3],
 }
 
 /* the ray (inverse direction inv) crosses the node's box within (tmin, tmax) */
-static int box_hit(const bwh_mesh_node_t *nd, const double o[3], const double inv[3],
+static int box_hit(const render_mesh_node_t *nd, const double o[3], const double inv[3],
                    double tmin, double tmax)
 {
     for (unsigned a = 0; a < 3; a++) {
@@ -270,7 +270,7 @@ static int box_hit(const bwh_mesh_node_t *nd, const double o[3], const double in
     return 1;
 }
 
-long bwh_mesh_hit(const bwh_mesh_t *m, const double o[3], const double d[3], double tmin,
+long render_mesh_hit(const render_mesh_t *m, const double o[3], const double d[3], double tmin,
                   double *t)
 {
     if (m->n_node == 0)
@@ -284,7 +284,7 @@ long bwh_mesh_hit(const bwh_mesh_t *m, const double o[3], const double d[3], dou
     uint32_t k = 0;
     long best = -1;
     for (;;) {
-        const bwh_mesh_node_t *nd = &m->node[k];
+        const render_mesh_node_t *nd = &m->node[k];
         if (box_hit(nd, o, inv, tmin, *t)) {
             if (nd->count == 0) {
                 stack[sp++] = nd->first;
@@ -292,7 +292,7 @@ long bwh_mesh_hit(const bwh_mesh_t *m, const double o[3], const double d[3], dou
                 continue;
             }
             for (uint32_t i = nd->first; i < nd->first + nd->count; i++)
-                if (bwh_tri_hit(&m->tri[i], o, d, tmin, *t, t))
+                if (render_tri_hit(&m->tri[i], o, d, tmin, *t, t))
                     best = (long)i;
         }
         if (sp == 0)

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <zlib.h>
 
-#include "bwhost.h"
+#include "bwh_error.h"
 
 static void put_be32(uint8_t *p, uint32_t v)
 {
@@ -33,7 +33,7 @@ static int chunk(FILE *f, const char *type, const uint8_t *data, size_t len)
                : -1;
 }
 
-int bw_png_write(const char *path, const uint8_t *rgb, unsigned width, unsigned height)
+int render_png_write(const char *path, const uint8_t *rgb, unsigned width, unsigned height)
 {
     if (width == 0 || height == 0 || width > 1u << 16 || height > 1u << 16)
         return bwh_fail("png: bad image size %ux%u", width, height);
