@@ -2,10 +2,10 @@
 # The unit tests (tests/unit/test_*.c) built with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
-# trips. Compiles the sources directly (firmware/codec/*.c, the link frames,
-# host-tools/lib/*.c, the renderer's meshes for test_mesh, the reference
-# model's RGL loader for test_sample, each test) into $SANITIZE_BUILD
-# (default build/sanitize), independent of the
+# trips. Compiles the sources directly (firmware/codec/*.c, the link frames
+# and the I2C window, host-tools/lib/*.c, the renderer's meshes for
+# test_mesh, the reference model's RGL loader for test_sample, each test)
+# into $SANITIZE_BUILD (default build/sanitize), independent of the
 # Makefile's build. The codec core is
 # compiled for size (-Os, as for the device's flash budget), so that the
 # forms its loops take in that build (BW_SMALL) run here; the other builds
@@ -22,7 +22,7 @@ CC=${SANITIZE_CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
         -fsanitize=address,undefined -fno-sanitize-recover=all
         -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
-LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c $(ls host-tools/lib/*.c)
+LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c firmware/link/bw_i2cwin.c $(ls host-tools/lib/*.c)
          host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}

@@ -29,7 +29,7 @@ int bw_cmd_grid(int argc, char **argv)
     uint32_t level = 0;
     int has_level = 0;
     const cli_opt_t opts[] = {
-        {"level", 'l', CLI_U32, .dest = &level, .lo = 0, .hi = BWH_GRID_MAX_LEVEL, .seen = &has_level},
+        {"level", 'l', CLI_U32, .dest = &level, .hi = BWH_GRID_MAX_LEVEL, .seen = &has_level},
         {NULL}};
     int first, st;
     if (!cli_parse(argc, argv, opts, grid_help, &first, &st))

@@ -75,7 +75,8 @@ static int write_set(const char *out, int model, const bwh_brdf_params_t *p, con
             double v = model == MODEL_PHONG ? bwh_brdf_phong(p, wi[i], wo[j])
                                             : bwh_brdf_ward(p, wi[i], wo[j]);
             if (!isfinite(v) || v > FLT_MAX)
-                rc = cli_fail("BRDF value not representable as float32 (incoming %zu, outgoing %zu)",
+                rc = cli_fail("BRDF value not representable as float32 (incoming %zu, "
+                              "outgoing %zu)",
                               i, j);
             float fv = (float)v;
             uint32_t u;

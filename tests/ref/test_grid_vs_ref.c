@@ -102,8 +102,10 @@ static void the_core_tables_match_the_reference_solid_angles(void **state)
             uint16_t w[3];
             bw_geo_weights(j, p, w);
             double ap = a[j][p];
-            for (unsigned m = 1; m <= 3; m++)
-                worst_w = fmax(worst_w, fabs((double)w[m - 1] - 65536.0 * a[j + 1][4 * p + m] / ap));
+            for (unsigned m = 1; m <= 3; m++) {
+                double exact = 65536.0 * a[j + 1][4 * p + m] / ap;
+                worst_w = fmax(worst_w, fabs((double)w[m - 1] - exact));
+            }
         }
     for (unsigned j = 0; j < BW_GEO_AREA_LEVELS; j++)
         for (uint32_t i = 0; i < bwr_grid_count(j); i++)

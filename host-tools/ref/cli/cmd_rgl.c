@@ -71,8 +71,8 @@ int bwref_cmd_import_rgl(int argc, char **argv)
         {"input", 'i', CLI_STRING, .dest = &in},
         {"output", 'o', CLI_STRING, .dest = &out},
         CLI_SHAPE_LEVELS(&sh),
-        {"incoming", 0, CLI_CALL, .dest = &n_fixed, .parse = parse_incoming, .seen = &sh.has_incoming,
-         .what = "--incoming needs 'measured' or 1..4096"},
+        {"incoming", 0, CLI_CALL, .dest = &n_fixed, .parse = parse_incoming,
+         .seen = &sh.has_incoming, .what = "--incoming needs 'measured' or 1..4096"},
         {"channel", 0, CLI_CHOICE, .dest = &channel, .choices = channels},
         {"times-cos", 0, CLI_FLAG, .dest = &times_cos},
         {"clamp", 0, CLI_FLAG, .dest = &clamp},
@@ -193,7 +193,8 @@ int bwref_cmd_import_rgl(int argc, char **argv)
     }
     printf("outgoing: %zu (level %u)\nbands: %d (%s)\nvalues: %s, min %.6g, max %.6g, "
            "negative %zu%s\n",
-           n_out, level, nb, channels[channel], times_cos ? "f cos(theta_o)" : "f (1/sr)", vmin, vmax,
+           n_out, level, nb, channels[channel], times_cos ? "f cos(theta_o)" : "f (1/sr)", vmin,
+           vmax,
            negatives, clamp && negatives ? " (clamped to 0)" : "");
     rc = 0;
 done:

@@ -106,13 +106,13 @@ int bwref_cmd_wavedec(int argc, char **argv)
     if (bwref_read_text(in, &x, &n) != 0 || n == 0)
         return cli_fail("cannot read numbers from '%s'", in);
     int rc = 0;
+    bwr_ext_t ext = mode ? BWR_EXT_SYMMETRIC : BWR_EXT_PERIODIZATION;
     if (strcmp(basis, "all") == 0) {
         for (size_t k = 0; k < BWR_NUM_FILTERS && rc == 0; k++)
-            rc = one(&bwr_filters[k], x, n, levels, mode ? BWR_EXT_SYMMETRIC : BWR_EXT_PERIODIZATION);
+            rc = one(&bwr_filters[k], x, n, levels, ext);
     } else {
         const bwr_filter_t *f = bwr_filter_find(basis);
-        rc = f ? one(f, x, n, levels, mode ? BWR_EXT_SYMMETRIC : BWR_EXT_PERIODIZATION)
-               : cli_usage("unknown basis '%s'", basis);
+        rc = f ? one(f, x, n, levels, ext) : cli_usage("unknown basis '%s'", basis);
     }
     free(x);
     return rc;
