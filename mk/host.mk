@@ -13,7 +13,7 @@ LIB_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
 $(BUILD)/pic/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(if $(Q),@echo "  CC-PIC  $<")
-	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
+	$(Q)$(CC) $(CFLAGS) -fPIC -fno-semantic-interposition -MD -MP -c $< -o $@
 LIB := $(BUILD)/libbrdfwave.a
 PYLIB := $(BUILD)/libbrdfwave.so
 

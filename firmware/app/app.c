@@ -21,7 +21,6 @@
  */
 #include "app.h"
 
-#include <string.h>
 
 #include "bw_codec.h"
 #include "bw_crc32.h"
@@ -155,14 +154,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         return -1;
     }
     bw_params_t p;
-    memset(&p, 0, sizeof p);
-    p.mode = job->mode;
-    p.basis = job->basis;
-    p.flags = job->flags;
-    p.max_error = job->max_error;
-    p.byte_budget = job->byte_budget;
-    p.scale_bits = job->scale_bits;
-    p.offset_bits = job->offset_bits;
+    bw_job_params(job, &p);
     size_t len = 0;
     bool streaming = (job->flags & BW_FLAG_STREAM_ORDER) && job->mode != BW_MODE_BYTES &&
                      job->basis < BW_BASIS_COUNT && d.bands <= APP_STREAM_BANDS &&

@@ -257,6 +257,31 @@ bool cli_parse(int argc, char **argv, const cli_opt_t *opts, const char *help, i
             *status = cli_usage("unknown option '%s'", arg);
         return false;
     }
-    *first = optind;
+    if (!first && optind < argc) {
+        *status = cli_usage("unexpected argument '%s'", argv[optind]);
+        return false;
+    }
+    if (first)
+        *first = optind;
     return true;
+}
+
+int cli_dispatch(const char *prog, const cli_command_t *cmds, size_t n, int argc, char **argv,
+                 void (*usage)(FILE *f))
+{
+    cli_set_name(prog, "");
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (!strcmp(argv[1], cmds[i].name)) {
+            cli_set_name(prog, cmds[i].name);
+            return cmds[i].run(argc - 1, argv + 1);
+        }
+    return cli_usage("unknown command '%s'", argv[1]);
 }

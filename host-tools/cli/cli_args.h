@@ -23,6 +23,8 @@
 #define CLI_ARGS_H
 
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,11 +63,26 @@ typedef struct {
 
 /* Parses argv[1 ..] by opts (at most 60 options). Returns true when the
  * command goes on, with its positional arguments in argv[*first .. argc)
- * (getopt_long moves them behind the options); false when the command must
- * return *status: CLI_EXIT_OK after printing `help` to standard output,
+ * (getopt_long moves them behind the options; first NULL: the command takes
+ * none, and one is a usage error); false when the command must return
+ * *status: CLI_EXIT_OK after printing `help` to standard output,
  * CLI_EXIT_USAGE after a usage error (cli_errors.h). */
 bool cli_parse(int argc, char **argv, const cli_opt_t *opts, const char *help, int *first,
                int *status);
+
+/* a program's commands */
+typedef struct {
+    const char *name;
+    int (*run)(int argc, char **argv); /* argv[0]: the command's name */
+    const char *what;                  /* one line for the program's usage */
+} cli_command_t;
+
+/* Runs the command argv[1] of cmds[n] (cli_set_name(prog, its name) first)
+ * and returns its status. "-h", "--help" and "help" print usage(stdout)
+ * (status 0); no command prints usage(stderr) (status 2); an unknown one is
+ * a usage error. */
+int cli_dispatch(const char *prog, const cli_command_t *cmds, size_t n, int argc, char **argv,
+                 void (*usage)(FILE *f));
 
 #ifdef __cplusplus
 }

@@ -129,10 +129,10 @@ int bw_cmd_acquire(int argc, char **argv)
         {"retry-interval", 0, CLI_REAL, .dest = &interval, .lo = 0, .hi = 1e9},
         {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = UINT32_MAX},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, acquire_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, acquire_help, NULL, &st))
         return st;
-    if (!has_bus || !has_line || !chip || !dir || first != argc)
+    if (!has_bus || !has_line || !chip || !dir)
         return cli_usage("needs --bus N, --chip CHIP, --line L and --out DIR");
     struct stat sb;
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))

@@ -29,10 +29,10 @@ int bw_cmd_decode(int argc, char **argv)
         {"output-format", 0, CLI_CHOICE, .dest = &as_int, .choices = formats},
         {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = BW_MAX_SAMPLES},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, decode_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, decode_help, NULL, &st))
         return st;
-    if (!inp || !outp || first != argc)
+    if (!inp || !outp)
         return cli_usage("needs -i IN.bwv and -o OUT");
     uint8_t *p;
     size_t len;

@@ -31,11 +31,9 @@ int bw_cmd_grid(int argc, char **argv)
     const cli_opt_t opts[] = {
         {"level", 'l', CLI_U32, .dest = &level, .hi = BWH_GRID_MAX_LEVEL, .seen = &has_level},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, grid_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, grid_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (!has_level)
         return cli_usage("needs --level L (0..6)");
 

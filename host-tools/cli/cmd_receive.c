@@ -43,10 +43,10 @@ int bw_cmd_receive(int argc, char **argv)
         {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = UINT32_MAX},
         {"drop-chunk", 0, CLI_U32, .dest = &drop, .lo = 0, .hi = 65535, .seen = &has_drop},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, receive_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, receive_help, NULL, &st))
         return st;
-    if (!port || !dir || first != argc)
+    if (!port || !dir)
         return cli_usage("needs --port DEV and --out DIR");
     struct stat sb;
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))

@@ -165,11 +165,9 @@ int bw_cmd_render(int argc, char **argv)
         {"exposure", 0, CLI_REAL, .dest = &o.exposure, .lo = 1e-6, .hi = 1e6},
         {"output", 'o', CLI_STRING, .dest = &o.output},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, render_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, render_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (!o.output)
         return cli_usage("no output (-o OUT.png)");
     render_material_spec_t mats[RENDER_MAX_MATERIALS];

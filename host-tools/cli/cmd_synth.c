@@ -112,11 +112,9 @@ int bw_cmd_synth(int argc, char **argv)
         CLI_SHAPE_INCOMING(&sh),
         {"output", 'o', CLI_STRING, .dest = &out},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, synth_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, synth_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (model < 0)
         return cli_usage("--model phong|ward is required");
     if (model == MODEL_WARD && has_n)

@@ -7,14 +7,10 @@
 
 #include "bwh_device.h"
 #include "bwref.h"
-#include "cli_errors.h"
+#include "cli_args.h"
 #include "commands.h"
 
-static const struct {
-    const char *name;
-    int (*run)(int, char **);
-    const char *what;
-} commands[] = {
+static const cli_command_t commands[] = {
     {"encode", bw_cmd_encode, "compress a measurement into a payload"},
     {"decode", bw_cmd_decode, "decode a payload to raw samples"},
     {"info", bw_cmd_info, "print a payload's header"},
@@ -56,19 +52,6 @@ static void tell_the_library_where_we_are(void)
 int main(int argc, char **argv)
 {
     tell_the_library_where_we_are();
-    if (argc < 2) {
-        usage(stderr);
-        return CLI_EXIT_USAGE;
-    }
-    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
-        usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        if (!strcmp(argv[1], commands[i].name)) {
-            cli_set_name("brdfwave", commands[i].name);
-            return commands[i].run(argc - 1, argv + 1);
-        }
-    fprintf(stderr, "brdfwave: unknown command '%s' (see 'brdfwave --help')\n", argv[1]);
-    return CLI_EXIT_USAGE;
+    return cli_dispatch("brdfwave", commands, sizeof commands / sizeof *commands, argc, argv,
+                        usage);
 }

@@ -18,23 +18,39 @@ static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_he
         max_samples = BWH_MAX_SAMPLES_DEFAULT;
     if (n > max_samples)
         return bwh_fail("the payload decodes to %zu samples (%.1f MiB as float32), more than the "
-                    "limit of %zu (raise it with --max-samples)",
-                    n, (double)n * 4 / 1048576.0, max_samples);
+                        "limit of %zu (raise it with --max-samples)",
+                        n, (double)n * 4 / 1048576.0, max_samples);
+    return 0;
+}
+
+/* The integer samples of p[len] in *w (allocated, the decoder's work
+ * bound: the samples first), its header in *h. */
+static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                       int32_t **w)
+{
+    *w = NULL;
+    if (header_within(p, len, max_samples, h) != 0)
+        return -1;
+    size_t wb = bw_work_bound(bw_dims_samples(&h->dims), h->dims.bands);
+    int32_t *b = malloc(wb * sizeof *b);
+    if (!b)
+        return bwh_fail("out of memory");
+    int st = bw_decode(p, len, b, wb, b, wb, h);
+    if (st != BW_OK) {
+        free(b);
+        return bwh_fail("%s", bw_strerror(st));
+    }
+    *w = b;
     return 0;
 }
 
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
 {
-    if (header_within(p, len, max_samples, h) != 0)
+    int32_t *w;
+    if (decode_ints(p, len, max_samples, h, &w) != 0)
         return -1;
-    size_t n = bw_dims_samples(&h->dims);
-    size_t wb = bw_work_bound(n, h->dims.bands);
-    int32_t *w = malloc(wb * sizeof *w);
-    if (!w)
-        return bwh_fail("out of memory");
-    int st = bw_decode(p, len, w, wb, w, wb, h);
     free(w);
-    return st == BW_OK ? 0 : bwh_fail("%s", bw_strerror(st));
+    return 0;
 }
 
 int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
@@ -44,18 +60,10 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
         *samples = NULL;
     if (values)
         *values = NULL;
-    if (header_within(p, len, max_samples, h) != 0)
+    int32_t *w;
+    if (decode_ints(p, len, max_samples, h, &w) != 0)
         return -1;
     size_t n = bw_dims_samples(&h->dims);
-    size_t wb = bw_work_bound(n, h->dims.bands);
-    int32_t *w = malloc(wb * sizeof *w);
-    if (!w)
-        return bwh_fail("out of memory");
-    int st = bw_decode(p, len, w, wb, w, wb, h);
-    if (st != BW_OK) {
-        free(w);
-        return bwh_fail("%s", bw_strerror(st));
-    }
     if (values) {
         float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
         if (!isfinite(scale) || !isfinite(off) || scale == 0) {
@@ -73,9 +81,9 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
             int32_t q = w[i];
             float x = bwh_value_of(&vm, q);
             if (!isfinite(x)) {
-                bwh_fail("sample %zu (%d) decodes to %g, beyond float32 (scale %g, offset %g%s)", i,
-                     q, (double)x, (double)scale, (double)off,
-                     h->flags & BW_FLAG_LOG_VALUE ? ", logarithmic" : "");
+                bwh_fail("sample %zu (%d) decodes to %g, beyond float32 (scale %g, offset %g%s)",
+                         i, q, (double)x, (double)scale, (double)off,
+                         h->flags & BW_FLAG_LOG_VALUE ? ", logarithmic" : "");
                 if (v != (float *)(void *)w)
                     free(v);
                 free(w);

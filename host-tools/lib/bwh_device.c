@@ -253,19 +253,7 @@ int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t 
 connected:;
 
     bw_job_t job;
-    memset(&job, 0, sizeof job);
-    job.shape = dims->shape;
-    job.level_out = dims->level_out;
-    job.level_in = dims->level_in;
-    job.n_in = dims->n_in;
-    job.bands = dims->bands;
-    job.mode = p->mode;
-    job.basis = p->basis;
-    job.flags = p->flags;
-    job.max_error = p->max_error;
-    job.byte_budget = p->byte_budget;
-    job.scale_bits = p->scale_bits;
-    job.offset_bits = p->offset_bits;
+    bw_job_make(&job, dims, p);
     if (strlen(input) >= sizeof job.source) {
         bwh_fail("input path too long");
         goto out;

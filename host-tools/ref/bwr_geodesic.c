@@ -4,24 +4,12 @@
 #include <math.h>
 #include <stdlib.h>
 
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* (p + q [+ r]) / |...|, the sums in the order given */
 static void unit_sum(const double *p, const double *q, const double *r, double o[3])
 {
     for (int k = 0; k < 3; k++)
         o[k] = r ? p[k] + q[k] + r[k] : p[k] + q[k];
-    double n = sqrt(dot(o, o));
+    double n = sqrt(bwr_dot3(o, o));
     for (int k = 0; k < 3; k++)
         o[k] /= n;
 }
@@ -106,8 +94,8 @@ void bwr_tri_direction(const bwr_tri_t *t, double out[3])
 static double arc(const double p[3], const double q[3])
 {
     double n[3];
-    cross(p, q, n);
-    return atan2(sqrt(dot(n, n)), dot(p, q));
+    bwr_cross3(p, q, n);
+    return atan2(sqrt(bwr_dot3(n, n)), bwr_dot3(p, q));
 }
 
 double bwr_tri_area(const double a[3], const double b[3], const double c[3])
@@ -143,8 +131,8 @@ static double inside(const bwr_tri_t *t, const double d[3])
     double m = INFINITY;
     for (int k = 0; k < 3; k++) {
         double n[3];
-        cross(t->v[k], t->v[(k + 1) % 3], n);
-        double s = dot(n, d);
+        bwr_cross3(t->v[k], t->v[(k + 1) % 3], n);
+        double s = bwr_dot3(n, d);
         if (s < m)
             m = s;
     }

@@ -29,6 +29,21 @@ extern "C" {
 
 #define BWR_GRID_MAX_LEVEL 6u
 
+/* the 3-vector products the reference model's geometry is written with */
+static inline double bwr_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void bwr_cross3(const double a[3], const double b[3], double o[3])
+{
+    double r0 = a[1] * b[2] - a[2] * b[1], r1 = a[2] * b[0] - a[0] * b[2],
+           r2 = a[0] * b[1] - a[1] * b[0];
+    o[0] = r0;
+    o[1] = r1;
+    o[2] = r2;
+}
+
 /* Vertices (a, b, c) as unit vectors. */
 typedef struct {
     double v[3][3];

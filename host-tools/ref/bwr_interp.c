@@ -68,23 +68,11 @@ double bwr_bspline_eval(const double *c, size_t n, double x)
 
 /* ---- sphere -------------------------------------------------------------- */
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static double det3(const double a[3], const double b[3], const double c[3])
 {
     double bc[3];
-    cross3(b, c, bc);
-    return dot3(a, bc);
+    bwr_cross3(b, c, bc);
+    return bwr_dot3(a, bc);
 }
 
 void bwr_sinterp_free(bwr_sinterp_t *s)
@@ -134,7 +122,7 @@ int bwr_sinterp_init(bwr_sinterp_t *s, unsigned level)
         s->area[t] = bwr_tri_area(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
         for (int k = 0; k < 3; k++) {
             s->tv[t][k] = vertex_id(s, tri[t].v[k]);
-            double c = dot3(s->centre[t], tri[t].v[k]);
+            double c = bwr_dot3(s->centre[t], tri[t].v[k]);
             double a = acos(c > 1.0 ? 1.0 : c);
             if (a > rmax)
                 rmax = a;
@@ -217,7 +205,7 @@ double bwr_sinterp_smooth(const bwr_sinterp_t *s, const double *values, const do
     double R = s->radius, num = 0.0, den = 0.0;
     double cr = cos(R);
     for (size_t t = 0; t < s->n; t++) {
-        double cd = dot3(d, s->centre[t]);
+        double cd = bwr_dot3(d, s->centre[t]);
         if (cd <= cr)
             continue;
         double r = acos(cd > 1.0 ? 1.0 : cd);

@@ -3,7 +3,7 @@
  * on the host: coefficient dumps for cross-checks and the paper's tables.
  */
 #include "bwref.h"
-#include "cli_errors.h"
+#include "cli_args.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -23,31 +23,14 @@ static void usage(FILE *f)
           f);
 }
 
-static const struct {
-    const char *name;
-    int (*run)(int, char **);
-} commands[] = {
-    {"wavedec", bwref_cmd_wavedec},
-    {"ratios", bwref_cmd_ratios},
-    {"import-rgl", bwref_cmd_import_rgl},
-    {"project", bwref_cmd_project},
+static const cli_command_t commands[] = {
+    {"wavedec", bwref_cmd_wavedec, NULL},
+    {"ratios", bwref_cmd_ratios, NULL},
+    {"import-rgl", bwref_cmd_import_rgl, NULL},
+    {"project", bwref_cmd_project, NULL},
 };
 
 int main(int argc, char **argv)
 {
-    cli_set_name("bwref", "");
-    if (argc < 2) {
-        usage(stderr);
-        return CLI_EXIT_USAGE;
-    }
-    if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
-        usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        if (!strcmp(argv[1], commands[i].name)) {
-            cli_set_name("bwref", commands[i].name);
-            return commands[i].run(argc - 1, argv + 1);
-        }
-    return cli_usage("unknown command '%s'", argv[1]);
+    return cli_dispatch("bwref", commands, sizeof commands / sizeof *commands, argc, argv, usage);
 }

@@ -1,4 +1,4 @@
-/* Input readers shared by the bwref commands. */
+/* Readers and a writer of numbers shared by the bwref commands. */
 #include "bwref.h"
 
 #include <stdint.h>
@@ -79,4 +79,14 @@ int bwref_read_f32(const char *path, double **out, size_t *n)
     *out = v;
     *n = cnt;
     return 0;
+}
+
+void bwref_put_f32(unsigned char *p, float v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    p[0] = (unsigned char)(u & 0xffu);
+    p[1] = (unsigned char)((u >> 8) & 0xffu);
+    p[2] = (unsigned char)((u >> 16) & 0xffu);
+    p[3] = (unsigned char)((u >> 24) & 0xffu);
 }

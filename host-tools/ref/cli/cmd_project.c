@@ -36,16 +36,6 @@ static const char project_help[] =
     "(the outgoing layout of `brdfwave synth`).\n";
 _Static_assert(BWR_PROJECT_K_DEFAULT == 8 && BWR_PROJECT_K_MAX == 64, "the help states K's range");
 
-static void put_f32le(unsigned char *p, float v)
-{
-    uint32_t u;
-    memcpy(&u, &v, sizeof u);
-    p[0] = (unsigned char)(u & 0xffu);
-    p[1] = (unsigned char)((u >> 8) & 0xffu);
-    p[2] = (unsigned char)((u >> 16) & 0xffu);
-    p[3] = (unsigned char)((u >> 24) & 0xffu);
-}
-
 /* Splits a line at commas into numbers; the count, or -1 if a field is not
  * a number, -2 if there are too many. */
 static long parse_row(char *line, double *v, size_t cap)
@@ -91,11 +81,9 @@ int bwref_cmd_project(int argc, char **argv)
         {"level", 0, CLI_U32, .dest = &level, .lo = 0, .hi = BWR_GRID_MAX_LEVEL},
         {"k", 0, CLI_U32, .dest = &k, .lo = 1, .hi = BWR_PROJECT_K_MAX},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, project_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, project_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (in == NULL || out == NULL)
         return cli_usage("-i IN.csv and -o OUT.f32 are required");
 
@@ -192,7 +180,7 @@ int bwref_cmd_project(int argc, char **argv)
         }
         vmin = fmin(vmin, grid[i]);
         vmax = fmax(vmax, grid[i]);
-        put_f32le(buf + 4 * i, (float)grid[i]);
+        bwref_put_f32(buf + 4 * i, (float)grid[i]);
     }
     FILE *o = fopen(out, "wb");
     if (o == NULL) {

@@ -220,11 +220,9 @@ int bwref_cmd_ratios(int argc, char **argv)
         {"keep-coarse", 0, CLI_CHOICE, .dest = &keep_coarse, .choices = zero_one},
         {"magnitude", 0, CLI_CHOICE, .dest = &raw, .choices = magnitudes},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, ratios_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, ratios_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (in == NULL)
         return cli_usage("-i FILE is required");
     bwh_shape_t shape;

@@ -40,16 +40,6 @@ static const char rgl_help[] =
     "\n"
     "Prints the incidence angles used and the value range.\n";
 
-static void put_f32le(unsigned char *p, float v)
-{
-    uint32_t u;
-    memcpy(&u, &v, sizeof u);
-    p[0] = (unsigned char)(u & 0xffu);
-    p[1] = (unsigned char)((u >> 8) & 0xffu);
-    p[2] = (unsigned char)((u >> 16) & 0xffu);
-    p[3] = (unsigned char)((u >> 24) & 0xffu);
-}
-
 /* --incoming measured|N: 0 for the file's own angles */
 static int parse_incoming(const char *v, void *dest)
 {
@@ -80,11 +70,9 @@ int bwref_cmd_import_rgl(int argc, char **argv)
     char help[sizeof rgl_help + 16];
     const char *prog = cli_prog();
     snprintf(help, sizeof help, "usage: %s%s", prog, rgl_help + strlen("usage: PROG"));
-    int first, st;
-    if (!cli_parse(argc, argv, opts, help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (in == NULL || out == NULL)
         return cli_usage("-i FILE.bsdf and -o OUT.f32 are required");
     int nb = channel == 0 ? 3 : 1;
@@ -163,7 +151,7 @@ int bwref_cmd_import_rgl(int argc, char **argv)
                 }
                 vmin = fmin(vmin, x);
                 vmax = fmax(vmax, x);
-                put_f32le(row + 4 * (o * (size_t)nb + (size_t)c), (float)x);
+                bwref_put_f32(row + 4 * (o * (size_t)nb + (size_t)c), (float)x);
             }
         }
         if (fwrite(row, 4, n_out * (size_t)nb, f) != n_out * (size_t)nb) {

@@ -94,11 +94,9 @@ int bwref_cmd_wavedec(int argc, char **argv)
          .what = "--levels needs 0..24 or deep"},
         {"mode", 0, CLI_CHOICE, .dest = &mode, .choices = modes},
         {NULL}};
-    int first, st;
-    if (!cli_parse(argc, argv, opts, wavedec_help, &first, &st))
+    int st;
+    if (!cli_parse(argc, argv, opts, wavedec_help, NULL, &st))
         return st;
-    if (first < argc)
-        return cli_usage("unexpected argument '%s'", argv[first]);
     if (in == NULL)
         return cli_usage("-i SIGNAL is required");
     double *x;
