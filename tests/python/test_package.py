@@ -244,6 +244,23 @@ def encode_on_the_linux_device_from_outside_the_checkout_equals_the_host_payload
 
 
 @case
+def the_shared_and_the_static_library_hold_the_same_functions():
+    lib_dir = os.path.dirname(BW)
+
+    def functions(path, *flags):
+        out = subprocess.run(["nm", "-g", "--defined-only", *flags, path], capture_output=True,
+                             text=True, check=True).stdout
+        return {f[2] for f in (line.split() for line in out.splitlines()) if len(f) == 3
+                and f[1] == "T"}
+
+    static = functions(os.path.join(lib_dir, "libbrdfwave.a"))
+    shared = functions(os.path.join(lib_dir, "libbrdfwave.so"), "-D")
+    assert static and static == shared, sorted(static ^ shared)[:10]
+    assert {"bwh_sampler_build", "bwh_brdf_data_load", "bwh_i2c_read_payload",
+            "bwh_shape_dims", "bw_encode"} <= shared
+
+
+@case
 def register_map_matches_the_c_header():
     with open(os.path.join(ROOT, "firmware", "link", "bw_i2cmap.h")) as f:
         defs = dict(re.findall(r"#define BW_I2C_(\w+) (0x[0-9A-Fa-f]+|\d+)u", f.read()))
