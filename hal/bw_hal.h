@@ -27,6 +27,12 @@ typedef struct {
     int (*sensor_read)(int32_t *samples, size_t cap);
     /* a fatal fault: record it for the host and stop */
     void (*fault)(uint32_t code);
+    /* what the application keeps for the host, for a board that also
+     * serves it on a second link (the I2C register window of docs/I2C.md,
+     * firmware/link/bw_i2cwin.h): status 0, payload[len] under id, valid
+     * until the next call (len 0: nothing, the application is about to
+     * reuse the buffer); status < 0: the job failed with that status */
+    int (*offer)(uint32_t id, const uint8_t *payload, size_t len, int32_t status);
 } bw_hal_t;
 
 /* The board's operations (one backend is linked into each image). */
@@ -52,6 +58,11 @@ static inline int bw_hal_sensor_open(const bw_hal_t *h, const char *source)
 static inline int bw_hal_sensor_read(const bw_hal_t *h, int32_t *s, size_t cap)
 {
     return h->sensor_read ? h->sensor_read(s, cap) : -BW_HAL_ENOSYS;
+}
+static inline int bw_hal_offer(const bw_hal_t *h, uint32_t id, const uint8_t *payload, size_t len,
+                               int32_t status)
+{
+    return h->offer ? h->offer(id, payload, len, status) : -BW_HAL_ENOSYS;
 }
 
 #endif

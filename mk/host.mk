@@ -1,21 +1,46 @@
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g
-CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/src $(EXTRA_CFLAGS)
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
-HOST_SRC := host-tools/src/bwhost.c host-tools/src/geodesic.c host-tools/src/brdf_models.c \
-            firmware/link/bw_frame.c host-tools/src/link.c \
-            host-tools/src/bw_sample.c host-tools/src/brdf_eval.c \
-            host-tools/src/bw_mesh.c
-CLI_SRC := host-tools/src/brdfwave.c host-tools/src/cmd_codec.c host-tools/src/cmd_grid.c \
-           host-tools/src/cmd_synth.c host-tools/src/cmd_device.c \
-           host-tools/src/cmd_render.c host-tools/src/render_png.c
-HOST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(HOST_SRC))
+# libbrdfwave: the codec core, the link frames and host-tools/lib, one list
+# of sources for both libraries: its objects make libbrdfwave.a (the tools
+# and tests link it), the same compiled position independent (build/host/pic)
+# libbrdfwave.so (the Python package loads it). The static library's objects
+# are not position independent: that costs the core about 2 % more
+# instructions.
+LIB_SRC := $(CORE_SRC) firmware/link/bw_frame.c $(wildcard host-tools/lib/*.c)
+LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC))
+LIB_PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
+LIB := $(BUILD)/libbrdfwave.a
+PYLIB := $(BUILD)/libbrdfwave.so
+
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  CC-PIC  $<")
+	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
+
+# the command line's own modules: options, numbers, exit statuses, shape
+# options (also linked into bwref)
+CLIKIT_SRC := host-tools/cli/cli_args.c host-tools/cli/cli_num.c host-tools/cli/cli_errors.c \
+              host-tools/cli/cli_shape.c
+CLIKIT := $(BUILD)/libbwcli.a
+
+# the renderer of `brdfwave render` (scene, tracer, materials, meshes,
+# image, PNG): librender
+RENDER_SRC := $(wildcard host-tools/render/*.c)
+RENDER_LIB := $(BUILD)/librender.a
+
+# brdfwave: main.c and one file per command (cmd_acquire.c: mk/hw.mk)
+CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
+           host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
+           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
+$(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
+$(CLI_OBJ): CFLAGS += -Ihost-tools/render
 
-LIB := $(BUILD)/libbrdfwave.a
 BW_CLI := $(BUILD)/brdfwave
 
 # the device application as a host process (hal/linux), for tests
@@ -24,22 +49,32 @@ FWL_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FWL_SRC))
 FWL := $(BUILD)/brdfwave-fw-linux
 $(FWL_OBJ): CFLAGS += -Ihal -Ifirmware/app
 
-all: $(LIB) $(BW_CLI) $(FWL)
+all: $(LIB) $(PYLIB) $(BW_CLI) $(FWL)
 
 $(FWL): $(FWL_OBJ) $(LIB)
 	$(if $(Q),@echo "  LD      $@")
 	$(Q)$(CC) $(CFLAGS) $(FWL_OBJ) $(LIB) $(LDLIBS) -o $@
 
-$(LIB): $(CORE_OBJ) $(HOST_OBJ)
+$(LIB): $(LIB_OBJ)
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+$(PYLIB): $(LIB_PIC_OBJ)
+	$(if $(Q),@echo "  LD      $@")
+	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
+
+$(CLIKIT): $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC))
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
+$(RENDER_LIB): $(patsubst %.c,$(BUILD)/%.o,$(RENDER_SRC))
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
-$(BUILD)/host-tools/src/brdfwave.o: CFLAGS += -Ihost-tools/ref/cli
 
-$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB)
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a \
+	    $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
 include mk/ref.mk
@@ -55,8 +90,8 @@ deps-run:
 	$(Q)tests/deps.sh run
 
 # regenerate the committed geodesic tables of the core
-$(BUILD)/gen_geodesic_tables: host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c
-	$(Q)$(CC) $(WARN) -O2 -Ihost-tools/src $^ -lm -o $@
+$(BUILD)/gen_geodesic_tables: host-tools/gen/gen_geodesic_tables.c host-tools/lib/geodesic.c
+	$(Q)$(CC) $(WARN) -O2 -Ihost-tools/lib $^ -lm -o $@
 
 tables: $(BUILD)/gen_geodesic_tables
 	$(Q)$< > firmware/codec/bw_geodesic_tables.c

@@ -1,28 +1,9 @@
-# Acquisition over I2C with a data-ready line (docs/I2C.md): the shared
-# libbrdfwave for the Python package (ctypes), `brdfwave acquire` (libgpiod +
-# i2c-dev), the Python package's tests and the VM tests against the kernel's
-# i2c-stub and gpio-sim drivers (`make check-hw`, tests/hw/run.sh).
+# Acquisition over I2C with a data-ready line (docs/I2C.md): `brdfwave
+# acquire` (libgpiod + i2c-dev), the Python package's tests (it loads
+# libbrdfwave.so, mk/host.mk) and the VM tests against the kernel's i2c-stub
+# and gpio-sim drivers (`make check-hw`, tests/hw/run.sh).
 #
 # Included by mk/host.mk before the CLI's link rule.
-
-# libbrdfwave.so: the library's sources again, position independent
-PYLIB := $(BUILD)/libbrdfwave.so
-# (the sampler, the evaluation of decoded BRDFs, which needs the reference
-# model's library, and the render meshes stay out: the package does not use them)
-PY_HOST_SRC := $(filter-out host-tools/src/bw_sample.c host-tools/src/brdf_eval.c \
-                              host-tools/src/bw_mesh.c,$(HOST_SRC))
-PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(CORE_SRC) $(PY_HOST_SRC))
-
-$(BUILD)/pic/%.o: %.c
-	@mkdir -p $(dir $@)
-	$(if $(Q),@echo "  CC-PIC  $<")
-	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
-
-$(PYLIB): $(PIC_OBJ)
-	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
-
-all: $(PYLIB)
 
 # brdfwave acquire: needs libgpiod 1.6 (libgpiod-dev); without it the command
 # says so and fails.
@@ -30,7 +11,7 @@ all: $(PYLIB)
 # What the build probes is recorded in $(FEATURES_H), rewritten only when an
 # answer changes; the objects that include it depend on it, so installing or
 # removing an optional library rebuilds what it affects on the next make.
-CLI_OBJ += $(BUILD)/host-tools/src/cmd_acquire.o
+CLI_OBJ += $(BUILD)/host-tools/cli/cmd_acquire.o
 FEATURES_H := $(BUILD)/gen/bw_features.h
 HAVE_GPIOD := $(shell pkg-config --exists 'libgpiod >= 1.6' 'libgpiod < 2' 2>/dev/null && echo 1 || echo 0)
 FEATURES := /* made by the build (mk/hw.mk): what it found on this machine */\n$\
@@ -38,8 +19,8 @@ FEATURES := /* made by the build (mk/hw.mk): what it found on this machine */\n$
 $(shell mkdir -p $(BUILD)/gen && printf '$(FEATURES)\n' >$(FEATURES_H).new && \
         { cmp -s $(FEATURES_H).new $(FEATURES_H) && rm -f $(FEATURES_H).new || \
           mv -f $(FEATURES_H).new $(FEATURES_H); })
-$(BUILD)/host-tools/src/cmd_acquire.o: $(FEATURES_H)
-$(BUILD)/host-tools/src/cmd_acquire.o: CFLAGS += -I$(BUILD)/gen
+$(BUILD)/host-tools/cli/cmd_acquire.o: $(FEATURES_H)
+$(BUILD)/host-tools/cli/cmd_acquire.o: CFLAGS += -I$(BUILD)/gen
 ifeq ($(HAVE_GPIOD),1)
 $(BUILD)/brdfwave: LDLIBS += -lgpiod
 else

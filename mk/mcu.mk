@@ -12,8 +12,8 @@ LINKER_SCRIPT := linker/stm32l476.ld
 
 # startup.c before vectors.c: both put their table in .isr_vector, which the
 # linker keeps in link order (the 16 system vectors, then IRQ 0..81)
-FW_SRC := firmware/link/bw_frame.c firmware/app/app.c firmware/app/main.c \
-          hal/cortex-m/startup.c hal/stm32l4/vectors.c hal/stm32l4/board.c
+FW_SRC := firmware/link/bw_frame.c firmware/link/bw_i2cwin.c firmware/app/app.c \
+          firmware/app/main.c hal/cortex-m/startup.c hal/stm32l4/vectors.c hal/stm32l4/board.c
 FW_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(FW_SRC))
 FW_ELF := $(BUILD)/brdfwave-fw.elf
 $(FW_OBJ): CFLAGS += -Ihal -Ifirmware/link -Ifirmware/app

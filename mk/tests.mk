@@ -14,6 +14,12 @@ $(BUILD)/tests/%: tests/unit/%.c $(LIB)
 # the device application against a scripted link (it includes app.c)
 $(BUILD)/tests/test_app: TEST_CFLAGS += -Ihal -Ifirmware/app
 
+# the firmware's I2C register window read by the host's I2C client
+$(BUILD)/tests/test_i2cwin: tests/unit/test_i2cwin.c firmware/link/bw_i2cwin.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(if $(Q),@echo "  TEST-CC $@")
+	$(Q)$(CC) $(TEST_CFLAGS) $< firmware/link/bw_i2cwin.c $(LIB) $(TEST_LIBS) -o $@
+
 tests: $(UNIT_BIN)
 
 deps:

@@ -2,8 +2,9 @@
 # The unit tests (tests/unit/test_*.c) built with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
-# trips. Compiles the sources directly (firmware/codec/*.c, host-tools/src/
-# bwhost.c, geodesic.c, brdf_models.c, the sampler and the mesh, each test)
+# trips. Compiles the sources directly (firmware/codec/*.c, the link frames
+# and the I2C window, host-tools/lib/*.c, the renderer's meshes for
+# test_mesh, the reference model's RGL loader for test_sample, each test)
 # into $SANITIZE_BUILD (default build/sanitize), independent of the
 # Makefile's build. The codec core is
 # compiled for size (-Os, as for the device's flash budget), so that the
@@ -20,12 +21,9 @@ OUT=${SANITIZE_BUILD:-build/sanitize}
 CC=${SANITIZE_CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
         -fsanitize=address,undefined -fno-sanitize-recover=all
-        -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/src -Ihost-tools/ref -Itests/unit"
-LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c host-tools/src/bwhost.c host-tools/src/link.c
-         host-tools/src/geodesic.c host-tools/src/brdf_models.c
-         host-tools/src/bw_sample.c host-tools/src/brdf_eval.c host-tools/src/bw_mesh.c
-         host-tools/ref/bwr_interp.c
-         host-tools/ref/bwr_rgl.c"
+        -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
+LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c firmware/link/bw_i2cwin.c $(ls host-tools/lib/*.c)
+         host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

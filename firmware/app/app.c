@@ -13,10 +13,14 @@
  * mode is encoded spectrum by spectrum (bw_stream_*): its RAM does not grow
  * with the number of directions (APP_STREAM_* bound the level and bands).
  * Other jobs hold the whole measurement (APP_MAX_SAMPLES). See docs/LINK.md.
+ *
+ * The payload kept for the host is also offered to the board
+ * (bw_hal_offer), which may serve it on a second link (the I2C register
+ * window of docs/I2C.md); an ACK over that link reaches the application as an
+ * ACK frame, like one over the UART.
  */
 #include "app.h"
 
-#include <string.h>
 
 #include "bw_codec.h"
 #include "bw_crc32.h"
@@ -65,6 +69,7 @@ static void send_error(const bw_hal_t *hal, int status)
 {
     uint8_t d[BW_ERROR_SIZE];
     send(hal, BW_FT_ERROR, 0, d, (uint16_t)bw_error_pack(status, &limits, d));
+    bw_hal_offer(hal, 0, NULL, 0, status);
 }
 
 /* Bytes read from the link and not yet given to the frame receiver: a read
@@ -133,6 +138,7 @@ static bool read_samples(const bw_hal_t *hal, int32_t *dst, size_t n)
 /* Runs one job; returns 0 when the host acknowledged the payload. */
 static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
 {
+    bw_hal_offer(hal, 0, NULL, 0, 0); /* the payload buffer is about to be reused */
     bw_dims_t d;
     bw_status_t st = bw_dims_make(&d, (bw_shape_t)job->shape, job->level_out, job->level_in,
                                   job->n_in, job->bands);
@@ -148,14 +154,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         return -1;
     }
     bw_params_t p;
-    memset(&p, 0, sizeof p);
-    p.mode = job->mode;
-    p.basis = job->basis;
-    p.flags = job->flags;
-    p.max_error = job->max_error;
-    p.byte_budget = job->byte_budget;
-    p.scale_bits = job->scale_bits;
-    p.offset_bits = job->offset_bits;
+    bw_job_params(job, &p);
     size_t len = 0;
     bool streaming = (job->flags & BW_FLAG_STREAM_ORDER) && job->mode != BW_MODE_BYTES &&
                      job->basis < BW_BASIS_COUNT && d.bands <= APP_STREAM_BANDS &&
@@ -202,6 +201,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
  * did, 1 when the host said QUIT instead. */
 static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent)
 {
+    bw_hal_offer(hal, id, payload, len, 0);
     send_payload(hal, id, len, spent);
     unsigned sends = 1;
     for (;;) {
@@ -211,8 +211,10 @@ static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent)
             send_payload(hal, id, len, spent);
             continue;
         }
-        if (frame.type == BW_FT_ACK && frame.len == 4 && bw_get_u32(frame.data) == id)
+        if (frame.type == BW_FT_ACK && frame.len == 4 && bw_get_u32(frame.data) == id) {
+            bw_hal_offer(hal, 0, NULL, 0, 0);
             return 0;
+        }
         if (frame.type == BW_FT_RESEND && frame.len >= 4 && bw_get_u32(frame.data) == id) {
             if (frame.len == 4) {
                 send_payload(hal, id, len, spent);

@@ -179,3 +179,32 @@ bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t
     }
     return true;
 }
+
+void bw_job_make(bw_job_t *j, const bw_dims_t *d, const bw_params_t *p)
+{
+    memset(j, 0, sizeof *j);
+    j->shape = d->shape;
+    j->level_out = d->level_out;
+    j->level_in = d->level_in;
+    j->n_in = d->n_in;
+    j->bands = d->bands;
+    j->mode = p->mode;
+    j->basis = p->basis;
+    j->flags = p->flags;
+    j->max_error = p->max_error;
+    j->byte_budget = p->byte_budget;
+    j->scale_bits = p->scale_bits;
+    j->offset_bits = p->offset_bits;
+}
+
+void bw_job_params(const bw_job_t *j, bw_params_t *p)
+{
+    memset(p, 0, sizeof *p);
+    p->mode = j->mode;
+    p->basis = j->basis;
+    p->flags = j->flags;
+    p->max_error = j->max_error;
+    p->byte_budget = j->byte_budget;
+    p->scale_bits = j->scale_bits;
+    p->offset_bits = j->offset_bits;
+}

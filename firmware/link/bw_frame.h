@@ -22,6 +22,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "bw_codec.h"
 #include "bw_le.h"
 
 #define BW_FRAME_SYNC0 0xB5u
@@ -110,5 +111,11 @@ size_t bw_error_pack(int32_t status, const bw_limits_t *lim, uint8_t *out); /* B
 bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t *lim);
 size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
+
+/* The job of encoding samples of these dimensions with these parameters
+ * (the host's side; source empty), and the parameters of a job (the
+ * device's side). */
+void bw_job_make(bw_job_t *job, const bw_dims_t *dims, const bw_params_t *p);
+void bw_job_params(const bw_job_t *job, bw_params_t *p);
 
 #endif

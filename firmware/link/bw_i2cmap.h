@@ -1,6 +1,7 @@
 /*
- * The co-processor's I2C register map (docs/I2C.md), shared by the board's I2C
- * target (hal/stm32l4/board.c) and the host's acquirer (brdfwave acquire).
+ * The co-processor's I2C register map (docs/I2C.md), shared by the register
+ * window the boards serve (bw_i2cwin.c) and the host's I2C client
+ * (host-tools/lib/bwh_i2c.c, which both acquirers run).
  * host-tools/python/brdfwave/i2cmap.py repeats these values; a test compares them.
  *
  * Registers are 16 bits, SMBus words (low byte first). Registers

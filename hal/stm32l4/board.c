@@ -10,8 +10,9 @@
  *             samples it every 2^24 cycles so no 32-bit wrap is missed
  *   link      USART2, PA2 TX / PA3 RX (AF7), 115200 8N1, polled
  *             + I2C1 target at 0x42, PB8 SCL / PB9 SDA (AF4), interrupt driven:
- *             the register map of docs/I2C.md (bw_i2cmap.h), which offers
- *             the payload the application's frames carry in 32-byte pages
+ *             the register window of docs/I2C.md (firmware/link/bw_i2cwin.h),
+ *             which offers the payload the application hands the board
+ *             (the HAL's offer) in 32-byte pages
  *   drdy      PA5, push-pull output, high while a payload is offered on I2C
  *             (or while the application asks for it)
  *   sensor    none yet: sensor_open/sensor_read are NULL, so the HAL
@@ -25,9 +26,8 @@
 #include <stdint.h>
 
 #include "bw_crc32.h"
-#include "bw_frame.h"
 #include "bw_hal.h"
-#include "bw_i2cmap.h"
+#include "bw_i2cwin.h"
 
 #define REG(a) (*(volatile uint32_t *)(a))
 
@@ -165,37 +165,16 @@
 #define FAULT_EXCEPTION 0x80000000u /* code of a CPU exception: this | vector */
 
 /* ---- I2C target state (docs/I2C.md) ---------------------------------------
- * The payload offered on I2C is rebuilt from the frames the application
- * writes (START, DATA, END) in SRAM2, beside the fault record: SRAM1 holds
- * the application's own buffers. The start-up code does not touch SRAM2, so
- * bw_board() initialises what it needs. */
-#define I2C_PAYLOAD_CAP 16384u /* 512 pages, 16 chunks of BW_FRAME_MAX_DATA */
-#define IN_SIZE 512u           /* bytes from the I2C host (FRAMES writes, ACKs) */
+ * The window (bw_i2cwin.h) serves the payload from the application's buffer;
+ * the bytes it hands the application (FRAMES writes, the ACK frame of
+ * CMD = ACK) wait in a ring that link_read empties after the UART's. */
+#define IN_SIZE 512u /* bytes from the I2C host (FRAMES writes, ACKs) */
 
-typedef struct {
-    uint8_t payload[I2C_PAYLOAD_CAP];
-    bw_frame_rx_t out_rx; /* the frames the application sends */
-    bw_frame_rx_t in_rx;  /* the frames it receives (an ACK over the UART) */
-    bw_frame_t frame;
-} i2c_store_t;
-_Static_assert(sizeof(i2c_store_t) <= 0x7FF8u, "the I2C store must end below the fault record");
-#define STORE ((i2c_store_t *)0x10000000u)
-
+static bw_i2cwin_t win;
 static uint8_t in_buf[IN_SIZE];
 static volatile uint32_t in_head; /* written by the I2C interrupt */
 static volatile uint32_t in_tail; /* written by link_read */
-
-/* the payload being assembled, then offered (written with interrupts masked) */
-static volatile uint8_t offered;     /* STATUS.ready */
-static uint8_t assembling;
-static uint32_t pl_id, pl_len, pl_crc, pl_chunks, pl_have; /* pl_have: chunk bitmap */
-
-static volatile uint8_t st_error, st_lost, st_nak;
-static volatile uint16_t errcode;
-static volatile uint16_t page, page_hi, ack_lo, ack_hi;
 static volatile uint8_t drdy_wanted;
-static uint32_t last_fault;
-static uint8_t last_fault_valid;
 
 /* ---- interrupt masking ---------------------------------------------------- */
 static inline uint32_t irq_save(void)
@@ -278,7 +257,7 @@ static void gpio_af(uint32_t base, unsigned pin, uint32_t af)
 
 static void drdy_update(void) /* with interrupts masked, or from the I2C interrupt */
 {
-    int high = drdy_wanted || offered;
+    int high = drdy_wanted || win.offered;
     REG(GPIOA_BASE + GPIO_BSRR) = high ? 1u << DRDY_PIN : 1u << (DRDY_PIN + 16u);
 }
 
@@ -322,13 +301,15 @@ static void usart_init(void)
     USART2_CR1 = USART_CR1_TE | USART_CR1_RE | USART_CR1_UE; /* M = 00: 8 data bits, no parity */
 }
 
-/* ---- the payload from the application's frames ------------------------------ */
-static void in_push(const uint8_t *p, size_t n) /* from the I2C interrupt */
+/* ---- the link ---------------------------------------------------------------- */
+/* the window's bytes for the application (from the I2C interrupt) */
+static void in_push(void *ctx, const uint8_t *p, size_t n)
 {
+    (void)ctx;
     uint32_t head = in_head;
     for (size_t i = 0; i < n; i++) {
         if (head - in_tail >= IN_SIZE) {
-            st_lost = 1;
+            bw_i2cwin_lost(&win);
             break;
         }
         in_buf[head++ & (IN_SIZE - 1u)] = p[i];
@@ -336,72 +317,18 @@ static void in_push(const uint8_t *p, size_t n) /* from the I2C interrupt */
     in_head = head;
 }
 
-/* the payload is released: by an ACK over I2C (interrupt) or the UART */
-static void release(uint32_t id)
+static void ready_changed(void *ctx, int offered)
 {
-    if (offered && id == pl_id) {
-        offered = 0;
-        drdy_update();
-    }
+    (void)ctx;
+    (void)offered;
+    drdy_update();
 }
 
-static void out_frame(const bw_frame_t *f)
-{
-    uint32_t m = irq_save();
-    if (f->type == BW_FT_START && f->len >= 14u) {
-        uint32_t id = bw_get_u32(f->data), len = bw_get_u32(f->data + 4);
-        if (!(offered && id == pl_id)) { /* a resend of the offered payload changes nothing */
-            offered = 0;
-            assembling = 0;
-            if (len == 0 || len > I2C_PAYLOAD_CAP) {
-                st_lost = 1;
-            } else {
-                assembling = 1;
-                pl_id = id;
-                pl_len = len;
-                pl_chunks = bw_get_u16(f->data + 8);
-                pl_crc = bw_get_u32(f->data + 10);
-                pl_have = 0;
-                if (pl_chunks != (len + BW_FRAME_MAX_DATA - 1u) / BW_FRAME_MAX_DATA)
-                    assembling = 0;
-            }
-            drdy_update();
-        }
-    } else if (f->type == BW_FT_DATA && assembling && f->seq < pl_chunks) {
-        uint32_t off = (uint32_t)f->seq * BW_FRAME_MAX_DATA;
-        uint32_t want = pl_len - off < BW_FRAME_MAX_DATA ? pl_len - off : BW_FRAME_MAX_DATA;
-        if (f->len == want) {
-            irq_restore(m); /* the payload is not offered while it is assembled */
-            for (uint32_t i = 0; i < want; i++)
-                STORE->payload[off + i] = f->data[i];
-            m = irq_save();
-            pl_have |= 1u << f->seq;
-        }
-    } else if (f->type == BW_FT_END && assembling && f->len == 4u &&
-               bw_get_u32(f->data) == pl_id && pl_have == (1u << pl_chunks) - 1u) {
-        assembling = 0;
-        irq_restore(m);
-        int good = bw_crc32(STORE->payload, pl_len) == pl_crc;
-        m = irq_save();
-        if (good) {
-            offered = 1;
-            drdy_update();
-        } else {
-            st_lost = 1;
-        }
-    } else if (f->type == BW_FT_ERROR && f->len >= 4u) {
-        st_error = 1;
-        errcode = (uint16_t)bw_get_u32(f->data);
-    }
-    irq_restore(m);
-}
+static const bw_i2cwin_ops_t win_ops = {in_push, ready_changed, 0};
 
-/* Writes buf to the UART; the frames also feed the payload offered on I2C. */
 static int link_write(const uint8_t *buf, size_t len)
 {
     for (size_t i = 0; i < len; i++) {
-        if (bw_frame_rx_byte(&STORE->out_rx, buf[i], &STORE->frame))
-            out_frame(&STORE->frame);
         while (!(USART2_ISR & USART_ISR_TXE)) {
         }
         USART2_TDR = buf[i];
@@ -414,17 +341,8 @@ static int link_write(const uint8_t *buf, size_t len)
 static int link_read(uint8_t *buf, size_t cap)
 {
     size_t n = 0;
-    while (n < cap && (USART2_ISR & USART_ISR_RXNE)) {
-        uint8_t b = (uint8_t)USART2_RDR;
-        buf[n++] = b;
-        /* an ACK over the UART releases the I2C offer too */
-        if (bw_frame_rx_byte(&STORE->in_rx, b, &STORE->frame) &&
-            STORE->frame.type == BW_FT_ACK && STORE->frame.len == 4u) {
-            uint32_t m = irq_save();
-            release(bw_get_u32(STORE->frame.data));
-            irq_restore(m);
-        }
-    }
+    while (n < cap && (USART2_ISR & USART_ISR_RXNE))
+        buf[n++] = (uint8_t)USART2_RDR;
     if (USART2_ISR & (USART_ISR_ORE | USART_ISR_FE | USART_ISR_NF | USART_ISR_PE))
         USART2_ICR = USART_ICR_ERRORS; /* a lost or bad byte: the frame CRC catches it */
     uint32_t tail = in_tail;
@@ -432,6 +350,19 @@ static int link_read(uint8_t *buf, size_t cap)
         buf[n++] = in_buf[tail++ & (IN_SIZE - 1u)];
     in_tail = tail;
     return (int)n;
+}
+
+/* the payload the application keeps, served on I2C; its CRC-32 is computed
+ * before the window's interrupt is masked */
+static int offer(uint32_t id, const uint8_t *payload, size_t len, int32_t status)
+{
+    uint32_t crc = status == 0 && len ? bw_crc32(payload, len) : 0u;
+    uint32_t m = irq_save();
+    if (status < 0)
+        bw_i2cwin_job_failed(&win, status);
+    bw_i2cwin_offer(&win, id, payload, status < 0 ? 0u : (uint32_t)len, crc);
+    irq_restore(m);
+    return 0;
 }
 
 static int drdy_set(int level)
@@ -444,178 +375,26 @@ static int drdy_set(int level)
 }
 
 /* ---- I2C1 target ------------------------------------------------------------
- * A write transaction: the first byte selects the register, the following
- * bytes (one for a byte register, low then high for a word) are applied at
- * its end; FRAMES takes any number. A read returns the selected register and
- * the following ones, two bytes each, low first; BLOCK is an SMBus block
- * read of the selected page. Values are computed as the bytes are asked for. */
-enum { T_IDLE, T_WRITE, T_READ };
-static uint8_t t_state, t_reg, t_first;
-static uint32_t t_index;  /* bytes put in TXDR in this read / received in this write */
-static uint8_t t_wbuf[2];
-
-static uint8_t status_byte(void)
-{
-    return (uint8_t)((offered ? BW_I2C_ST_READY : 0u) | (st_error ? BW_I2C_ST_ERROR : 0u) |
-                     (last_fault_valid ? BW_I2C_ST_FAULT : 0u) | (st_lost ? BW_I2C_ST_LOST : 0u) |
-                     (st_nak ? BW_I2C_ST_NAK : 0u));
-}
-
-static uint32_t pages_of(void) { return (pl_len + BW_I2C_PAGE_SIZE - 1u) / BW_I2C_PAGE_SIZE; }
-
-/* bytes of the selected page in the payload, 0 when none is selected */
-static uint32_t page_len(void)
-{
-    if (!offered || page == 0 || page > pages_of())
-        return 0;
-    uint32_t off = (uint32_t)(page - 1u) * BW_I2C_PAGE_SIZE;
-    return pl_len - off < BW_I2C_PAGE_SIZE ? pl_len - off : BW_I2C_PAGE_SIZE;
-}
-
-static uint8_t page_byte(uint32_t i)
-{
-    return i < page_len() ? STORE->payload[(uint32_t)(page - 1u) * BW_I2C_PAGE_SIZE + i] : 0xFFu;
-}
-
-static uint16_t reg_value(uint32_t r)
-{
-    uint32_t v = 0, fault = last_fault_valid ? last_fault : 0u;
-    int ready = offered;
-    if (r >= BW_I2C_DATA && r < BW_I2C_DATA + BW_I2C_PAGE_SIZE / 2u) {
-        uint32_t i = 2u * (r - BW_I2C_DATA);
-        return page_len() ? (uint16_t)(page_byte(i) | page_byte(i + 1u) << 8) : 0u;
-    }
-    switch (r) {
-    case BW_I2C_MAGIC: v = BW_I2C_MAGIC_VALUE; break;
-    case BW_I2C_VERSION: v = BW_I2C_PAGE_SIZE << 8 | BW_I2C_MAP_VERSION; break;
-    case BW_I2C_STATUS: v = status_byte(); break;
-    case BW_I2C_ID_LO: v = ready ? pl_id : 0u; break;
-    case BW_I2C_ID_HI: v = ready ? pl_id >> 16 : 0u; break;
-    case BW_I2C_LEN_LO: v = ready ? pl_len : 0u; break;
-    case BW_I2C_LEN_HI: v = ready ? pl_len >> 16 : 0u; break;
-    case BW_I2C_PAGES: v = ready ? pages_of() : 0u; break;
-    case BW_I2C_CRC_LO: v = ready ? pl_crc : 0u; break;
-    case BW_I2C_CRC_HI: v = ready ? pl_crc >> 16 : 0u; break;
-    case BW_I2C_ERRCODE: v = errcode; break;
-    case BW_I2C_FAULT_LO: v = fault; break;
-    case BW_I2C_FAULT_HI: v = fault >> 16; break;
-    case BW_I2C_PAGE: v = page; break;
-    case BW_I2C_PAGE_HI: v = page_hi; break;
-    case BW_I2C_RETRY: v = 0; break; /* the page in RAM is intact: answered at once */
-    case BW_I2C_ACK_LO: v = ack_lo; break;
-    case BW_I2C_ACK_HI: v = ack_hi; break;
-    case BW_I2C_CMD: v = 0; break; /* commands complete inside the write */
-    case BW_I2C_PNUM: v = page_len() ? page : 0u; break;
-    case BW_I2C_PLEN: v = page_len(); break;
-    case BW_I2C_PCRC_LO:
-    case BW_I2C_PCRC_HI: {
-        uint32_t n = page_len();
-        uint32_t c = n ? bw_crc32(STORE->payload + (uint32_t)(page - 1u) * BW_I2C_PAGE_SIZE, n) : 0u;
-        v = r == BW_I2C_PCRC_LO ? c : c >> 16;
-        break;
-    }
-    default: break;
-    }
-    return (uint16_t)v;
-}
-
-static void t_begin_read(void)
-{
-    I2C1_ISR = I2C_ISR_TXE; /* flush a byte left in TXDR by the previous read */
-    t_state = T_READ;
-    t_index = 0;
-}
-
-static uint8_t t_next_byte(void)
-{
-    uint32_t i = t_index++;
-    if (t_state != T_READ)
-        return 0xFFu;
-    if (t_reg == BW_I2C_BLOCK)
-        return i == 0 ? (uint8_t)page_len() : page_byte(i - 1u);
-    uint16_t v = reg_value(t_reg + i / 2u);
-    return (uint8_t)(i & 1u ? v >> 8 : v);
-}
-
-static void command(uint8_t c)
-{
-    if (c == BW_I2C_CMD_ACK) {
-        uint32_t id = (uint32_t)ack_hi << 16 | ack_lo;
-        if (offered && id == pl_id) {
-            uint8_t d[4], f[BW_FRAME_OVERHEAD + 4u];
-            bw_put_u32(d, id);
-            in_push(f, bw_frame_pack(f, BW_FT_ACK, 0, d, 4));
-            release(id);
-        } else {
-            st_nak = 1;
-        }
-    } else if (c == BW_I2C_CMD_CLEAR) {
-        st_error = 0;
-        st_lost = 0;
-        st_nak = 0;
-        last_fault_valid = 0;
-    }
-}
-
-/* end of a transfer (STOP or repeated START): apply a register write */
-static void t_end(void)
-{
-    if (t_state == T_WRITE && !t_first && t_index > 0u) {
-        uint8_t lo = t_wbuf[0];
-        uint16_t word = (uint16_t)(lo | (t_index > 1u ? t_wbuf[1] << 8 : 0));
-        switch (t_reg) {
-        case BW_I2C_PAGE: page = (uint16_t)(page_hi << 8 | lo); break;
-        case BW_I2C_PAGE_HI: page_hi = lo; break;
-        case BW_I2C_RETRY: break; /* nothing to refresh: the page is in RAM */
-        case BW_I2C_ACK_LO: ack_lo = word; break;
-        case BW_I2C_ACK_HI: ack_hi = word; break;
-        case BW_I2C_CMD: command(lo); break;
-        default: break;
-        }
-    }
-    t_state = T_IDLE;
-}
-
-static void t_write_byte(uint8_t b)
-{
-    if (t_state != T_WRITE)
-        return;
-    if (t_first) {
-        t_reg = b;
-        t_first = 0;
-        t_index = 0;
-        return;
-    }
-    if (t_reg == BW_I2C_FRAMES)
-        in_push(&b, 1);
-    else if (t_index < 2u)
-        t_wbuf[t_index] = b;
-    t_index++;
-}
-
+ * The events of the peripheral, handed to the window (bw_i2cwin.h). */
 void I2C1_EV_IRQHandler(void);
 void I2C1_EV_IRQHandler(void)
 {
     for (;;) {
         uint32_t isr = I2C1_ISR;
         if (isr & I2C_ISR_RXNE) {
-            t_write_byte((uint8_t)I2C1_RXDR);
+            bw_i2cwin_received(&win, (uint8_t)I2C1_RXDR);
         } else if (isr & I2C_ISR_STOPF) {
-            t_end();
+            bw_i2cwin_stop(&win);
             I2C1_ICR = I2C_ICR_STOPCF;
         } else if (isr & I2C_ISR_ADDR) {
-            t_end(); /* a repeated START ends the previous transfer */
-            if (isr & I2C_ISR_DIR) {
-                t_begin_read();
-            } else {
-                t_state = T_WRITE;
-                t_first = 1;
-            }
+            if (isr & I2C_ISR_DIR)
+                I2C1_ISR = I2C_ISR_TXE; /* flush a byte left in TXDR by the previous read */
+            bw_i2cwin_addressed(&win, (isr & I2C_ISR_DIR) != 0);
             I2C1_ICR = I2C_ICR_ADDRCF;
         } else if (isr & I2C_ISR_NACKF) {
             I2C1_ICR = I2C_ICR_NACKCF; /* the host ends its read */
         } else if (isr & I2C_ISR_TXIS) {
-            I2C1_TXDR = t_next_byte();
+            I2C1_TXDR = bw_i2cwin_transmit(&win);
         } else {
             break;
         }
@@ -629,10 +408,8 @@ void I2C1_ER_IRQHandler(void)
 {
     uint32_t isr = I2C1_ISR & I2C_ISR_ERRORS;
     I2C1_ICR = isr;
-    if (isr) {
-        st_lost = 1;
-        t_state = T_IDLE;
-    }
+    if (isr)
+        bw_i2cwin_bus_error(&win);
 }
 
 /* RM0351 §39.4.5-§39.4.8: timing and own address with PE = 0, then enable. */
@@ -685,10 +462,8 @@ void _exit(int status)
 
 static void fault_load(void)
 {
-    if (FAULT_REC[0] == FAULT_MARK) {
-        last_fault = FAULT_REC[1];
-        last_fault_valid = 1;
-    }
+    if (FAULT_REC[0] == FAULT_MARK)
+        bw_i2cwin_set_fault(&win, FAULT_REC[1]);
     FAULT_REC[0] = 0;
 }
 
@@ -701,6 +476,7 @@ static const bw_hal_t board = {
     .sensor_open = NULL, /* no sensor driver yet: -BW_HAL_ENOSYS */
     .sensor_read = NULL,
     .fault = fault,
+    .offer = offer,
 };
 
 static int started;
@@ -710,9 +486,8 @@ const bw_hal_t *bw_board(void)
     if (!started) {
         started = 1;
         SCB_VTOR = 0x08000000u; /* the image's table, at the start of flash */
+        bw_i2cwin_init(&win, &win_ops);
         fault_load();
-        bw_frame_rx_init(&STORE->out_rx);
-        bw_frame_rx_init(&STORE->in_rx);
         clock_init();
         counter_init();
         gpio_init();

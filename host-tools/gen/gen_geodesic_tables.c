@@ -5,8 +5,8 @@
  * --areas, firmware/codec/bw_geodesic_areas.c: the solid angles of that
  * subtree's triangles at levels 0..6 as Q31 fractions of the base triangle.
  *
- *   cc -std=c11 -O2 -I host-tools/src -o /tmp/gen_geodesic_tables \
- *      host-tools/gen/gen_geodesic_tables.c host-tools/src/geodesic.c -lm
+ *   cc -std=c11 -O2 -I host-tools/lib -o /tmp/gen_geodesic_tables \
+ *      host-tools/gen/gen_geodesic_tables.c host-tools/lib/geodesic.c -lm
  *   /tmp/gen_geodesic_tables > firmware/codec/bw_geodesic_tables.c
  *   /tmp/gen_geodesic_tables --areas > firmware/codec/bw_geodesic_areas.c
  *

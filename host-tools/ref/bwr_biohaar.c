@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 static size_t tri_offset(unsigned j) /* triangles of levels < j */
 {
@@ -32,7 +32,7 @@ int bwr_sphere_init(bwr_sphere_t *s, unsigned level)
     s->weight = malloc((tri_offset(level) ? 4 * tri_offset(level) : 1) * sizeof *s->weight);
     s->psi2 = malloc(s->n * sizeof *s->psi2);
     s->coef_level = malloc(s->n * sizeof *s->coef_level);
-    bwh_tri_t *tri = malloc(s->n * sizeof *tri);
+    bwr_tri_t *tri = malloc(s->n * sizeof *tri);
     if (s->area == NULL || s->weight == NULL || s->psi2 == NULL || s->coef_level == NULL ||
         tri == NULL) {
         free(tri);
@@ -41,9 +41,9 @@ int bwr_sphere_init(bwr_sphere_t *s, unsigned level)
     }
     for (unsigned j = 0; j <= level; j++) {
         size_t nt = (size_t)4 << (2u * j);
-        bwh_grid_triangles(j, tri);
+        bwr_grid_triangles(j, tri);
         for (size_t t = 0; t < nt; t++)
-            s->area[tri_offset(j) + t] = bwh_solid_angle(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
+            s->area[tri_offset(j) + t] = bwr_tri_area(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
     }
     free(tri);
     for (unsigned j = 0; j < level; j++) {

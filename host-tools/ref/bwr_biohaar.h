@@ -3,7 +3,7 @@
  * (Schroeder and Sweldens 1995, as used in sec. 3.1 and 4 of the paper),
  * written once over an element type (bwr_type.h).
  *
- * Grid and numbering: host-tools/src/geodesic.h (4 base triangles of the
+ * Grid and numbering: bwr_geodesic.h (4 base triangles of the
  * upper octahedron, children 0 = centre, 1..3 = corners, index = base * 4^L
  * + child digits). A signal at level L is one element per triangle, in that
  * order.

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 /* ---- cubic B-spline ------------------------------------------------------ */
 
@@ -68,23 +68,11 @@ double bwr_bspline_eval(const double *c, size_t n, double x)
 
 /* ---- sphere -------------------------------------------------------------- */
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static double det3(const double a[3], const double b[3], const double c[3])
 {
     double bc[3];
-    cross3(b, c, bc);
-    return dot3(a, bc);
+    bwr_cross3(b, c, bc);
+    return bwr_dot3(a, bc);
 }
 
 void bwr_sinterp_free(bwr_sinterp_t *s)
@@ -113,11 +101,11 @@ static size_t vertex_id(bwr_sinterp_t *s, const double p[3])
 int bwr_sinterp_init(bwr_sinterp_t *s, unsigned level)
 {
     memset(s, 0, sizeof *s);
-    if (level > BWH_GRID_MAX_LEVEL)
+    if (level > BWR_GRID_MAX_LEVEL)
         return -1;
     s->level = level;
-    s->n = bwh_grid_count(level);
-    bwh_tri_t *tri = malloc(s->n * sizeof *tri);
+    s->n = bwr_grid_count(level);
+    bwr_tri_t *tri = malloc(s->n * sizeof *tri);
     s->centre = malloc(s->n * sizeof *s->centre);
     s->vert = malloc(3 * s->n * sizeof *s->vert);
     s->tv = malloc(s->n * sizeof *s->tv);
@@ -127,14 +115,14 @@ int bwr_sinterp_init(bwr_sinterp_t *s, unsigned level)
         bwr_sinterp_free(s);
         return -1;
     }
-    bwh_grid_triangles(level, tri);
+    bwr_grid_triangles(level, tri);
     double rmax = 0.0;
     for (size_t t = 0; t < s->n; t++) {
-        bwh_tri_centre(&tri[t], s->centre[t]);
-        s->area[t] = bwh_solid_angle(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
+        bwr_tri_direction(&tri[t], s->centre[t]);
+        s->area[t] = bwr_tri_area(tri[t].v[0], tri[t].v[1], tri[t].v[2]);
         for (int k = 0; k < 3; k++) {
             s->tv[t][k] = vertex_id(s, tri[t].v[k]);
-            double c = dot3(s->centre[t], tri[t].v[k]);
+            double c = bwr_dot3(s->centre[t], tri[t].v[k]);
             double a = acos(c > 1.0 ? 1.0 : c);
             if (a > rmax)
                 rmax = a;
@@ -180,7 +168,7 @@ static double vertex_value(const bwr_sinterp_t *s, const double *values, size_t 
 
 double bwr_sinterp_linear(const bwr_sinterp_t *s, const double *values, const double d[3])
 {
-    long t = bwh_grid_locate(s->level, d);
+    long t = bwr_grid_locate(s->level, d);
     if (t < 0)
         return NAN;
     const double *c = s->centre[t];
@@ -217,7 +205,7 @@ double bwr_sinterp_smooth(const bwr_sinterp_t *s, const double *values, const do
     double R = s->radius, num = 0.0, den = 0.0;
     double cr = cos(R);
     for (size_t t = 0; t < s->n; t++) {
-        double cd = dot3(d, s->centre[t]);
+        double cd = bwr_dot3(d, s->centre[t]);
         if (cd <= cr)
             continue;
         double r = acos(cd > 1.0 ? 1.0 : cd);

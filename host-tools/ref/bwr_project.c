@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 #define PROJECT_PI 3.14159265358979323846
 #define PROJECT_SAME 1e-12 /* rad: a measurement at the centre itself */
@@ -33,18 +33,18 @@ int bwr_project(const double (*dir)[3], const double *values, size_t n, size_t b
     if (k == 0)
         k = BWR_PROJECT_K_DEFAULT;
     if (dir == NULL || values == NULL || out == NULL || n == 0 || bands == 0 ||
-        level > BWH_GRID_MAX_LEVEL || k > BWR_PROJECT_K_MAX)
+        level > BWR_GRID_MAX_LEVEL || k > BWR_PROJECT_K_MAX)
         return -1;
     if (bands > ((size_t)-1) / sizeof(double) / n)
         return -1;
     for (size_t i = 0; i < n * bands; i++)
         if (!isfinite(values[i]))
             return -1;
-    size_t nt = bwh_grid_count(level);
+    size_t nt = bwr_grid_count(level);
     double(*u)[3] = malloc(n * sizeof *u);
     double(*c)[3] = malloc(nt * sizeof *c);
     double *acc = malloc(bands * sizeof *acc);
-    if (u == NULL || c == NULL || acc == NULL || bwh_grid_centres(level, c, NULL) != 0)
+    if (u == NULL || c == NULL || acc == NULL || bwr_grid_centres(level, c, NULL) != 0)
         goto fail;
     for (size_t i = 0; i < n; i++) {
         double len = sqrt(dir[i][0] * dir[i][0] + dir[i][1] * dir[i][1] + dir[i][2] * dir[i][2]);

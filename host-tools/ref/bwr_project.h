@@ -33,7 +33,7 @@ extern "C" {
 
 /* dir: n unit directions (z >= 0; normalised here, so any positive length
  * will do); values: n * bands, row-major [direction][band]; out:
- * bwh_grid_count(level) * bands, [triangle][band] in grid order. k: number
+ * bwr_grid_count(level) * bands, [triangle][band] in grid order. k: number
  * of neighbours, 1..BWR_PROJECT_K_MAX (0: BWR_PROJECT_K_DEFAULT).
  * 0, or -1 (n = 0, bands = 0, level > 6, k too large, a direction not finite,
  * of zero length or below the horizon (z < -1e-9), a value not finite, out

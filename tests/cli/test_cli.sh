@@ -59,6 +59,39 @@ done
 expect_ok "top-level help" "$BW" --help
 expect_error "unknown command" "$BW" frobnicate
 
+# ---- one rule for every command: usage errors exit 2 and name the option,
+# failures exit 1 ------------------------------------------------------------
+# expect_status NAME STATUS CMD...: exactly that exit status, one line on stderr
+expect_status() {
+    local name=$1 want=$2 rc
+    shift 2
+    "$@" >"$T/out" 2>"$T/err"
+    rc=$?
+    if [ "$rc" != "$want" ]; then bad "$name: exit $rc, not $want: $(head -2 "$T/err")"; return; fi
+    [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "$name: stderr $(cat "$T/err")"
+}
+"$BW" --help | grep -q "^exit status: 0 success; 1 the command failed" && ok || bad "--help does not give the exit statuses"
+for c in encode decode info compare grid synth receive acquire import-rgl render; do
+    expect_status "$c: unknown option" 2 "$BW" "$c" --frobnicate
+    grep -q "^brdfwave $c: unknown option '--frobnicate'" "$T/err" && ok || bad "$c: $(cat "$T/err")"
+done
+for c in wavedec ratios import-rgl project; do
+    expect_status "bwref $c: unknown option" 2 "$BWREF" "$c" --frobnicate
+done
+expect_status "a misspelt option" 2 "$BW" encode --levle 3 -i x -o y
+grep -q "unknown option '--levle' (did you mean '--level'?)" "$T/err" && ok || bad "no suggestion: $(cat "$T/err")"
+expect_status "a missing value" 2 "$BW" decode -o x -i
+grep -q "option '--input' needs a value" "$T/err" && ok || bad "missing value: $(cat "$T/err")"
+expect_status "a flag with a value" 2 "$BW" encode --lossless=1 -i x -o y
+expect_status "an ambiguous abbreviation" 2 "$BW" encode --le 3 -i x -o y
+expect_status "a bad number" 2 "$BW" synth --model phong --incoming 2 --level 2x -o "$T/x.f32"
+grep -q -- "--level needs an integer 0..6, got '2x'" "$T/err" && ok || bad "bad number: $(cat "$T/err")"
+expect_status "shape options that exclude each other" 2 "$BW" synth --model phong --incoming 2 --level-in 1 -o "$T/x.f32"
+expect_status "a missing input file" 1 "$BW" decode -i "$T/none.bwv" -o "$T/x.f32"
+expect_status "a missing input file (compare)" 1 "$BW" compare "$T/none.f32" "$T/none2.f32"
+expect_status "a missing payload (render)" 1 "$BW" render --material "payload:$T/none.bwv" -o "$T/x.png"
+expect_status "a missing measurement (import-rgl)" 1 "$BW" import-rgl -i "$T/none.bsdf" -o "$T/x.f32"
+
 # ---- grid -------------------------------------------------------------------
 for L in 0 1 2 3 4 5 6; do
     "$BW" grid --level $L >"$T/grid.csv" || bad "grid level $L"

@@ -220,6 +220,47 @@ def decode_refuses_payloads_beyond_the_sample_limit_and_float32():
 
 
 @case
+def encode_on_the_linux_device_from_outside_the_checkout_equals_the_host_payload():
+    # the library finds the device image beside itself (not beside the Python
+    # interpreter, whatever the working directory)
+    x = np.fromfile(tmp("phong.f32"), dtype="<f4").reshape(5, 256, 1)
+    x.tofile(tmp("dev_in.f32"))
+    prog = (
+        "import sys, numpy as np, brdfwave\n"
+        "x = np.fromfile(sys.argv[1], dtype='<f4').reshape(5, 256, 1)\n"
+        "p = brdfwave.encode(x, level=3, incoming=True, max_error=0.002, device='linux')\n"
+        "open(sys.argv[2], 'wb').write(p)\n")
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "host-tools", "python"))
+    for k in ("BW_FIRMWARE", "BW_FIRMWARE_LINUX", "BRDFWAVE_LIB"):
+        env.pop(k, None)
+    outside = tempfile.mkdtemp(prefix="bw-py-elsewhere-")
+    assert not os.path.realpath(outside).startswith(os.path.realpath(ROOT) + os.sep)
+    r = subprocess.run([sys.executable, "-c", prog, tmp("dev_in.f32"), tmp("dev.bwv")],
+                       cwd=outside, env=env, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    with open(tmp("dev.bwv"), "rb") as f:
+        on_device = f.read()
+    assert on_device == brdfwave.encode(x, level=3, incoming=True, max_error=0.002)
+
+
+@case
+def the_shared_and_the_static_library_hold_the_same_functions():
+    lib_dir = os.path.dirname(BW)
+
+    def functions(path, *flags):
+        out = subprocess.run(["nm", "-g", "--defined-only", *flags, path], capture_output=True,
+                             text=True, check=True).stdout
+        return {f[2] for f in (line.split() for line in out.splitlines()) if len(f) == 3
+                and f[1] == "T"}
+
+    static = functions(os.path.join(lib_dir, "libbrdfwave.a"))
+    shared = functions(os.path.join(lib_dir, "libbrdfwave.so"), "-D")
+    assert static and static == shared, sorted(static ^ shared)[:10]
+    assert {"bwh_sampler_build", "bwh_brdf_data_load", "bwh_i2c_read_payload",
+            "bwh_shape_dims", "bw_encode"} <= shared
+
+
+@case
 def register_map_matches_the_c_header():
     with open(os.path.join(ROOT, "firmware", "link", "bw_i2cmap.h")) as f:
         defs = dict(re.findall(r"#define BW_I2C_(\w+) (0x[0-9A-Fa-f]+|\d+)u", f.read()))

@@ -16,7 +16,7 @@
 
 #include "bwr_biohaar.h"
 #include "bwr_sparse.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 #include "ref_test_util.h"
 
 #define PI 3.14159265358979323846
@@ -43,12 +43,12 @@ static void weights_are_area_fractions_and_areas_tile(void **state)
             assert_true(fabs(ch - bwr_sphere_area(&s, j, p)) < 1e-14);
         }
     }
-    /* level 1 by hand: base 0 = (Z, X, Y), its children from geodesic.c */
-    bwh_tri_t tri[16];
-    bwh_grid_triangles(1, tri);
+    /* level 1 by hand: base 0 = (Z, X, Y), its children from bwr_geodesic.c */
+    bwr_tri_t tri[16];
+    bwr_grid_triangles(1, tri);
     double a[4], tot = 0.0;
     for (unsigned i = 0; i < 4; i++) {
-        a[i] = bwh_solid_angle(tri[i].v[0], tri[i].v[1], tri[i].v[2]);
+        a[i] = bwr_tri_area(tri[i].v[0], tri[i].v[1], tri[i].v[2]);
         tot += a[i];
     }
     assert_true(fabs(tot - PI / 2.0) < 1e-14);

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "bwr_eval.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 
 #define PI 3.14159265358979323846
 
@@ -32,9 +32,9 @@ static void dir(double theta, double phi, double d[3])
 
 static double (*centres(unsigned level))[3]
 {
-    double(*c)[3] = malloc(bwh_grid_count(level) * sizeof *c);
+    double(*c)[3] = malloc(bwr_grid_count(level) * sizeof *c);
     assert_non_null(c);
-    assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+    assert_int_equal(bwr_grid_centres(level, c, NULL), 0);
     return c;
 }
 
@@ -44,7 +44,7 @@ static void evaluation_at_the_samples_returns_the_samples(void **state)
     for (int smooth = 0; smooth <= 1; smooth++) {
         /* reflectance, 5 bands at 400..800 nm */
         {
-            size_t n = bwh_grid_count(2), bands = 5;
+            size_t n = bwr_grid_count(2), bands = 5;
             float *v = malloc(n * bands * sizeof *v);
             for (size_t i = 0; i < n * bands; i++)
                 v[i] = (float)(0.1 + urand());
@@ -64,7 +64,7 @@ static void evaluation_at_the_samples_returns_the_samples(void **state)
         }
         /* full BRDF, incoming level 1, outgoing level 2 */
         {
-            size_t ni = bwh_grid_count(1), no = bwh_grid_count(2);
+            size_t ni = bwr_grid_count(1), no = bwr_grid_count(2);
             float *v = malloc(ni * no * sizeof *v);
             for (size_t i = 0; i < ni * no; i++)
                 v[i] = (float)(0.1 + urand());
@@ -82,7 +82,7 @@ static void evaluation_at_the_samples_returns_the_samples(void **state)
         }
         /* isotropic, 4 incoming directions in the plane phi = 0, 3 bands */
         {
-            size_t ni = 4, no = bwh_grid_count(2), bands = 3;
+            size_t ni = 4, no = bwr_grid_count(2), bands = 3;
             float *v = malloc(ni * no * bands * sizeof *v);
             for (size_t i = 0; i < ni * no * bands; i++)
                 v[i] = (float)(0.1 + urand());
@@ -110,7 +110,7 @@ static void evaluation_at_the_samples_returns_the_samples(void **state)
 static void isotropic_evaluation_is_invariant_under_rotation_about_the_normal(void **state)
 {
     (void)state;
-    size_t ni = 8, no = bwh_grid_count(3);
+    size_t ni = 8, no = bwr_grid_count(3);
     float *v = malloc(ni * no * sizeof *v);
     for (size_t i = 0; i < ni * no; i++)
         v[i] = (float)(0.1 + urand());
@@ -144,7 +144,7 @@ static double phong(const double wi[3], const double wo[3])
  * directions at outgoing level L, at random directions. */
 static double phong_error(unsigned level, int smooth)
 {
-    size_t ni = 16, no = bwh_grid_count(level);
+    size_t ni = 16, no = bwr_grid_count(level);
     double(*co)[3] = centres(level);
     float *v = malloc(ni * no * sizeof *v);
     for (size_t i = 0; i < ni; i++) {

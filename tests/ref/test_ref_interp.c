@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "bwr_interp.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 #include "ref_test_util.h"
 
 static void bspline_exact_at_samples_and_constants(void **state)

@@ -17,12 +17,12 @@
 #include <string.h>
 
 #include "bwr_project.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 #include "ref_test_util.h"
 
 #define PI 3.14159265358979323846
 
-/* modified Phong (Lafortune and Willems), as host-tools/src/brdf_models.h */
+/* modified Phong (Lafortune and Willems), as host-tools/lib/brdf_models.h */
 typedef struct {
     double kd, ks, n;
 } phong_t;
@@ -57,7 +57,7 @@ static void fibonacci(size_t n, double (*d)[3])
 static double projection_error(const phong_t *p, double theta_deg, size_t n, unsigned level,
                                unsigned k)
 {
-    size_t nt = bwh_grid_count(level);
+    size_t nt = bwr_grid_count(level);
     double(*d)[3] = malloc(n * sizeof *d), *v = malloc(n * sizeof *v);
     double(*c)[3] = malloc(nt * sizeof *c), *out = malloc(nt * sizeof *out);
     assert_non_null(d);
@@ -70,7 +70,7 @@ static double projection_error(const phong_t *p, double theta_deg, size_t n, uns
     for (size_t i = 0; i < n; i++)
         v[i] = phong(p, wi, d[i]);
     assert_int_equal(bwr_project((const double(*)[3])d, v, n, 1, level, k, out), 0);
-    assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+    assert_int_equal(bwr_grid_centres(level, c, NULL), 0);
     double e = 0.0, f = 0.0;
     for (size_t t = 0; t < nt; t++) {
         double x = phong(p, wi, c[t]);
@@ -112,7 +112,7 @@ static void constants_exact_and_values_bounded(void **state)
     rt_seed(71);
     size_t n = 474;
     double(*d)[3] = malloc(n * sizeof *d), *v = malloc(n * sizeof *v);
-    size_t nt = bwh_grid_count(5);
+    size_t nt = bwr_grid_count(5);
     double *out = malloc(nt * sizeof *out);
     assert_non_null(d);
     assert_non_null(v);
@@ -125,7 +125,7 @@ static void constants_exact_and_values_bounded(void **state)
         for (unsigned k = 1; k <= 20; k += 3)
             for (unsigned l = 0; l <= 5; l += 5) {
                 assert_int_equal(bwr_project((const double(*)[3])d, v, n, 1, l, k, out), 0);
-                for (size_t t = 0; t < bwh_grid_count(l); t++)
+                for (size_t t = 0; t < bwr_grid_count(l); t++)
                     assert_true(out[t] == consts[q]);
             }
     }
@@ -149,13 +149,13 @@ static void measurements_at_the_centres_are_kept(void **state)
     (void)state;
     rt_seed(72);
     unsigned level = 3;
-    size_t nt = bwh_grid_count(level);
+    size_t nt = bwr_grid_count(level);
     double(*c)[3] = malloc(nt * sizeof *c), *v = malloc(nt * sizeof *v);
     double *out = malloc(nt * sizeof *out);
     assert_non_null(c);
     assert_non_null(v);
     assert_non_null(out);
-    assert_int_equal(bwh_grid_centres(level, c, NULL), 0);
+    assert_int_equal(bwr_grid_centres(level, c, NULL), 0);
     rt_fill(v, nt, 0.0, 1.0);
     assert_int_equal(bwr_project((const double(*)[3])c, v, nt, 1, level, 0, out), 0);
     assert_memory_equal(out, v, nt * sizeof *v);
@@ -172,7 +172,7 @@ static void measurements_at_the_centres_are_kept(void **state)
 static void bands_share_the_weights(void **state)
 {
     (void)state;
-    size_t n = 474, nt = bwh_grid_count(4);
+    size_t n = 474, nt = bwr_grid_count(4);
     double(*d)[3] = malloc(n * sizeof *d), *v2 = malloc(2 * n * sizeof *v2);
     double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
     double *o2 = malloc(2 * nt * sizeof *o2), *oa = malloc(nt * sizeof *oa),

@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "bwr_rgl.h"
-#include "geodesic.h"
+#include "bwr_geodesic.h"
 #include "ref_test_util.h"
 
 #define DATA "tests/data/rgl/"
@@ -124,9 +124,9 @@ static void paper_is_nearly_lambertian(void **state)
         assert_true(fabs(f[1] / f0[1] - 1.0) < 0.1);
     }
     /* directional albedo by quadrature on the geodesic grid */
-    size_t n = bwh_grid_count(5);
+    size_t n = bwr_grid_count(5);
     double(*xyz)[3] = malloc(n * sizeof *xyz), *a = malloc(n * sizeof *a);
-    bwh_grid_centres(5, xyz, a);
+    bwr_grid_centres(5, xyz, a);
     for (int ti = 0; ti <= 60; ti += 30) {
         double th = ti * PI / 180.0, w[3] = {sin(th), 0.0, cos(th)}, s = 0.0;
         for (size_t k = 0; k < n; k++) {

@@ -1,5 +1,5 @@
 /*
- * The analytic BRDFs of the virtual goniometer (host-tools/src/brdf_models.c,
+ * The analytic BRDFs of the virtual goniometer (host-tools/lib/brdf_models.c,
  * the models of `brdfwave synth`): reciprocity, energy conservation over the
  * paper's data sets, and the modified Phong's albedo at normal incidence.
  *

@@ -1,9 +1,9 @@
 /*
- * Geodesic grid (host-tools/src/geodesic.c) and the firmware weight table
+ * Geodesic grid (host-tools/lib/geodesic.c) and the firmware weight table
  * (firmware/codec/bw_geodesic_tables.c).
  *
- *   cc -std=c11 -I firmware/codec -I host-tools/src tests/unit/test_geodesic.c \
- *      host-tools/src/geodesic.c firmware/codec/bw_geodesic_tables.c -lcmocka -lm
+ *   cc -std=c11 -I firmware/codec -I host-tools/lib tests/unit/test_geodesic.c \
+ *      host-tools/lib/geodesic.c firmware/codec/bw_geodesic_tables.c -lcmocka -lm
  */
 #include <stdarg.h>
 #include <stddef.h>

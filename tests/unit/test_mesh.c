@@ -1,5 +1,5 @@
 /*
- * Triangle meshes of `brdfwave render` (host-tools/src/bw_mesh.c):
+ * Triangle meshes of `brdfwave render` (host-tools/render/render_mesh.c):
  *
  *  - a ray hits a triangle inside it, on either face, within (tmin, tmax),
  *    and misses it outside, parallel or out of range;
@@ -18,7 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "bw_mesh.h"
+#include "render_mesh.h"
 #include "bwhost.h"
 #include "test_rng.h"
 
@@ -36,11 +36,11 @@ static void random_dir(double d[3])
     d[2] = z;
 }
 
-/* bwh_tri_hit for the ray (x, y, z) + t (dx, dy, dz) */
-static int shoot(const bwh_mesh_tri_t *t, double x, double y, double z, double dx, double dy,
+/* render_tri_hit for the ray (x, y, z) + t (dx, dy, dz) */
+static int shoot(const render_mesh_tri_t *t, double x, double y, double z, double dx, double dy,
                  double dz, double tmin, double tmax, double *th)
 {
-    return bwh_tri_hit(t, (const double[3]){x, y, z}, (const double[3]){dx, dy, dz}, tmin, tmax,
+    return render_tri_hit(t, (const double[3]){x, y, z}, (const double[3]){dx, dy, dz}, tmin, tmax,
                        th);
 }
 
@@ -49,10 +49,10 @@ static void a_ray_hits_a_triangle_inside_it_on_either_face(void **state)
     (void)state;
     const double v[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const uint32_t idx[1][3] = {{0, 1, 2}};
-    bwh_mesh_t m;
-    assert_int_equal(bwh_mesh_build(&m, v, 3, idx, 1), 0);
+    render_mesh_t m;
+    assert_int_equal(render_mesh_build(&m, v, 3, idx, 1), 0);
     assert_int_equal(m.n_tri, 1);
-    const bwh_mesh_tri_t *t = &m.tri[0];
+    const render_mesh_tri_t *t = &m.tri[0];
     assert_true(fabs(t->n[2] - 1.0) < 1e-15); /* (1,0,0) x (0,1,0) */
     double th = -1.0;
     assert_int_equal(shoot(t, 0.25, 0.25, 1, 0, 0, -1, 0, 10, &th), 1);
@@ -69,21 +69,21 @@ static void a_ray_hits_a_triangle_inside_it_on_either_face(void **state)
     /* through the mesh: the same */
     const double down[3] = {0, 0, -1};
     th = 10.0;
-    assert_int_equal(bwh_mesh_hit(&m, (const double[3]){0.1, 0.7, 3}, down, 1e-9, &th), 0);
+    assert_int_equal(render_mesh_hit(&m, (const double[3]){0.1, 0.7, 3}, down, 1e-9, &th), 0);
     assert_true(th == 3.0);
     th = 10.0;
-    assert_int_equal(bwh_mesh_hit(&m, (const double[3]){0.7, 0.7, 3}, down, 1e-9, &th), -1);
+    assert_int_equal(render_mesh_hit(&m, (const double[3]){0.7, 0.7, 3}, down, 1e-9, &th), -1);
     assert_true(th == 10.0);
-    bwh_mesh_free(&m);
+    render_mesh_free(&m);
 }
 
 /* the nearest hit by testing every triangle in turn */
-static long brute_hit(const bwh_mesh_t *m, const double o[3], const double d[3], double tmin,
+static long brute_hit(const render_mesh_t *m, const double o[3], const double d[3], double tmin,
                       double *t)
 {
     long best = -1;
     for (size_t i = 0; i < m->n_tri; i++)
-        if (bwh_tri_hit(&m->tri[i], o, d, tmin, *t, t))
+        if (render_tri_hit(&m->tri[i], o, d, tmin, *t, t))
             best = (long)i;
     return best;
 }
@@ -91,9 +91,9 @@ static long brute_hit(const bwh_mesh_t *m, const double o[3], const double d[3],
 static void the_hierarchy_finds_the_nearest_hit_of_every_triangle(void **state)
 {
     (void)state;
-    bwh_mesh_t m;
+    render_mesh_t m;
     const double c[3] = {0.1, -0.2, 0.3};
-    assert_int_equal(bwh_mesh_torus(&m, c, 0.5, 0.2, 96, 32), 0);
+    assert_int_equal(render_mesh_torus(&m, c, 0.5, 0.2, 96, 32), 0);
     assert_int_equal(m.n_tri, 2 * 96 * 32);
     assert_true(m.n_node < 2 * m.n_tri);
     unsigned n = 20000, hits = 0, axis_rays = 0;
@@ -119,7 +119,7 @@ static void the_hierarchy_finds_the_nearest_hit_of_every_triangle(void **state)
             axis_rays++;
         }
         double tb = INFINITY, tt = INFINITY;
-        long kb = bwh_mesh_hit(&m, o, d, 1e-9, &tb), kt = brute_hit(&m, o, d, 1e-9, &tt);
+        long kb = render_mesh_hit(&m, o, d, 1e-9, &tb), kt = brute_hit(&m, o, d, 1e-9, &tt);
         assert_true(tb == tt);
         /* the same triangle, or one at the very same distance (a shared edge) */
         if (kb != kt) {
@@ -130,18 +130,18 @@ static void the_hierarchy_finds_the_nearest_hit_of_every_triangle(void **state)
     printf("mesh: %zu triangles, %zu nodes; %u of %u rays hit (%u along the z axis)\n", m.n_tri,
            m.n_node, hits, n, axis_rays);
     assert_true(hits > n / 10 && hits < n - n / 10); /* both kinds of rays tested */
-    bwh_mesh_free(&m);
+    render_mesh_free(&m);
 }
 
 static void the_torus_is_closed_and_has_the_torus_area(void **state)
 {
     (void)state;
-    bwh_mesh_t m;
+    render_mesh_t m;
     const double c[3] = {0.0, 0.0, 0.5}, R = 0.4, r = 0.1;
-    assert_int_equal(bwh_mesh_torus(&m, c, R, r, 96, 32), 0);
+    assert_int_equal(render_mesh_torus(&m, c, R, r, 96, 32), 0);
     double area = 0.0;
     for (size_t i = 0; i < m.n_tri; i++) {
-        const bwh_mesh_tri_t *t = &m.tri[i];
+        const render_mesh_tri_t *t = &m.tri[i];
         double x[3] = {t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1],
                        t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2],
                        t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0]};
@@ -159,39 +159,39 @@ static void the_torus_is_closed_and_has_the_torus_area(void **state)
                        c[2] + s * sin(w)};
         double d[3], t = INFINITY;
         random_dir(d);
-        long k = bwh_mesh_hit(&m, o, d, 0.0, &t);
+        long k = render_mesh_hit(&m, o, d, 0.0, &t);
         assert_true(k >= 0);
         assert_true(t < 2.0 * (R + r)); /* within the torus's ball */
         const double *n = m.tri[k].n;
         assert_true(n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0.0);
     }
-    bwh_mesh_free(&m);
+    render_mesh_free(&m);
 }
 
 static void bad_meshes_are_refused(void **state)
 {
     (void)state;
-    bwh_mesh_t m;
+    render_mesh_t m;
     const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, NAN, 0}};
     const uint32_t out_of_range[1][3] = {{0, 1, 4}}, not_finite[1][3] = {{0, 1, 3}},
                    no_area[2][3] = {{0, 1, 2}, {1, 1, 0}};
-    assert_int_equal(bwh_mesh_build(&m, v, 4, out_of_range, 1), -1);
+    assert_int_equal(render_mesh_build(&m, v, 4, out_of_range, 1), -1);
     printf("%s\n", bwh_last_error());
-    assert_int_equal(bwh_mesh_build(&m, v, 4, not_finite, 1), -1);
+    assert_int_equal(render_mesh_build(&m, v, 4, not_finite, 1), -1);
     printf("%s\n", bwh_last_error());
     /* collinear corners and a repeated corner: left out, an empty mesh */
-    assert_int_equal(bwh_mesh_build(&m, v, 4, no_area, 2), 0);
+    assert_int_equal(render_mesh_build(&m, v, 4, no_area, 2), 0);
     assert_int_equal(m.n_tri, 0);
     double t = INFINITY;
-    assert_int_equal(bwh_mesh_hit(&m, (double[3]){0.5, 0, 1}, (double[3]){0, 0, -1}, 0, &t), -1);
-    bwh_mesh_free(&m);
+    assert_int_equal(render_mesh_hit(&m, (double[3]){0.5, 0, 1}, (double[3]){0, 0, -1}, 0, &t), -1);
+    render_mesh_free(&m);
     const double c[3] = {0, 0, 0};
-    assert_int_equal(bwh_mesh_torus(&m, c, 0.1, 0.2, 16, 16), -1);
-    assert_int_equal(bwh_mesh_torus(&m, c, 0.2, 0.0, 16, 16), -1);
-    assert_int_equal(bwh_mesh_torus(&m, c, NAN, 0.1, 16, 16), -1);
-    assert_int_equal(bwh_mesh_torus(&m, (double[3]){0, INFINITY, 0}, 0.2, 0.1, 16, 16), -1);
-    assert_int_equal(bwh_mesh_torus(&m, c, 0.2, 0.1, 2, 16), -1);
-    assert_int_equal(bwh_mesh_torus(&m, c, 0.2, 0.1, 16, 5000), -1);
+    assert_int_equal(render_mesh_torus(&m, c, 0.1, 0.2, 16, 16), -1);
+    assert_int_equal(render_mesh_torus(&m, c, 0.2, 0.0, 16, 16), -1);
+    assert_int_equal(render_mesh_torus(&m, c, NAN, 0.1, 16, 16), -1);
+    assert_int_equal(render_mesh_torus(&m, (double[3]){0, INFINITY, 0}, 0.2, 0.1, 16, 16), -1);
+    assert_int_equal(render_mesh_torus(&m, c, 0.2, 0.1, 2, 16), -1);
+    assert_int_equal(render_mesh_torus(&m, c, 0.2, 0.1, 16, 5000), -1);
     printf("%s\n", bwh_last_error());
 }
 

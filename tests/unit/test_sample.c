@@ -1,5 +1,5 @@
 /*
- * Importance sampling from the triangle hierarchy (host-tools/src/bw_sample.c)
+ * Importance sampling from the triangle hierarchy (host-tools/lib/bw_sample.c)
  * tested as renderers test their BSDF samplers:
  *
  *  - chi-square goodness of fit of sample() against the sampler's own

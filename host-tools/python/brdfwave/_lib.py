@@ -27,14 +27,45 @@ class Header(ctypes.Structure):
                 ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32)]
 
 
+class Shape(ctypes.Structure):
+    """bwh_shape_t (host-tools/lib/bwh_shape.h): the shape options."""
+    _fields_ = [("level", ctypes.c_int), ("level_in", ctypes.c_int),
+                ("incoming", ctypes.c_uint32), ("bands", ctypes.c_uint32)]
+
+
 class EncodeOpts(ctypes.Structure):
-    """bwh_encode_opts_t (host-tools/src/bwhost.h)."""
+    """bwh_encode_opts_t (host-tools/lib/bwh_encode.h)."""
     _fields_ = [("mode", ctypes.c_int), ("max_error", ctypes.c_double),
                 ("byte_budget", ctypes.c_size_t), ("basis", ctypes.c_uint),
                 ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
                 ("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
                 ("device_timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
                 ("device_instructions", ctypes.POINTER(ctypes.c_uint64))]
+
+
+# the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)
+I2C_READ_WORD = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_uint8,
+                                 ctypes.POINTER(ctypes.c_uint16))
+I2C_WRITE_BYTE = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_uint8, ctypes.c_uint8)
+I2C_WRITE_WORD = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_uint8, ctypes.c_uint16)
+I2C_LOG = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_char_p)
+I2C_STOP = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p)
+
+
+class I2C(ctypes.Structure):
+    """bwh_i2c_t: the SMBus transfers the library's I2C client reads the window with."""
+    _fields_ = [("read_word", I2C_READ_WORD), ("write_byte", I2C_WRITE_BYTE),
+                ("write_word", I2C_WRITE_WORD), ("log", I2C_LOG), ("stop", I2C_STOP),
+                ("ctx", ctypes.c_void_p), ("addr", ctypes.c_uint), ("bus_name", ctypes.c_char_p)]
+
+
+class I2CPayload(ctypes.Structure):
+    """bwh_i2c_payload_t."""
+    _fields_ = [("id", ctypes.c_uint32), ("payload", ctypes.POINTER(ctypes.c_uint8)),
+                ("len", ctypes.c_size_t), ("bad_pages", ctypes.c_uint)]
+
+
+I2C_STOPPED = -2
 
 
 def _find():
@@ -71,9 +102,12 @@ def lib():
     L.bwh_encode_f32.restype = ctypes.c_int
     L.bwh_encode_f32.argtypes = [P(Dims), P(ctypes.c_float), P(EncodeOpts),
                                  P(P(ctypes.c_uint8)), P(ctypes.c_size_t)]
-    L.bw_dims_make.restype = ctypes.c_int
-    L.bw_dims_make.argtypes = [P(Dims), ctypes.c_int, ctypes.c_uint, ctypes.c_uint,
-                               ctypes.c_uint32, ctypes.c_uint32]
+    L.bwh_shape_dims.restype = ctypes.c_int
+    L.bwh_shape_dims.argtypes = [P(Shape), ctypes.c_size_t, P(Dims)]
+    L.bwh_basis_from_name.restype = ctypes.c_int
+    L.bwh_basis_from_name.argtypes = [ctypes.c_char_p]
+    L.bwh_symmetry_from_name.restype = ctypes.c_int
+    L.bwh_symmetry_from_name.argtypes = [ctypes.c_char_p]
     L.bw_strerror.restype = ctypes.c_char_p
     L.bw_strerror.argtypes = [ctypes.c_int]
     L.bw_header_read.restype = ctypes.c_int
@@ -87,6 +121,10 @@ def lib():
                                     ctypes.c_size_t, ctypes.c_char_p, ctypes.c_size_t]
     L.bwh_grid_centres.restype = ctypes.c_int
     L.bwh_grid_centres.argtypes = [ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p]
+    L.bwh_i2c_read_payload.restype = ctypes.c_int
+    L.bwh_i2c_read_payload.argtypes = [P(I2C), ctypes.c_uint, ctypes.c_size_t, P(I2CPayload)]
+    L.bwh_i2c_acknowledge.restype = ctypes.c_int
+    L.bwh_i2c_acknowledge.argtypes = [P(I2C), ctypes.c_uint32, ctypes.c_double]
     _lib = L
     return L
 

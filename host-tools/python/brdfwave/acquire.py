@@ -4,25 +4,25 @@
 
 Waits for a rising edge of the data-ready line (libgpiod 1.6 edge events, with
 a timeout), reads the offered payload page by page through the register
-window of docs/I2C.md (smbus2), checks every page's CRC-32 (a bad page is
-asked for again, RETRY), the whole payload's CRC-32 and header, and decodes it
-(libbrdfwave), stores it as DIR/payload-ID-CRC.bwv through a temporary file,
-fsync and a link that never replaces a file, and only then acknowledges it. A
-payload that never verifies or does not decode is not acknowledged and not
-stored. SIGTERM or SIGINT stop the service between two transfers.
+window of docs/I2C.md, checks every page's CRC-32 (a bad page is asked for
+again, RETRY), the whole payload's CRC-32 and header, and decodes it, stores it
+as DIR/payload-ID-CRC.bwv through a temporary file, fsync and a link that
+never replaces a file, and only then acknowledges it. A payload that never
+verifies or does not decode is not acknowledged and not stored. SIGTERM or
+SIGINT stop the service between two transfers.
+
+The protocol is libbrdfwave's I2C client (bwh_i2c.h, through ctypes: the same
+code as `brdfwave acquire`); smbus2 provides its SMBus transfers.
 """
 import argparse
+import ctypes
 import errno
 import os
 import signal
 import sys
 import time
-import zlib
 
 from . import i2cmap as M
-
-NAK_ERRNOS = (errno.ENXIO, errno.ENODEV, errno.EREMOTEIO, errno.EIO, errno.ETIMEDOUT,
-              errno.EAGAIN)
 
 
 class AcquireError(Exception):
@@ -33,133 +33,72 @@ class Stopped(Exception):
     """SIGTERM or SIGINT arrived while a payload was being read."""
 
 
-def _nak(addr, bus_name, e):
-    if e.errno in NAK_ERRNOS:
-        return AcquireError("no answer from the device at 0x%02x on %s (NAK: %s)"
-                            % (addr, bus_name, os.strerror(e.errno)))
-    return AcquireError("I2C transfer to 0x%02x on %s failed: %s" % (addr, bus_name, e))
+class Client:
+    """The library's I2C client (bwh_i2c.h: the same code as `brdfwave acquire`)
+    over an SMBus (smbus2.SMBus or alike): the window of docs/I2C.md read page
+    by page with CRC checks and retries, and the ACK."""
 
+    def __init__(self, bus, addr, bus_name="the bus", log=None, stop=None):
+        from . import _lib
+        self._lib = _lib
+        self.bus, self.addr = bus, addr
+        self.log = log or (lambda msg: None)
+        self.stop = stop or (lambda: False)
 
-class Device:
-    """The register map of docs/I2C.md on an SMBus (smbus2.SMBus or alike)."""
+        def transfer(fn):
+            def call(ctx, *args):
+                try:
+                    return fn(*args)
+                except OSError as e:
+                    return -(e.errno or errno.EIO)
+                except Exception:  # noqa: BLE001 - a failure must not unwind through C
+                    return -errno.EIO
+            return call
 
-    def __init__(self, bus, addr, bus_name="the bus"):
-        self.bus, self.addr, self.bus_name = bus, addr, bus_name
+        def read_word(reg, out):
+            out[0] = bus.read_word_data(addr, reg)
+            return 0
 
-    def word(self, reg):
+        def write_byte(reg, v):
+            bus.write_byte_data(addr, reg, v)
+            return 0
+
+        def write_word(reg, v):
+            bus.write_word_data(addr, reg, v)
+            return 0
+
+        # the callbacks live as long as the client: C holds their addresses
+        self._c = _lib.I2C(_lib.I2C_READ_WORD(transfer(read_word)),
+                           _lib.I2C_WRITE_BYTE(transfer(write_byte)),
+                           _lib.I2C_WRITE_WORD(transfer(write_word)),
+                           _lib.I2C_LOG(lambda ctx, line: self.log(line.decode())),
+                           _lib.I2C_STOP(lambda ctx: 1 if self.stop() else 0),
+                           None, addr, bus_name.encode())
+
+    def read_payload(self, retries=3, max_samples=0):
+        """Reads and verifies the offered payload; returns (id, bytes, page retries).
+        Raises AcquireError when it is not offered or never verifies, Stopped
+        when stop() asked for it."""
+        L = self._lib.lib()
+        got = self._lib.I2CPayload()
+        rc = L.bwh_i2c_read_payload(ctypes.byref(self._c), retries, max_samples,
+                                    ctypes.byref(got))
+        if rc == self._lib.I2C_STOPPED:
+            raise Stopped()
+        if rc != 0:
+            raise AcquireError(self._lib.last_error())
         try:
-            return self.bus.read_word_data(self.addr, reg)
-        except OSError as e:
-            raise _nak(self.addr, self.bus_name, e) from None
+            return got.id, ctypes.string_at(got.payload, got.len), got.bad_pages
+        finally:
+            self._lib.free(got.payload)
 
-    def u32(self, lo):
-        return self.word(lo) | self.word(lo + 1) << 16
-
-    def write_byte(self, reg, v):
-        try:
-            self.bus.write_byte_data(self.addr, reg, v)
-        except OSError as e:
-            raise _nak(self.addr, self.bus_name, e) from None
-
-    def write_word(self, reg, v):
-        try:
-            self.bus.write_word_data(self.addr, reg, v)
-        except OSError as e:
-            raise _nak(self.addr, self.bus_name, e) from None
-
-    def wait_zero(self, reg, timeout):
-        t_end = time.monotonic() + timeout
-        while True:
-            if self.word(reg) == 0:
-                return True
-            if time.monotonic() > t_end:
-                return False
-            time.sleep(0.005)
-
-
-def read_page(dev, p, pages, page_size):
-    """One page: (bytes, page CRC as served) after selecting it."""
-    if pages > 255:
-        dev.write_byte(M.PAGE_HI, p >> 8)
-    dev.write_byte(M.PAGE, p & 0xFF)
-    pnum = dev.word(M.PNUM)
-    if pnum != p:
-        raise AcquireError("page %d: the window shows page %d" % (p, pnum))
-    plen = dev.word(M.PLEN)
-    if not 1 <= plen <= page_size:
-        raise AcquireError("page %d: length %d out of range" % (p, plen))
-    crc = dev.u32(M.PCRC_LO)
-    data = bytearray()
-    for k in range((plen + 1) // 2):
-        w = dev.word(M.DATA + k)
-        data += bytes((w & 0xFF, w >> 8))
-    return bytes(data[:plen]), crc
-
-
-def read_payload(dev, retries=3, retry_wait=1.0, log=None, stop=None, max_samples=0):
-    """Reads and verifies the offered payload; returns (id, bytes, page retries).
-    Raises AcquireError when it is not offered or never verifies."""
-    log = log or (lambda msg: None)
-    magic = dev.word(M.MAGIC)
-    if magic != M.MAGIC_VALUE:
-        raise AcquireError("device at 0x%02x is not a brdfwave co-processor (MAGIC 0x%04x)"
-                           % (dev.addr, magic))
-    version = dev.word(M.VERSION)
-    page_size = version >> 8
-    if version & 0xFF != M.MAP_VERSION or not 2 <= page_size <= 32 or page_size % 2:
-        raise AcquireError("unsupported register map (VERSION 0x%04x)" % version)
-    status = dev.word(M.STATUS)
-    if not status & M.ST_READY:
-        err = ""
-        if status & M.ST_ERROR:
-            code = dev.word(M.ERRCODE)
-            err = ": the last job failed with status %d" % (code - 0x10000 if code & 0x8000
-                                                            else code)
-        raise AcquireError("no payload offered (STATUS 0x%02x)%s" % (status, err))
-    pid = dev.u32(M.ID_LO)
-    length = dev.u32(M.LEN_LO)
-    pages = dev.word(M.PAGES)
-    crc = dev.u32(M.CRC_LO)
-    if length == 0 or pages != (length + page_size - 1) // page_size:
-        raise AcquireError("payload %d: length %d does not match %d pages" % (pid, length, pages))
-    out = bytearray()
-    bad_pages = 0
-    try:
-        for p in range(1, pages + 1):
-            for attempt in range(retries + 1):
-                if stop and stop():
-                    raise Stopped()
-                data, pcrc = read_page(dev, p, pages, page_size)
-                want = page_size if p < pages else length - page_size * (pages - 1)
-                if len(data) == want and zlib.crc32(data) == pcrc:
-                    break
-                bad_pages += 1
-                if attempt == retries:
-                    raise AcquireError("payload %d: page %d failed its CRC-32 %d times; "
-                                       "payload not acknowledged" % (pid, p, retries + 1))
-                log("payload %d: page %d failed its CRC-32, asking again (%d/%d)"
-                    % (pid, p, attempt + 1, retries))
-                dev.write_word(M.RETRY, p)
-                if not dev.wait_zero(M.RETRY, retry_wait):
-                    raise AcquireError("payload %d: the device did not answer RETRY of page %d"
-                                       % (pid, p))
-            out += data
-    finally:
-        try:
-            dev.write_byte(M.PAGE, 0)
-        except AcquireError:
-            pass
-    payload = bytes(out)
-    if zlib.crc32(payload) != crc:
-        raise AcquireError("payload %d: CRC-32 0x%08x, the device announced 0x%08x; "
-                           "payload not acknowledged" % (pid, zlib.crc32(payload), crc))
-    from ._lib import BrdfwaveError, payload_check
-    try:
-        payload_check(payload, max_samples)
-    except BrdfwaveError as e:
-        raise AcquireError("payload %d does not decode: %s; payload not acknowledged"
-                           % (pid, e)) from None
-    return pid, payload, bad_pages
+    def acknowledge(self, pid, timeout=1.0):
+        """ACK for payload pid; True when the device released it, False when
+        it did not confirm. Raises AcquireError on a bus error."""
+        rc = self._lib.lib().bwh_i2c_acknowledge(ctypes.byref(self._c), pid, timeout)
+        if rc < 0:
+            raise AcquireError(self._lib.last_error())
+        return rc == 1
 
 
 def store(outdir, pid, payload):
@@ -170,19 +109,6 @@ def store(outdir, pid, payload):
         return store_payload(outdir, pid, payload)
     except BrdfwaveError as e:
         raise AcquireError("%s; payload %d not acknowledged" % (e, pid)) from None
-
-
-def acknowledge(dev, pid, timeout=1.0):
-    """ACK for payload pid; True when the device released it."""
-    dev.write_word(M.ACK_LO, pid & 0xFFFF)
-    dev.write_word(M.ACK_HI, pid >> 16)
-    dev.write_byte(M.CMD, M.CMD_ACK)
-    if not dev.wait_zero(M.CMD, timeout):
-        return False
-    st = dev.word(M.STATUS)
-    if st & M.ST_NAK:
-        return False
-    return not st & M.ST_READY or dev.u32(M.ID_LO) != pid
 
 
 class DataReady:
@@ -245,7 +171,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     if not os.path.isdir(a.out):
         print("acquire: %s is not a directory" % a.out, file=sys.stderr)
-        return 2
+        return 1
     if not 0x03 <= a.addr <= 0x77 or a.retries < 0 or a.timeout < 0 or a.max_samples < 0:
         print("acquire: --addr must be 0x03..0x77, --retries, --timeout and --max-samples "
               ">= 0", file=sys.stderr)
@@ -275,7 +201,7 @@ def main(argv=None):
         log(str(e))
         bus.close()
         return 1
-    dev = Device(bus, a.addr, bus_name)
+    dev = Client(bus, a.addr, bus_name, log=log, stop=lambda: stop["now"])
     t_end = time.monotonic() + a.timeout if a.once and a.timeout > 0 else None
     stored = 0
     rc = 0
@@ -296,12 +222,13 @@ def main(argv=None):
                     holdoff = 0.0
                 continue
             try:
-                pid, payload, bad = read_payload(dev, a.retries, log=log,
-                                                 stop=lambda: stop["now"],
-                                                 max_samples=a.max_samples)
+                pid, payload, bad = dev.read_payload(a.retries, a.max_samples)
                 path, before = store(a.out, pid, payload)
-                if not acknowledge(dev, pid):
-                    log("payload %d stored, but the device did not confirm the ACK" % pid)
+                try:
+                    if not dev.acknowledge(pid):
+                        log("payload %d stored, but the device did not confirm the ACK" % pid)
+                except AcquireError as e:
+                    log("payload %d stored, ACK failed: %s" % (pid, e))
                 print("stored %s%s: %d bytes, %d page retries"
                       % (path, " (already stored)" if before else "", len(payload), bad),
                       flush=True)

@@ -15,14 +15,11 @@ import os
 
 import numpy as np
 
-from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, _header_dict, free, header_of,
-                   last_error, lib)
+from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
+                   header_of, last_error, lib)
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
            "header_of"]
-
-BASES = {"haar": 0, "53": 1, "97": 2, "pred": 3, "auto": 255}
-
 
 class Measurement(np.ndarray):
     """A decoded measurement: float32 values with the payload's metadata.
@@ -139,7 +136,7 @@ def decode(path, wavelengths=None, integers=False, max_samples=0):
 
 def encode(values, level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, basis="auto", scale=None, stream=False, symmetry="auto",
-           path=None):
+           path=None, device=None):
     """Encodes float values to a payload (bytes; also written to `path` if given),
     as `brdfwave encode` does with float32 input:
       level=None                 a set of spectra, values (n_spectra, bands)
@@ -149,31 +146,24 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
     One of lossless (default), max_error=E, nbytes=N, ratio=R. basis: "haar", "53",
     "97", "pred" (spectra, lossless or max_error only) or "auto". symmetry: "auto" (try
     the mirror image (x, -y, z) for directional data, and reciprocity for a full BRDF
-    with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none"."""
+    with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none".
+    device: None (this host), "linux" or "qemu": the device application encodes
+    (as `brdfwave encode --device`; its image is found beside the library, or
+    named by $BW_FIRMWARE_LINUX / $BW_FIRMWARE) and the payload is checked here."""
     L = lib()
     x = np.ascontiguousarray(values, dtype=np.float32)
     if x.ndim < 2:
         raise BrdfwaveError("values need at least 2 dimensions (..., bands)")
-    bands = x.shape[-1]
-    d = Dims()
-    if level is None:
-        if incoming or level_in is not None:
-            raise BrdfwaveError("incoming / level_in need level")
-        st = L.bw_dims_make(ctypes.byref(d), 0, 0, 0, x.size // max(bands, 1), bands)
-    elif level_in is not None:
-        st = L.bw_dims_make(ctypes.byref(d), 3, level, level_in, 0, bands)
-    elif incoming:
-        if x.ndim != 3:
+    s = Shape(-1 if level is None else level, -1 if level_in is None else level_in, 0,
+              x.shape[-1])
+    if incoming:
+        if level is not None and x.ndim != 3:
             raise BrdfwaveError("an isotropic BRDF is (n_in, n_out, bands)")
-        st = L.bw_dims_make(ctypes.byref(d), 2, level, 0, x.shape[0], bands)
-    else:
-        st = L.bw_dims_make(ctypes.byref(d), 1, level, 0, 1, bands)
-    if st != 0:
-        raise BrdfwaveError(L.bw_strerror(st).decode())
+        s.incoming = x.shape[0]
+    d = Dims()
+    if L.bwh_shape_dims(ctypes.byref(s), x.size, ctypes.byref(d)) != 0:
+        raise BrdfwaveError(last_error())
     need = d.n_in * d.n_out * d.bands
-    if x.size != need:
-        raise BrdfwaveError("values hold %d samples, the shape needs %d (%d incoming x %d "
-                            "outgoing x %d bands)" % (x.size, need, d.n_in, d.n_out, d.bands))
     o = EncodeOpts()
     o.drop_chunk = -1
     modes = [m for m in (lossless, max_error, nbytes, ratio) if m not in (None, False)]
@@ -190,17 +180,22 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
                 raise BrdfwaveError("ratio must be positive")
             nbytes = max(1, int(np.floor(4.0 * need / ratio)))
         o.byte_budget = int(nbytes)
-    if basis not in BASES:
+    b = L.bwh_basis_from_name(basis.encode()) if isinstance(basis, str) else -1
+    if b < 0:
         raise BrdfwaveError("basis must be haar, 53, 97, pred or auto")
-    o.basis = BASES[basis]
+    o.basis = b
     if scale is not None:
         o.scale = float(scale)
     if stream:
         o.flags |= 0x02
-    sym = {"auto": 0, "mirror": 0x110, "reciprocal": 0x120, "both": 0x130, "none": 0x100}
-    if symmetry not in sym:
+    sym = L.bwh_symmetry_from_name(symmetry.encode()) if isinstance(symmetry, str) else -1
+    if sym < 0:
         raise BrdfwaveError("symmetry must be auto, mirror, reciprocal, both or none")
-    o.flags |= sym[symmetry]
+    o.flags |= sym
+    if device is not None:
+        if device not in ("linux", "qemu"):
+            raise BrdfwaveError("device must be None, 'linux' or 'qemu'")
+        o.device = device.encode()
     out = ctypes.POINTER(ctypes.c_uint8)()
     n = ctypes.c_size_t()
     if L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),

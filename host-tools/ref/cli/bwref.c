@@ -3,6 +3,7 @@
  * on the host: coefficient dumps for cross-checks and the paper's tables.
  */
 #include "bwref.h"
+#include "cli_args.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -22,24 +23,14 @@ static void usage(FILE *f)
           f);
 }
 
+static const cli_command_t commands[] = {
+    {"wavedec", bwref_cmd_wavedec, NULL},
+    {"ratios", bwref_cmd_ratios, NULL},
+    {"import-rgl", bwref_cmd_import_rgl, NULL},
+    {"project", bwref_cmd_project, NULL},
+};
+
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        usage(stderr);
-        return 2;
-    }
-    if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
-        usage(stdout);
-        return 0;
-    }
-    if (strcmp(argv[1], "wavedec") == 0)
-        return bwref_cmd_wavedec(argc - 1, argv + 1);
-    if (strcmp(argv[1], "ratios") == 0)
-        return bwref_cmd_ratios(argc - 1, argv + 1);
-    if (strcmp(argv[1], "import-rgl") == 0)
-        return bwref_cmd_import_rgl(argc - 1, argv + 1);
-    if (strcmp(argv[1], "project") == 0)
-        return bwref_cmd_project(argc - 1, argv + 1);
-    fprintf(stderr, "bwref: unknown command '%s' (see --help)\n", argv[1]);
-    return 2;
+    return cli_dispatch("bwref", commands, sizeof commands / sizeof *commands, argc, argv, usage);
 }

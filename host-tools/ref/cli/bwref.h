@@ -12,11 +12,11 @@ int bwref_cmd_project(int argc, char **argv);
 /* Reads whitespace-separated numbers (text) or raw float32 into *out. */
 int bwref_read_text(const char *path, double **out, size_t *n);
 int bwref_read_f32(const char *path, double **out, size_t *n);
-/* "PROG CMD: message" on stderr (PROG = bwref_progname); returns 2. */
-int bwref_fail(const char *cmd, const char *fmt, ...);
+/* v as the 4 bytes of a little-endian float32 at p */
+void bwref_put_f32(unsigned char *p, float v);
 
-/* Program name in error and usage lines: "bwref", or "brdfwave" when the
- * command runs as a brdfwave subcommand. */
-extern const char *bwref_progname;
+/* Options, numbers, exit statuses and error lines: the command line's own
+ * modules (host-tools/cli/cli_args.h, cli_num.h, cli_errors.h), with the
+ * program's name set by bwref's main or, for import-rgl, brdfwave's. */
 
 #endif

@@ -1,27 +1,10 @@
-/*
- * Helpers shared by the bwref commands (also linked into `brdfwave`, which
- * runs `import-rgl`): error lines and input readers.
- */
+/* Readers and a writer of numbers shared by the bwref commands. */
 #include "bwref.h"
 
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-const char *bwref_progname = "bwref";
-
-int bwref_fail(const char *cmd, const char *fmt, ...)
-{
-    va_list ap;
-    fprintf(stderr, "%s %s: ", bwref_progname, cmd);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-    return 2;
-}
 
 int bwref_read_text(const char *path, double **out, size_t *n)
 {
@@ -96,4 +79,14 @@ int bwref_read_f32(const char *path, double **out, size_t *n)
     *out = v;
     *n = cnt;
     return 0;
+}
+
+void bwref_put_f32(unsigned char *p, float v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    p[0] = (unsigned char)(u & 0xffu);
+    p[1] = (unsigned char)((u >> 8) & 0xffu);
+    p[2] = (unsigned char)((u >> 16) & 0xffu);
+    p[3] = (unsigned char)((u >> 24) & 0xffu);
 }

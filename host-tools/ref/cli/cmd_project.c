@@ -13,38 +13,28 @@
 
 #include "bwr_project.h"
 #include "bwref.h"
-#include "geodesic.h"
+#include "cli_args.h"
+#include "cli_errors.h"
+#include "bwr_geodesic.h"
 
 #define PROJECT_MAX_COLS 4096
 
-static void usage(void)
-{
-    printf("usage: bwref project -i IN.csv -o OUT.f32 [--level L] [--k K]\n"
-           "\n"
-           "Projects measurements at scattered directions onto the geodesic grid of\n"
-           "level L (default 4, 4*4^L triangles): every triangle takes the value\n"
-           "interpolated at its centre by a local modified Shepard scheme (Franke and\n"
-           "Little) over the K measured directions nearest by angle (default %u,\n"
-           "at most %u); constants are reproduced exactly.\n"
-           "\n"
-           "IN.csv: one measurement per line, theta_deg,phi_deg,value (theta from the\n"
-           "normal, 0..90; phi from x towards y); more value columns are bands\n"
-           "(a spectrum), the same number on every line. A first line that is not\n"
-           "numeric (a header), blank lines and lines starting with # are skipped.\n"
-           "OUT.f32: raw little-endian float32, [triangle][band] in grid order\n"
-           "(the outgoing layout of `brdfwave synth`).\n",
-           BWR_PROJECT_K_DEFAULT, BWR_PROJECT_K_MAX);
-}
-
-static void put_f32le(unsigned char *p, float v)
-{
-    uint32_t u;
-    memcpy(&u, &v, sizeof u);
-    p[0] = (unsigned char)(u & 0xffu);
-    p[1] = (unsigned char)((u >> 8) & 0xffu);
-    p[2] = (unsigned char)((u >> 16) & 0xffu);
-    p[3] = (unsigned char)((u >> 24) & 0xffu);
-}
+static const char project_help[] =
+    "usage: bwref project -i IN.csv -o OUT.f32 [--level L] [--k K]\n"
+    "\n"
+    "Projects measurements at scattered directions onto the geodesic grid of\n"
+    "level L (default 4, 4*4^L triangles): every triangle takes the value\n"
+    "interpolated at its centre by a local modified Shepard scheme (Franke and\n"
+    "Little) over the K measured directions nearest by angle (default 8,\n"
+    "at most 64); constants are reproduced exactly.\n"
+    "\n"
+    "IN.csv: one measurement per line, theta_deg,phi_deg,value (theta from the\n"
+    "normal, 0..90; phi from x towards y); more value columns are bands\n"
+    "(a spectrum), the same number on every line. A first line that is not\n"
+    "numeric (a header), blank lines and lines starting with # are skipped.\n"
+    "OUT.f32: raw little-endian float32, [triangle][band] in grid order\n"
+    "(the outgoing layout of `brdfwave synth`).\n";
+_Static_assert(BWR_PROJECT_K_DEFAULT == 8 && BWR_PROJECT_K_MAX == 64, "the help states K's range");
 
 /* Splits a line at commas into numbers; the count, or -1 if a field is not
  * a number, -2 if there are too many. */
@@ -84,50 +74,31 @@ static int blank(const char *s)
 int bwref_cmd_project(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
-    unsigned level = 4, k = BWR_PROJECT_K_DEFAULT;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage();
-            return 0;
-        }
-        if (i + 1 >= argc)
-            return bwref_fail("project", "option '%s' needs a value (or is unknown)", a);
-        const char *v = argv[++i];
-        char *end;
-        if (strcmp(a, "-i") == 0) {
-            in = v;
-        } else if (strcmp(a, "-o") == 0) {
-            out = v;
-        } else if (strcmp(a, "--level") == 0) {
-            long l = strtol(v, &end, 10);
-            if (*end != '\0' || end == v || l < 0 || l > (long)BWH_GRID_MAX_LEVEL)
-                return bwref_fail("project", "--level needs 0..%u", BWH_GRID_MAX_LEVEL);
-            level = (unsigned)l;
-        } else if (strcmp(a, "--k") == 0) {
-            long l = strtol(v, &end, 10);
-            if (*end != '\0' || end == v || l < 1 || l > (long)BWR_PROJECT_K_MAX)
-                return bwref_fail("project", "--k needs 1..%u", BWR_PROJECT_K_MAX);
-            k = (unsigned)l;
-        } else {
-            return bwref_fail("project", "unknown option '%s'", a);
-        }
-    }
+    uint32_t level = 4, k = BWR_PROJECT_K_DEFAULT;
+    const cli_opt_t opts[] = {
+        {"input", 'i', CLI_STRING, .dest = &in},
+        {"output", 'o', CLI_STRING, .dest = &out},
+        {"level", 0, CLI_U32, .dest = &level, .lo = 0, .hi = BWR_GRID_MAX_LEVEL},
+        {"k", 0, CLI_U32, .dest = &k, .lo = 1, .hi = BWR_PROJECT_K_MAX},
+        {NULL}};
+    int st;
+    if (!cli_parse(argc, argv, opts, project_help, NULL, &st))
+        return st;
     if (in == NULL || out == NULL)
-        return bwref_fail("project", "-i IN.csv and -o OUT.f32 are required");
+        return cli_usage("-i IN.csv and -o OUT.f32 are required");
 
     FILE *f = fopen(in, "r");
     if (f == NULL)
-        return bwref_fail("project", "cannot open '%s': %s", in, strerror(errno));
+        return cli_fail("cannot open '%s': %s", in, strerror(errno));
     size_t cap = 0, n = 0, cols = 0, lineno = 0, bands = 0;
     double(*dir)[3] = NULL, *val = NULL, *row = malloc(PROJECT_MAX_COLS * sizeof *row);
     char *line = NULL;
     size_t linecap = 0;
-    int rc = 2, seen_data = 0;
+    int rc = CLI_EXIT_FAIL, seen_data = 0;
     unsigned char *buf = NULL;
     double *grid = NULL;
     if (row == NULL) {
-        rc = bwref_fail("project", "out of memory");
+        rc = cli_fail("out of memory");
         goto done;
     }
     while (getline(&line, &linecap, f) != -1) {
@@ -139,12 +110,12 @@ int bwref_cmd_project(int argc, char **argv)
             continue; /* header */
         seen_data = 1;
         if (c == -2) {
-            rc = bwref_fail("project", "%s:%zu: more than %d columns", in, lineno,
+            rc = cli_fail("%s:%zu: more than %d columns", in, lineno,
                             PROJECT_MAX_COLS);
             goto done;
         }
         if (c < 3) {
-            rc = bwref_fail("project", "%s:%zu: expected theta_deg,phi_deg,value[,...]", in,
+            rc = cli_fail("%s:%zu: expected theta_deg,phi_deg,value[,...]", in,
                             lineno);
             goto done;
         }
@@ -152,17 +123,17 @@ int bwref_cmd_project(int argc, char **argv)
             cols = (size_t)c;
             bands = cols - 2;
         } else if ((size_t)c != cols) {
-            rc = bwref_fail("project", "%s:%zu: %ld columns, the first line had %zu", in, lineno,
+            rc = cli_fail("%s:%zu: %ld columns, the first line had %zu", in, lineno,
                             c, cols);
             goto done;
         }
         for (size_t j = 0; j < cols; j++)
             if (!isfinite(row[j])) {
-                rc = bwref_fail("project", "%s:%zu: value not finite", in, lineno);
+                rc = cli_fail("%s:%zu: value not finite", in, lineno);
                 goto done;
             }
         if (row[0] < 0.0 || row[0] > 90.0) {
-            rc = bwref_fail("project", "%s:%zu: theta %g outside 0..90 degrees", in, lineno,
+            rc = cli_fail("%s:%zu: theta %g outside 0..90 degrees", in, lineno,
                             row[0]);
             goto done;
         }
@@ -175,7 +146,7 @@ int bwref_cmd_project(int argc, char **argv)
             if (nv != NULL)
                 val = nv;
             if (nd == NULL || nv == NULL) {
-                rc = bwref_fail("project", "out of memory");
+                rc = cli_fail("out of memory");
                 goto done;
             }
             cap = nc;
@@ -185,41 +156,41 @@ int bwref_cmd_project(int argc, char **argv)
         n++;
     }
     if (ferror(f)) {
-        rc = bwref_fail("project", "read error on '%s'", in);
+        rc = cli_fail("read error on '%s'", in);
         goto done;
     }
     if (n == 0) {
-        rc = bwref_fail("project", "%s: no measurements", in);
+        rc = cli_fail("%s: no measurements", in);
         goto done;
     }
 
-    size_t nt = bwh_grid_count(level);
+    size_t nt = bwr_grid_count(level);
     grid = malloc(nt * bands * sizeof *grid);
     buf = malloc(nt * bands * 4);
     if (grid == NULL || buf == NULL ||
         bwr_project((const double(*)[3])dir, val, n, bands, level, k, grid) != 0) {
-        rc = bwref_fail("project", "projection failed (out of memory)");
+        rc = cli_fail("projection failed (out of memory)");
         goto done;
     }
     double vmin = INFINITY, vmax = -INFINITY;
     for (size_t i = 0; i < nt * bands; i++) {
         if (fabs(grid[i]) > 3.4028234663852886e38) {
-            rc = bwref_fail("project", "value not representable as float32");
+            rc = cli_fail("value not representable as float32");
             goto done;
         }
         vmin = fmin(vmin, grid[i]);
         vmax = fmax(vmax, grid[i]);
-        put_f32le(buf + 4 * i, (float)grid[i]);
+        bwref_put_f32(buf + 4 * i, (float)grid[i]);
     }
     FILE *o = fopen(out, "wb");
     if (o == NULL) {
-        rc = bwref_fail("project", "cannot create '%s': %s", out, strerror(errno));
+        rc = cli_fail("cannot create '%s': %s", out, strerror(errno));
         goto done;
     }
     int bad = fwrite(buf, 4, nt * bands, o) != nt * bands;
     if (fclose(o) != 0 || bad) {
         remove(out);
-        rc = bwref_fail("project", "write to '%s' failed", out);
+        rc = cli_fail("write to '%s' failed", out);
         goto done;
     }
     printf("measurements: %zu\ntriangles: %zu (level %u)\nbands: %zu\nneighbours: %u\n"

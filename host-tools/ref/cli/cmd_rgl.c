@@ -10,127 +10,115 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwhost.h"
 #include "bwr_rgl.h"
 #include "bwref.h"
+#include "cli_args.h"
+#include "cli_errors.h"
+#include "cli_num.h"
+#include "cli_shape.h"
 #include "geodesic.h"
 
 #define RGL_PI 3.14159265358979323846
 
-static void usage(void)
-{
-    printf("usage: %s import-rgl -i FILE.bsdf -o OUT.f32 [--level L]\n"
-           "          [--incoming measured|N | --level-in Li]\n"
-           "          [--channel rgb|r|g|b] [--times-cos] [--clamp]\n"
-           "\n", bwref_progname);
-    puts("Samples a measured BRDF of the RGL database (RGB tensor file) at the\n"
-         "centres of the geodesic triangles of level L (default 4) and writes raw\n"
-         "little-endian float32, layout [incoming][outgoing][band] (bands: 3 for\n"
-         "rgb, else 1), the layout of `brdfwave synth` and `bwref ratios`.\n"
-         "\n"
-         "  --incoming measured  the file's own incidence angles below 89 degrees,\n"
-         "                       in the plane phi = 0 (default)\n"
-         "  --incoming N         N directions at phi = 0, theta_k = (k + 1/2) 90/N deg\n"
-         "  --level-in Li        full BRDF: incoming directions = geodesic centres\n"
-         "  --times-cos          write f cos(theta_o) (the loader's value) instead of f\n"
-         "  --clamp              negative measured values (noise) become 0\n"
-         "\n"
-         "Prints the incidence angles used and the value range.");
-}
+static const char rgl_help[] =
+    "usage: PROG import-rgl -i FILE.bsdf -o OUT.f32 [--level L]\n"
+    "          [--incoming measured|N | --level-in Li]\n"
+    "          [--channel rgb|r|g|b] [--times-cos] [--clamp]\n"
+    "\n"
+    "Samples a measured BRDF of the RGL database (RGB tensor file) at the\n"
+    "centres of the geodesic triangles of level L (default 4) and writes raw\n"
+    "little-endian float32, layout [incoming][outgoing][band] (bands: 3 for\n"
+    "rgb, else 1), the layout of `brdfwave synth` and `bwref ratios`.\n"
+    "\n"
+    "  --incoming measured  the file's own incidence angles below 89 degrees,\n"
+    "                       in the plane phi = 0 (default)\n"
+    "  --incoming N         N directions at phi = 0, theta_k = (k + 1/2) 90/N deg\n"
+    "  --level-in Li        full BRDF: incoming directions = geodesic centres\n"
+    "  --times-cos          write f cos(theta_o) (the loader's value) instead of f\n"
+    "  --clamp              negative measured values (noise) become 0\n"
+    "\n"
+    "Prints the incidence angles used and the value range.\n";
 
-static void put_f32le(unsigned char *p, float v)
+/* --incoming measured|N: 0 for the file's own angles */
+static int parse_incoming(const char *v, void *dest)
 {
-    uint32_t u;
-    memcpy(&u, &v, sizeof u);
-    p[0] = (unsigned char)(u & 0xffu);
-    p[1] = (unsigned char)((u >> 8) & 0xffu);
-    p[2] = (unsigned char)((u >> 16) & 0xffu);
-    p[3] = (unsigned char)((u >> 24) & 0xffu);
+    if (!strcmp(v, "measured")) {
+        *(uint32_t *)dest = 0;
+        return 0;
+    }
+    return cli_u32(v, 1, 4096, 0, dest);
 }
 
 int bwref_cmd_import_rgl(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL, *channel = "rgb", *incoming = "measured";
-    int level = 4, level_in = -1, times_cos = 0, clamp = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage();
-            return 0;
-        }
-        if (strcmp(a, "--times-cos") == 0) {
-            times_cos = 1;
-            continue;
-        }
-        if (strcmp(a, "--clamp") == 0) {
-            clamp = 1;
-            continue;
-        }
-        if (i + 1 >= argc)
-            return bwref_fail("import-rgl", "option '%s' needs a value (or is unknown)", a);
-        const char *v = argv[++i];
-        char *end;
-        if (strcmp(a, "-i") == 0) {
-            in = v;
-        } else if (strcmp(a, "-o") == 0) {
-            out = v;
-        } else if (strcmp(a, "--channel") == 0) {
-            if (strcmp(v, "rgb") && strcmp(v, "r") && strcmp(v, "g") && strcmp(v, "b"))
-                return bwref_fail("import-rgl", "--channel needs rgb, r, g or b");
-            channel = v;
-        } else if (strcmp(a, "--incoming") == 0) {
-            incoming = v;
-        } else if (strcmp(a, "--level") == 0 || strcmp(a, "--level-in") == 0) {
-            long l = strtol(v, &end, 10);
-            if (*end != '\0' || l < 0 || l > (long)BWH_GRID_MAX_LEVEL)
-                return bwref_fail("import-rgl", "%s needs 0..%u", a, BWH_GRID_MAX_LEVEL);
-            if (a[7] == '\0')
-                level = (int)l;
-            else
-                level_in = (int)l;
-        } else {
-            return bwref_fail("import-rgl", "unknown option '%s'", a);
-        }
-    }
+    static const char *const channels[] = {"rgb", "r", "g", "b", NULL};
+    const char *in = NULL, *out = NULL;
+    int channel = 0, times_cos = 0, clamp = 0;
+    uint32_t n_fixed = 0;
+    cli_shape_t sh = {.level = 4, .has_level = 1};
+    const cli_opt_t opts[] = {
+        {"input", 'i', CLI_STRING, .dest = &in},
+        {"output", 'o', CLI_STRING, .dest = &out},
+        CLI_SHAPE_LEVELS(&sh),
+        {"incoming", 0, CLI_CALL, .dest = &n_fixed, .parse = parse_incoming,
+         .seen = &sh.has_incoming, .what = "--incoming needs 'measured' or 1..4096"},
+        {"channel", 0, CLI_CHOICE, .dest = &channel, .choices = channels},
+        {"times-cos", 0, CLI_FLAG, .dest = &times_cos},
+        {"clamp", 0, CLI_FLAG, .dest = &clamp},
+        {NULL}};
+    char help[sizeof rgl_help + 16];
+    const char *prog = cli_prog();
+    snprintf(help, sizeof help, "usage: %s%s", prog, rgl_help + strlen("usage: PROG"));
+    int st;
+    if (!cli_parse(argc, argv, opts, help, NULL, &st))
+        return st;
     if (in == NULL || out == NULL)
-        return bwref_fail("import-rgl", "-i FILE.bsdf and -o OUT.f32 are required");
-    unsigned long n_fixed = 0;
-    if (strcmp(incoming, "measured") != 0) {
-        char *end;
-        errno = 0;
-        n_fixed = strtoul(incoming, &end, 10);
-        if (*end != '\0' || errno || n_fixed == 0 || n_fixed > 4096 || incoming[0] == '-')
-            return bwref_fail("import-rgl", "--incoming needs 'measured' or 1..4096");
-    }
+        return cli_usage("-i FILE.bsdf and -o OUT.f32 are required");
+    int nb = channel == 0 ? 3 : 1;
+    sh.incoming = n_fixed;
+    sh.has_incoming = n_fixed > 0;
+    sh.bands = (uint32_t)nb;
+    sh.has_bands = 1;
+    bwh_shape_t shape;
+    if ((st = cli_shape_get(&sh, &shape)) != 0)
+        return st;
     char err[512];
     bwr_rgl_t b;
     if (bwr_rgl_load(&b, in, err, sizeof err) != 0)
-        return bwref_fail("import-rgl", "%s", err);
+        return cli_fail("%s", err);
 
-    size_t n_out = bwh_grid_count((unsigned)level), n_in = 0;
+    unsigned level = sh.level;
+    int level_in = sh.has_level_in ? (int)sh.level_in : -1;
+    size_t n_out = bwh_grid_count(level), n_in = 0;
     double(*wo)[3] = malloc(n_out * sizeof *wo), (*wi)[3] = NULL;
-    int rc = 2;
-    if (wo == NULL || bwh_grid_centres((unsigned)level, wo, NULL) != 0) {
-        rc = bwref_fail("import-rgl", "out of memory");
+    int rc = CLI_EXIT_FAIL;
+    if (wo == NULL || bwh_grid_centres(level, wo, NULL) != 0) {
+        rc = cli_fail("out of memory");
         goto done;
     }
-    if (level_in >= 0) {
-        n_in = bwh_grid_count((unsigned)level_in);
+    if (sh.has_level_in || n_fixed) {
+        /* the shape's own incoming directions */
+        bw_dims_t d;
+        if (bwh_shape_dims(&shape, 0, &d) != 0) {
+            rc = cli_fail("%s", bwh_last_error());
+            goto done;
+        }
+        n_in = d.n_in;
         wi = malloc(n_in * sizeof *wi);
-        if (wi == NULL || bwh_grid_centres((unsigned)level_in, wi, NULL) != 0) {
-            rc = bwref_fail("import-rgl", "out of memory");
+        if (wi == NULL || bwh_shape_incoming(&d, wi) != 0) {
+            rc = cli_fail("out of memory");
             goto done;
         }
     } else {
-        size_t cap = n_fixed ? n_fixed : b.n_theta;
-        wi = malloc(cap * sizeof *wi);
+        wi = malloc(b.n_theta * sizeof *wi);
         if (wi == NULL) {
-            rc = bwref_fail("import-rgl", "out of memory");
+            rc = cli_fail("out of memory");
             goto done;
         }
-        for (size_t k = 0; k < cap; k++) {
-            double th = n_fixed ? ((double)k + 0.5) * (RGL_PI / 2.0) / (double)n_fixed
-                                : b.theta_i[k];
-            if (!n_fixed && th >= 89.0 * RGL_PI / 180.0)
+        for (size_t k = 0; k < b.n_theta; k++) {
+            double th = b.theta_i[k];
+            if (th >= 89.0 * RGL_PI / 180.0)
                 continue; /* grazing incidence: no reflected light on the grid */
             wi[n_in][0] = sin(th);
             wi[n_in][1] = 0.0;
@@ -138,14 +126,10 @@ int bwref_cmd_import_rgl(int argc, char **argv)
             n_in++;
         }
     }
-    int c0 = 0, nb = 3;
-    if (strcmp(channel, "rgb") != 0) {
-        nb = 1;
-        c0 = channel[0] == 'r' ? 0 : channel[0] == 'g' ? 1 : 2;
-    }
+    int c0 = channel == 0 ? 0 : channel - 1;
     FILE *f = fopen(out, "wb");
     if (f == NULL) {
-        rc = bwref_fail("import-rgl", "cannot create '%s': %s", out, strerror(errno));
+        rc = cli_fail("cannot create '%s': %s", out, strerror(errno));
         goto done;
     }
     unsigned char *row = malloc(n_out * (size_t)nb * 4);
@@ -167,7 +151,7 @@ int bwref_cmd_import_rgl(int argc, char **argv)
                 }
                 vmin = fmin(vmin, x);
                 vmax = fmax(vmax, x);
-                put_f32le(row + 4 * (o * (size_t)nb + (size_t)c), (float)x);
+                bwref_put_f32(row + 4 * (o * (size_t)nb + (size_t)c), (float)x);
             }
         }
         if (fwrite(row, 4, n_out * (size_t)nb, f) != n_out * (size_t)nb) {
@@ -181,7 +165,7 @@ int bwref_cmd_import_rgl(int argc, char **argv)
         else
             fclose(f);
         remove(out);
-        rc = bwref_fail("import-rgl", "write to '%s' failed", out);
+        rc = cli_fail("write to '%s' failed", out);
         goto done;
     }
     free(row);
@@ -195,9 +179,10 @@ int bwref_cmd_import_rgl(int argc, char **argv)
             printf(" %.2f", acos(wi[i][2]) * 180.0 / RGL_PI);
         printf(")\n");
     }
-    printf("outgoing: %zu (level %d)\nbands: %d (%s)\nvalues: %s, min %.6g, max %.6g, "
+    printf("outgoing: %zu (level %u)\nbands: %d (%s)\nvalues: %s, min %.6g, max %.6g, "
            "negative %zu%s\n",
-           n_out, level, nb, channel, times_cos ? "f cos(theta_o)" : "f (1/sr)", vmin, vmax,
+           n_out, level, nb, channels[channel], times_cos ? "f cos(theta_o)" : "f (1/sr)", vmin,
+           vmax,
            negatives, clamp && negatives ? " (clamped to 0)" : "");
     rc = 0;
 done:

@@ -12,6 +12,9 @@
 
 #include "bwr_dwt.h"
 #include "bwref.h"
+#include "cli_args.h"
+#include "cli_errors.h"
+#include "cli_num.h"
 
 static void print_row(const char *tag, const double *v, size_t n)
 {
@@ -25,7 +28,7 @@ static int one(const bwr_filter_t *f, const double *x, size_t n, int levels, bwr
 {
     bwr_dwt_plan_t p;
     if (bwr_dwt_plan_ext(&p, f, n, levels, mode) != 0)
-        return bwref_fail("wavedec", "%s: cannot make %d levels on %zu samples", f->name, levels, n);
+        return cli_fail("%s: cannot make %d levels on %zu samples", f->name, levels, n);
     double hi[BWR_MAX_FILTER_LEN];
     printf("basis %s family %s len %zu levels %u ncoef %zu mode %s\n", f->name, f->family, f->len,
            p.levels, p.ncoef, mode == BWR_EXT_SYMMETRIC ? "symmetric" : "periodization");
@@ -44,7 +47,7 @@ static int one(const bwr_filter_t *f, const double *x, size_t n, int levels, bwr
         bwr_dwt_inverse(&p, &bwr_type_real, c, y) != 0) {
         free(c);
         free(y);
-        return bwref_fail("wavedec", "out of memory");
+        return cli_fail("out of memory");
     }
     print_row("coef", c, p.ncoef);
     double e = 0.0;
@@ -56,60 +59,58 @@ static int one(const bwr_filter_t *f, const double *x, size_t n, int levels, bwr
     return 0;
 }
 
+static const char wavedec_help[] =
+    "usage: bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J|deep]\n"
+    "                    [--mode periodization|symmetric]\n"
+    "SIGNAL: whitespace-separated numbers. Prints, per basis, the\n"
+    "filters, the multi-level coefficients (PyWavelets wavedec order,\n"
+    "mode 'periodization' or 'symmetric') and the round-trip error.\n"
+    "Without --levels: the maximum level (PyWavelets' dwt_max_level);\n"
+    "deep: halvings down to 2 approximation coefficients.\n";
+
+/* --levels J|deep */
+static int parse_levels(const char *v, void *dest)
+{
+    uint32_t z;
+    if (!strcmp(v, "deep")) {
+        *(int *)dest = BWR_DWT_DEEP;
+        return 0;
+    }
+    if (cli_u32(v, 0, BWR_DWT_MAX_LEVELS, 0, &z) != 0)
+        return -1;
+    *(int *)dest = (int)z;
+    return 0;
+}
+
 int bwref_cmd_wavedec(int argc, char **argv)
 {
+    static const char *const modes[] = {"periodization", "symmetric", NULL};
     const char *in = NULL, *basis = "all";
-    int levels = -1;
-    bwr_ext_t mode = BWR_EXT_PERIODIZATION;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            puts("usage: bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J|deep]\n"
-                 "                    [--mode periodization|symmetric]\n"
-                 "SIGNAL: whitespace-separated numbers. Prints, per basis, the\n"
-                 "filters, the multi-level coefficients (PyWavelets wavedec order,\n"
-                 "mode 'periodization' or 'symmetric') and the round-trip error.\n"
-                 "Without --levels: the maximum level (PyWavelets' dwt_max_level);\n"
-                 "deep: halvings down to 2 approximation coefficients.");
-            return 0;
-        } else if (strcmp(argv[i], "-i") == 0 && i + 1 < argc) {
-            in = argv[++i];
-        } else if (strcmp(argv[i], "--mode") == 0 && i + 1 < argc) {
-            const char *v = argv[++i];
-            if (strcmp(v, "periodization") == 0)
-                mode = BWR_EXT_PERIODIZATION;
-            else if (strcmp(v, "symmetric") == 0)
-                mode = BWR_EXT_SYMMETRIC;
-            else
-                return bwref_fail("wavedec", "--mode needs periodization or symmetric");
-        } else if (strcmp(argv[i], "--basis") == 0 && i + 1 < argc) {
-            basis = argv[++i];
-        } else if (strcmp(argv[i], "--levels") == 0 && i + 1 < argc &&
-                   strcmp(argv[i + 1], "deep") == 0) {
-            levels = BWR_DWT_DEEP;
-            i++;
-        } else if (strcmp(argv[i], "--levels") == 0 && i + 1 < argc) {
-            char *end;
-            long l = strtol(argv[++i], &end, 10);
-            if (*end != '\0' || l < 0 || l > BWR_DWT_MAX_LEVELS)
-                return bwref_fail("wavedec", "--levels needs 0..%d", BWR_DWT_MAX_LEVELS);
-            levels = (int)l;
-        } else {
-            return bwref_fail("wavedec", "unknown argument '%s'", argv[i]);
-        }
-    }
+    int levels = -1, mode = 0;
+    const cli_opt_t opts[] = {
+        {"input", 'i', CLI_STRING, .dest = &in},
+        {"basis", 0, CLI_STRING, .dest = &basis},
+        {"levels", 0, CLI_CALL, .dest = &levels, .parse = parse_levels,
+         .what = "--levels needs 0..24 or deep"},
+        {"mode", 0, CLI_CHOICE, .dest = &mode, .choices = modes},
+        {NULL}};
+    int st;
+    if (!cli_parse(argc, argv, opts, wavedec_help, NULL, &st))
+        return st;
     if (in == NULL)
-        return bwref_fail("wavedec", "-i SIGNAL is required");
+        return cli_usage("-i SIGNAL is required");
     double *x;
     size_t n;
     if (bwref_read_text(in, &x, &n) != 0 || n == 0)
-        return bwref_fail("wavedec", "cannot read numbers from '%s'", in);
+        return cli_fail("cannot read numbers from '%s'", in);
     int rc = 0;
+    bwr_ext_t ext = mode ? BWR_EXT_SYMMETRIC : BWR_EXT_PERIODIZATION;
     if (strcmp(basis, "all") == 0) {
         for (size_t k = 0; k < BWR_NUM_FILTERS && rc == 0; k++)
-            rc = one(&bwr_filters[k], x, n, levels, mode);
+            rc = one(&bwr_filters[k], x, n, levels, ext);
     } else {
         const bwr_filter_t *f = bwr_filter_find(basis);
-        rc = f ? one(f, x, n, levels, mode) : bwref_fail("wavedec", "unknown basis '%s'", basis);
+        rc = f ? one(f, x, n, levels, ext) : cli_usage("unknown basis '%s'", basis);
     }
     free(x);
     return rc;

@@ -1,0 +1,61 @@
+/* brdfwave info: a payload's header as key: value lines. */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "bwhost.h"
+#include "cli_args.h"
+#include "cli_errors.h"
+#include "commands.h"
+
+static const char info_help[] = "usage: brdfwave info IN.bwv\n"
+                                "\n"
+                                "Prints the payload header as 'key: value' lines.\n";
+
+int bw_cmd_info(int argc, char **argv)
+{
+    const cli_opt_t opts[] = {{NULL}};
+    int first, st;
+    if (!cli_parse(argc, argv, opts, info_help, &first, &st))
+        return st;
+    if (argc - first != 1)
+        return cli_usage("needs one payload file");
+    const char *path = argv[first];
+    uint8_t *p;
+    size_t len;
+    if (bwh_read_file(path, &p, &len) != 0)
+        return cli_fail("%s", bwh_last_error());
+    bw_header_t h;
+    int hs = bw_header_read(p, len, &h);
+    free(p);
+    if (hs != BW_OK)
+        return cli_fail("%s: %s", path, bw_strerror(hs));
+    size_t n = bw_dims_samples(&h.dims);
+    double scale = bwh_bits_to_float(h.scale_bits);
+    printf("version: %u\n", h.version);
+    printf("shape: %s\n", bwh_shape_name(h.dims.shape));
+    printf("level_out: %u\n", h.dims.level_out);
+    printf("level_in: %u\n", h.dims.level_in);
+    printf("incoming: %u\n", h.dims.n_in);
+    printf("outgoing: %u\n", h.dims.n_out);
+    printf("bands: %u\n", h.dims.bands);
+    printf("samples: %zu\n", n);
+    printf("basis: %s\n", bwh_basis_name(h.basis));
+    printf("spectral_levels: %u\n", h.spectral_levels);
+    printf("mode: %s\n", bwh_mode_name(h.mode));
+    printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    printf("coder: %s\n", bwh_coder_name(h.flags));
+    printf("symmetry: %s\n", bwh_symmetry_name(h.flags));
+    printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                                       : "offset + scale * sample");
+    printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
+    printf("prequant: %u\n", h.prequant);
+    printf("step: %.4f\n", h.step_q8 / 256.0);
+    printf("scale: %.9g\n", scale);
+    printf("offset: %.9g\n", (double)bwh_bits_to_float(h.offset_bits));
+    printf("payload_bytes: %u\n", h.payload_len);
+    printf("bits_per_sample: %.6f\n", 8.0 * h.payload_len / (double)n);
+    printf("ratio_vs_float32: %.3f\n", 4.0 * (double)n / h.payload_len);
+    printf("crc32: 0x%08x\n", h.crc);
+    return CLI_EXIT_OK;
+}

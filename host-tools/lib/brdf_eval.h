@@ -1,0 +1,78 @@
+/*
+ * A sampled or decoded BRDF as a function (libbrdfwave): f(wi, wo, lambda)
+ * at any directions and wavelength, with the interpolants of sec. 4.5
+ * (bwh_interp.h):
+ *
+ *   outgoing   barycentric interpolation over the outgoing triangle centres
+ *   incoming   isotropic (N directions in the plane phi = 0): both directions
+ *              turned about the normal until phi_i = 0 (sec. 5.2), then
+ *              linear in theta_i between the two nearest tables (clamped at
+ *              the ends); full BRDF: the incoming triangle that contains wi
+ *              (nearest, no interpolation across incoming triangles);
+ *              reflectance: no incoming dependence
+ *   spectral   cubic B-spline over the bands on a uniform wavelength grid
+ *
+ * It keeps no scratch memory in the object: a loaded BRDF is read-only and
+ * can be evaluated from any number of threads.
+ */
+#ifndef BW_BRDF_EVAL_H
+#define BW_BRDF_EVAL_H
+
+#include <stddef.h>
+
+#include "bw_codec.h"
+#include "bwh_interp.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    int shape;                 /* BW_SHAPE_REFLECTANCE, _BRDF_ISO or _BRDF_FULL */
+    unsigned level_out, level_in;
+    size_t n_in, n_out, bands;
+    double lambda_first, lambda_last;
+    double *theta_in;          /* ISO: radians, ascending */
+    double *planes;            /* [n_in][bands][n_out] */
+    double *mean;              /* [n_in][n_out]: the mean over the bands */
+    bwh_sphere_interp_t s_out;
+} bwh_brdf_data_t;
+
+/* values: [n_in][n_out][bands], the codec's layout. theta_in_deg (ISO, may be
+ * NULL: (k + 1/2) 90 / N as brdfwave synth and import-rgl --incoming N).
+ * 0, or -1 (bwh_last_error()). */
+int bwh_brdf_data_init(bwh_brdf_data_t *d, const bw_dims_t *dims, const float *values,
+                       const double *theta_in_deg, double lambda_first, double lambda_last);
+/* Decodes a payload file and initialises d from it. */
+int bwh_brdf_data_load(bwh_brdf_data_t *d, const char *path);
+void bwh_brdf_data_free(bwh_brdf_data_t *d);
+
+/* Band k at (wi, wo), interpolated over the directions. NAN below the
+ * horizon. */
+double bwh_brdf_data_band(const bwh_brdf_data_t *d, const double wi[3], const double wo[3],
+                          size_t k);
+/* The mean over the bands (the BRDF integrated over wavelength, divided by
+ * the range) at (wi, wo). */
+double bwh_brdf_data_mean(const bwh_brdf_data_t *d, const double wi[3], const double wo[3]);
+/* f at wavelength lambda: the B-spline through the bands; work holds
+ * `bands` doubles. */
+double bwh_brdf_data_eval(const bwh_brdf_data_t *d, const double wi[3], const double wo[3],
+                          double lambda, double *work);
+
+/* For bwh_sampler_build: ctx is a bwh_brdf_data_t, f its band mean. */
+double bwh_brdf_data_mean_cb(void *ctx, const double wi[3], const double wo[3]);
+
+/* For bwh_sampler_build, one channel: ctx is a bwh_brdf_band_t, f band
+ * `band` of `data` (NAN, which the sampler counts as 0, for a band out of
+ * range). */
+typedef struct {
+    const bwh_brdf_data_t *data;
+    size_t band;
+} bwh_brdf_band_t;
+double bwh_brdf_data_band_cb(void *ctx, const double wi[3], const double wo[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,106 @@
+/* Payloads to samples (bwh_decode.h). */
+#include "bwh_decode.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "bwh_error.h"
+#include "bwh_values.h"
+
+/* The header of p[len], checked, and its sample count against the limit. */
+static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
+{
+    int st = bw_header_read(p, len, h);
+    if (st != BW_OK)
+        return bwh_fail("%s", bw_strerror(st));
+    size_t n = bw_dims_samples(&h->dims);
+    if (!max_samples)
+        max_samples = BWH_MAX_SAMPLES_DEFAULT;
+    if (n > max_samples)
+        return bwh_fail("the payload decodes to %zu samples (%.1f MiB as float32), more than the "
+                        "limit of %zu (raise it with --max-samples)",
+                        n, (double)n * 4 / 1048576.0, max_samples);
+    return 0;
+}
+
+/* The integer samples of p[len] in *w (allocated, the decoder's work
+ * bound: the samples first), its header in *h. */
+static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                       int32_t **w)
+{
+    *w = NULL;
+    if (header_within(p, len, max_samples, h) != 0)
+        return -1;
+    size_t wb = bw_work_bound(bw_dims_samples(&h->dims), h->dims.bands);
+    int32_t *b = malloc(wb * sizeof *b);
+    if (!b)
+        return bwh_fail("out of memory");
+    int st = bw_decode(p, len, b, wb, b, wb, h);
+    if (st != BW_OK) {
+        free(b);
+        return bwh_fail("%s", bw_strerror(st));
+    }
+    *w = b;
+    return 0;
+}
+
+int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
+{
+    int32_t *w;
+    if (decode_ints(p, len, max_samples, h, &w) != 0)
+        return -1;
+    free(w);
+    return 0;
+}
+
+int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                     int32_t **samples, float **values)
+{
+    if (samples)
+        *samples = NULL;
+    if (values)
+        *values = NULL;
+    int32_t *w;
+    if (decode_ints(p, len, max_samples, h, &w) != 0)
+        return -1;
+    size_t n = bw_dims_samples(&h->dims);
+    if (values) {
+        float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
+        if (!isfinite(scale) || !isfinite(off) || scale == 0) {
+            free(w);
+            return bwh_fail("payload header has a zero or non-finite scale or offset");
+        }
+        /* without the integers the values take their place */
+        float *v = samples ? malloc((n ? n : 1) * sizeof *v) : (float *)(void *)w;
+        if (!v) {
+            free(w);
+            return bwh_fail("out of memory");
+        }
+        bwh_value_map_t vm = bwh_value_map(scale, off, h->flags);
+        for (size_t i = 0; i < n; i++) {
+            int32_t q = w[i];
+            float x = bwh_value_of(&vm, q);
+            if (!isfinite(x)) {
+                bwh_fail("sample %zu (%d) decodes to %g, beyond float32 (scale %g, offset %g%s)",
+                         i, q, (double)x, (double)scale, (double)off,
+                         h->flags & BW_FLAG_LOG_VALUE ? ", logarithmic" : "");
+                if (v != (float *)(void *)w)
+                    free(v);
+                free(w);
+                return -1;
+            }
+            v[i] = x;
+        }
+        *values = v;
+    }
+    if (samples)
+        *samples = w;
+    else if (!values)
+        free(w);
+    return 0;
+}
+
+int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values)
+{
+    return bwh_decode_limit(p, len, 0, h, samples, values);
+}

@@ -1,0 +1,52 @@
+/*
+ * Encoding on a device (`brdfwave encode --device`): "qemu" starts the
+ * emulated co-processor (QEMU mps2-an386) with its firmware image and talks
+ * to it over its UART (a pseudo-terminal); "linux" runs the same device
+ * application as a host process on a socket pair. The samples become the
+ * device's sensor input, the job goes over the link, and the payload comes
+ * back through bwh_receive_payload.
+ */
+#ifndef BWH_DEVICE_H
+#define BWH_DEVICE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_codec.h"
+#include "bwh_link.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The directory of the program that uses the library (the command line
+ * passes its own): device images are looked for beside it. NULL: none. The
+ * string is copied. */
+void bwh_device_set_program_dir(const char *dir);
+
+/* The device image for `device`, allocated (free() it), NULL when out of
+ * memory. The first of:
+ *   explicit        when not NULL;
+ *   $BW_FIRMWARE    (qemu) or $BW_FIRMWARE_LINUX (linux), when set;
+ *   beside the program (bwh_device_set_program_dir) and then beside the
+ *                   library itself (found with dladdr, so a Python process
+ *                   that loaded libbrdfwave.so finds the images of its
+ *                   build): DIR/brdfwave-fw-linux (linux) or
+ *                   DIR/../qemu/brdfwave-fw.elf (qemu), the first that
+ *                   exists; if none does, the first of these paths. */
+char *bwh_device_firmware(const char *device, const char *explicit_path);
+
+/* Encodes dims/p/samples on `device` ("qemu" or "linux") with the image
+ * `firmware` (NULL: bwh_device_firmware's choice). The session ends (QUIT)
+ * as soon as the payload is in or the device reports an error; a device
+ * error becomes a message that says what the device holds and what to do
+ * instead. 0, or -1 (bwh_last_error()). */
+int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
+                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
+                      bwh_received_t *r);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

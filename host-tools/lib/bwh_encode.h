@@ -1,0 +1,69 @@
+/*
+ * Measurements to payloads: the codec core on the host (or on a device),
+ * with float input mapped to integer samples (value = scale * sample, scale
+ * and the mode's guarantee checked in float against the input).
+ */
+#ifndef BWH_ENCODE_H
+#define BWH_ENCODE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_codec.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Encoder options' flags beside the header's: without BW_FLAG_MIRROR,
+ * BW_FLAG_RECIPROCAL or this, a host encode of directional data also tries
+ * BW_FLAG_MIRROR (and for a full BRDF on one grid level BW_FLAG_RECIPROCAL
+ * and both) and keeps the smallest payload (for a byte budget: the one that
+ * decodes closest); with this it uses the symmetry flags given, if any. */
+#define BWH_NO_MIRROR 0x100u
+
+typedef struct {
+    bw_mode_t mode;     /* LOSSLESS, MAX_ERROR or BYTES */
+    double max_error;   /* MAX_ERROR, in value units */
+    size_t byte_budget; /* BYTES */
+    unsigned basis;     /* bw_basis_t or BW_BASIS_AUTO */
+    double scale;       /* > 0: force the integer step of float input */
+    unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE, BW_FLAG_MIRROR and
+                         * BW_FLAG_RECIPROCAL: always), and BWH_NO_MIRROR */
+    /* encode on a device instead of the host: NULL or "qemu" (the emulated
+     * co-processor) or "linux" (its application as a host process); the
+     * host then decodes and checks the payload */
+    const char *device;
+    const char *firmware;          /* NULL: bwh_device_firmware's search */
+    double device_timeout;         /* seconds, 0: 120 */
+    int drop_chunk;                /* tests: lose the first copy of a chunk, -1: none */
+    uint64_t *device_instructions; /* out: the device's count for the encode */
+} bwh_encode_opts_t;
+
+/* Encodes float samples (NaN/Inf rejected). *out is allocated. The mapping
+ * to integers is chosen from the mode:
+ *   LOSSLESS   every value must be an integer multiple of `scale` (default 1)
+ *   MAX_ERROR  scale = E / 3.5: integer bound 3 plus half a step of rounding
+ *   BYTES      scale = max|x| / 2^23, fine enough to vanish under the budget
+ * and the result is checked in float against the input. */
+int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
+                   size_t *out_len);
+
+/* Encodes integer samples with scale 1 (or the given scale/offset bits);
+ * o->max_error in sample units. */
+int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                   float scale, float offset, uint8_t **out, size_t *out_len);
+
+/* Encodes integer samples whose value is scale * sample (a .sed file's
+ * 1e-5, or 1), o->max_error in value units: the bound becomes whole sample
+ * units, keeping in hand the float32 rounding of the largest decoded value
+ * (a bound below one unit: exact coding), and a scale of 10^-k is recorded
+ * as exactly that (BW_FLAG_DECIMAL_SCALE). */
+int bwh_encode_scaled(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
+                      float scale, uint8_t **out, size_t *out_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
