@@ -142,8 +142,11 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
     bw_dims_t d;
     bw_status_t st = bw_dims_make(&d, (bw_shape_t)job->shape, job->level_out, job->level_in,
                                   job->n_in, job->bands);
-    if (st == BW_OK && d.bands > APP_MAX_BANDS)
-        st = BW_ERR_WORK;
+    bw_params_t p;
+    bw_job_params(job, &p);
+    bool streaming = false;
+    if (st == BW_OK)
+        st = bw_limits_admit(&limits, &d, &p, &streaming);
     if (st != BW_OK) {
         send_error(hal, st);
         return -1;
@@ -153,12 +156,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         send_error(hal, APP_ERR_SENSOR);
         return -1;
     }
-    bw_params_t p;
-    bw_job_params(job, &p);
     size_t len = 0;
-    bool streaming = (job->flags & BW_FLAG_STREAM_ORDER) && job->mode != BW_MODE_BYTES &&
-                     job->basis < BW_BASIS_COUNT && d.bands <= APP_STREAM_BANDS &&
-                     d.level_out <= APP_STREAM_LEVEL;
     if (streaming) {
         uint64_t t0 = bw_hal_counter(hal);
         st = bw_stream_init(&stream, &d, &p, stream_mem, sizeof stream_mem / sizeof *stream_mem,
@@ -178,10 +176,6 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
             return -1;
         }
         return deliver(hal, id, len, spent);
-    }
-    if (n > APP_MAX_SAMPLES) {
-        send_error(hal, BW_ERR_WORK);
-        return -1;
     }
     if (!read_samples(hal, samples, n)) {
         send_error(hal, APP_ERR_SENSOR);
@@ -243,6 +237,11 @@ int bw_app_run(const bw_hal_t *hal)
         receive(hal, 0);
         if (frame.type == BW_FT_QUIT)
             return 0;
+        if (frame.type == BW_FT_HELLO) {
+            uint8_t d[BW_HELLO_SIZE];
+            send(hal, BW_FT_HELLO, 0, d, (uint16_t)bw_hello_pack(&limits, d));
+            continue;
+        }
         if (frame.type != BW_FT_JOB)
             continue;
         bw_job_t job;

@@ -153,14 +153,28 @@ bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
     return i < sizeof j->source - 1u; /* NUL-terminated within the field */
 }
 
+static void limits_put(uint8_t *o, const bw_limits_t *lim)
+{
+    bw_put_u32(o, lim->max_samples);
+    bw_put_u32(o + 4, lim->max_bands);
+    bw_put_u32(o + 8, lim->stream_bands);
+    bw_put_u32(o + 12, lim->payload_cap);
+    o[16] = lim->stream_level;
+}
+
+static void limits_get(const uint8_t *in, bw_limits_t *lim)
+{
+    lim->max_samples = bw_get_u32(in);
+    lim->max_bands = bw_get_u32(in + 4);
+    lim->stream_bands = bw_get_u32(in + 8);
+    lim->payload_cap = bw_get_u32(in + 12);
+    lim->stream_level = in[16];
+}
+
 size_t bw_error_pack(int32_t status, const bw_limits_t *lim, uint8_t *o)
 {
     bw_put_u32(o, (uint32_t)status);
-    bw_put_u32(o + 4, lim->max_samples);
-    bw_put_u32(o + 8, lim->max_bands);
-    bw_put_u32(o + 12, lim->stream_bands);
-    bw_put_u32(o + 16, lim->payload_cap);
-    o[20] = lim->stream_level;
+    limits_put(o + 4, lim);
     return BW_ERROR_SIZE;
 }
 
@@ -170,14 +184,39 @@ bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t
     if (len < 4)
         return false;
     *status = (int32_t)bw_get_u32(in);
-    if (len >= BW_ERROR_SIZE) {
-        lim->max_samples = bw_get_u32(in + 4);
-        lim->max_bands = bw_get_u32(in + 8);
-        lim->stream_bands = bw_get_u32(in + 12);
-        lim->payload_cap = bw_get_u32(in + 16);
-        lim->stream_level = in[20];
-    }
+    if (len >= BW_ERROR_SIZE)
+        limits_get(in + 4, lim);
     return true;
+}
+
+size_t bw_hello_pack(const bw_limits_t *lim, uint8_t *o)
+{
+    o[0] = BW_LINK_VERSION;
+    limits_put(o + 1, lim);
+    return BW_HELLO_SIZE;
+}
+
+bool bw_hello_unpack(const uint8_t *in, size_t len, uint8_t *version, bw_limits_t *lim)
+{
+    memset(lim, 0, sizeof *lim);
+    if (len < BW_HELLO_SIZE)
+        return false;
+    *version = in[0];
+    limits_get(in + 1, lim);
+    return true;
+}
+
+bw_status_t bw_limits_admit(const bw_limits_t *lim, const bw_dims_t *d, const bw_params_t *p,
+                            bool *streamed)
+{
+    *streamed = (p->flags & BW_FLAG_STREAM_ORDER) && p->mode != BW_MODE_BYTES &&
+                p->basis < BW_BASIS_COUNT && d->shape != BW_SHAPE_BRDF_FULL &&
+                d->bands <= lim->stream_bands && d->level_out <= lim->stream_level;
+    if (*streamed)
+        return BW_OK;
+    if (d->bands > lim->max_bands || bw_dims_samples(d) > lim->max_samples)
+        return BW_ERR_WORK;
+    return BW_OK;
 }
 
 void bw_job_make(bw_job_t *j, const bw_dims_t *d, const bw_params_t *p)

@@ -33,7 +33,9 @@
 #define BW_FRAME_MAX (BW_FRAME_OVERHEAD + BW_FRAME_MAX_DATA)
 
 typedef enum {
-    BW_FT_HELLO = 0x01,   /* device -> host: ready; data = version u8          */
+    BW_FT_HELLO = 0x01,   /* host -> device: who are you (no data); device ->
+                           * host: link version u8, then its limits
+                           * (bw_limits_t)                                    */
     BW_FT_JOB = 0x02,     /* host -> device: encode request (bw_job_t)         */
     BW_FT_QUIT = 0x03,    /* host -> device: stop                              */
     BW_FT_START = 0x10,   /* device -> host: payload id u32, length u32,
@@ -109,6 +111,18 @@ size_t bw_error_pack(int32_t status, const bw_limits_t *lim, uint8_t *out); /* B
 /* The status of an ERROR frame's data and, where the device sent them, its
  * limits (else zeros); false if the data is too short for a status. */
 bool bw_error_unpack(const uint8_t *in, size_t len, int32_t *status, bw_limits_t *lim);
+
+/* The device's answer to HELLO: the link version and its limits. */
+#define BW_LINK_VERSION 1u
+#define BW_HELLO_SIZE 18u
+size_t bw_hello_pack(const bw_limits_t *lim, uint8_t *out); /* BW_HELLO_SIZE */
+bool bw_hello_unpack(const uint8_t *in, size_t len, uint8_t *version, bw_limits_t *lim);
+
+/* Whether a device with these limits takes the job: BW_OK (and *streamed
+ * when it encodes it spectrum by spectrum) or BW_ERR_WORK. The device
+ * application and the host both decide with this one rule. */
+bw_status_t bw_limits_admit(const bw_limits_t *lim, const bw_dims_t *d, const bw_params_t *p,
+                            bool *streamed);
 size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
 

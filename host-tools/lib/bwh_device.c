@@ -179,27 +179,106 @@ static pid_t start_linux(const char *fw, int *fd)
     return pid;
 }
 
-int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
-                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
-                      bwh_received_t *r)
+int bwh_device_open(bwh_device_t *dv, const char *device, const char *firmware)
 {
-    memset(r, 0, sizeof *r);
-    int rc = -1, fd = -1, pipefd[2] = {-1, -1};
-    pid_t pid = -1;
+    memset(dv, 0, sizeof *dv);
+    dv->fd = dv->pipefd = -1;
+    dv->pid = -1;
     int linux_process = !strcmp(device, "linux");
+    if (!linux_process && strcmp(device, "qemu") != 0)
+        return bwh_fail("unknown device '%s' (known: qemu, linux)", device);
     char *fw = bwh_device_firmware(device, firmware);
-    char input[] = "/tmp/brdfwave-sensor-XXXXXX";
-    int in_fd = mkstemp(input);
-    if (!fw || in_fd < 0) {
-        bwh_fail("cannot prepare the device input: %s", strerror(errno));
-        goto out;
-    }
+    if (!fw)
+        return bwh_fail("out of memory");
     struct stat sb;
     if (stat(fw, &sb) != 0) {
         bwh_fail("firmware image %s: %s (build it with '%s')", fw, strerror(errno),
                  linux_process ? "make" : "make TARGET=qemu");
-        goto out;
+        free(fw);
+        return -1;
     }
+    if (linux_process) {
+        dv->pid = start_linux(fw, &dv->fd);
+        free(fw);
+        if (dv->pid < 0)
+            return -1;
+    } else {
+        int pipefd[2];
+        if (pipe2(pipefd, O_CLOEXEC) != 0) {
+            free(fw);
+            return bwh_fail("pipe: %s", strerror(errno));
+        }
+        dv->pid = fork();
+        if (dv->pid < 0) {
+            free(fw);
+            close(pipefd[0]);
+            close(pipefd[1]);
+            return bwh_fail("fork: %s", strerror(errno));
+        }
+        if (dv->pid == 0) {
+            dup2(pipefd[1], 1);
+            dup2(pipefd[1], 2);
+            execlp("qemu-system-arm", "qemu-system-arm", "-M", "mps2-an386", "-display", "none",
+                   "-monitor", "none", "-icount", "shift=0", "-semihosting-config",
+                   "enable=on,target=native", "-chardev", "pty,id=link", "-serial",
+                   "chardev:link", "-kernel", fw, (char *)NULL);
+            fprintf(stderr, "cannot run qemu-system-arm: %s\n", strerror(errno));
+            _exit(127);
+        }
+        free(fw);
+        close(pipefd[1]);
+        dv->pipefd = pipefd[0];
+        char pty[256];
+        if (find_pty(dv->pipefd, pty, sizeof pty, 30) != 0 ||
+            (dv->fd = bwh_port_open(pty)) < 0) {
+            bwh_device_close(dv);
+            return -1;
+        }
+    }
+    bwh_link_init(&dv->link, dv->fd);
+    /* the device's limits, so that a job it cannot take is refused before
+     * any work; a device that does not answer is asked nothing more */
+    if (bwh_send_frame(dv->fd, BW_FT_HELLO, 0, NULL, 0) != 0) {
+        bwh_device_close(dv);
+        return -1;
+    }
+    double end = bwh_now() + 10;
+    bw_frame_t f;
+    for (;;) {
+        int k = bwh_link_next(&dv->link, &f, end);
+        if (k < 0) {
+            bwh_device_close(dv);
+            return -1;
+        }
+        if (k == 0)
+            break;
+        uint8_t version;
+        if (f.type == BW_FT_HELLO && bw_hello_unpack(f.data, f.len, &version, &dv->limits)) {
+            dv->have_limits = 1;
+            break;
+        }
+    }
+    return 0;
+}
+
+int bwh_device_admit(const bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p)
+{
+    bool streamed;
+    if (!dv->have_limits || bw_limits_admit(&dv->limits, dims, p, &streamed) == BW_OK)
+        return 0;
+    explain_device_error(dims, BW_ERR_WORK, &dv->limits);
+    return -1;
+}
+
+int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p,
+                   const int32_t *samples, const bwh_rx_opts_t *o, bwh_received_t *r)
+{
+    memset(r, 0, sizeof *r);
+    int rc = -1;
+    char input[] = "/tmp/brdfwave-sensor-XXXXXX";
+    int in_fd = mkstemp(input);
+    if (in_fd < 0)
+        return bwh_fail("cannot prepare the device input: %s", strerror(errno));
     size_t n = bw_dims_samples(dims);
     uint8_t *raw = malloc(n * 4 + 1);
     if (!raw) {
@@ -214,94 +293,67 @@ int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t 
         bwh_fail("cannot write the device input: %s", strerror(errno));
         goto out;
     }
-    close(in_fd);
-    in_fd = -1;
-
-    if (linux_process) {
-        pid = start_linux(fw, &fd);
-        if (pid < 0)
-            goto out;
-        goto connected;
-    }
-    if (pipe2(pipefd, O_CLOEXEC) != 0) {
-        bwh_fail("pipe: %s", strerror(errno));
-        goto out;
-    }
-    pid = fork();
-    if (pid < 0) {
-        bwh_fail("fork: %s", strerror(errno));
-        goto out;
-    }
-    if (pid == 0) {
-        dup2(pipefd[1], 1);
-        dup2(pipefd[1], 2);
-        execlp("qemu-system-arm", "qemu-system-arm", "-M", "mps2-an386", "-display", "none",
-               "-monitor", "none", "-icount", "shift=0", "-semihosting-config",
-               "enable=on,target=native", "-chardev", "pty,id=link", "-serial", "chardev:link",
-               "-kernel", fw, (char *)NULL);
-        fprintf(stderr, "cannot run qemu-system-arm: %s\n", strerror(errno));
-        _exit(127);
-    }
-    close(pipefd[1]);
-    pipefd[1] = -1;
-    char pty[256];
-    if (find_pty(pipefd[0], pty, sizeof pty, 30) != 0)
-        goto out;
-    fd = bwh_port_open(pty);
-    if (fd < 0)
-        goto out;
-connected:;
-
     bw_job_t job;
     bw_job_make(&job, dims, p);
-    if (strlen(input) >= sizeof job.source) {
-        bwh_fail("input path too long");
-        goto out;
-    }
-    strcpy(job.source, input);
+    strcpy(job.source, input); /* shorter than the field */
     uint8_t jb[BW_JOB_SIZE];
     bw_job_pack(&job, jb);
-    if (bwh_send_frame(fd, BW_FT_JOB, 0, jb, BW_JOB_SIZE) != 0)
+    if (bwh_send_frame(dv->fd, BW_FT_JOB, 0, jb, BW_JOB_SIZE) != 0)
         goto out;
-    bwh_link_t link;
-    bwh_link_init(&link, fd);
-    if (bwh_receive_payload(&link, o, r) != 0) {
+    if (bwh_receive_payload(&dv->link, o, r) != 0) {
         if (r->device_error)
             explain_device_error(dims, r->device_status, &r->limits);
         goto out;
     }
-    if (bwh_acknowledge(&link, r->id) != 0) {
+    if (bwh_acknowledge(&dv->link, r->id) != 0) {
         free(r->payload);
         r->payload = NULL;
         goto out;
     }
     rc = 0;
 out:
-    if (pid > 0) {
+    close(in_fd);
+    unlink(input);
+    return rc;
+}
+
+void bwh_device_close(bwh_device_t *dv)
+{
+    if (dv->pid > 0) {
         /* the session ends now, whatever happened: the device exits on QUIT;
          * one that does not within a few seconds is stopped */
-        if (fd >= 0)
-            bwh_send_frame(fd, BW_FT_QUIT, 0, NULL, 0);
+        if (dv->fd >= 0)
+            bwh_send_frame(dv->fd, BW_FT_QUIT, 0, NULL, 0);
         int status;
         double end = bwh_now() + 3;
-        while (waitpid(pid, &status, WNOHANG) == 0) {
+        while (waitpid(dv->pid, &status, WNOHANG) == 0) {
             if (bwh_now() > end) {
-                kill(pid, SIGKILL);
-                waitpid(pid, &status, 0);
+                kill(dv->pid, SIGKILL);
+                waitpid(dv->pid, &status, 0);
                 break;
             }
             usleep(2000);
         }
     }
-    if (fd >= 0)
-        close(fd);
-    if (pipefd[0] >= 0)
-        close(pipefd[0]);
-    if (pipefd[1] >= 0)
-        close(pipefd[1]);
-    if (in_fd >= 0)
-        close(in_fd);
-    unlink(input);
-    free(fw);
+    if (dv->fd >= 0)
+        close(dv->fd);
+    if (dv->pipefd >= 0)
+        close(dv->pipefd);
+    dv->fd = dv->pipefd = -1;
+    dv->pid = -1;
+}
+
+int bwh_device_encode(const char *device, const char *firmware, const bw_dims_t *dims,
+                      const bw_params_t *p, const int32_t *samples, const bwh_rx_opts_t *o,
+                      bwh_received_t *r)
+{
+    memset(r, 0, sizeof *r);
+    bwh_device_t dv;
+    if (bwh_device_open(&dv, device, firmware) != 0)
+        return -1;
+    int rc = bwh_device_admit(&dv, dims, p);
+    if (rc == 0)
+        rc = bwh_device_run(&dv, dims, p, samples, o, r);
+    bwh_device_close(&dv);
     return rc;
 }

@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 #include "bw_codec.h"
 #include "bwh_link.h"
@@ -35,6 +36,25 @@ void bwh_device_set_program_dir(const char *dir);
  *                   DIR/../qemu/brdfwave-fw.elf (qemu), the first that
  *                   exists; if none does, the first of these paths. */
 char *bwh_device_firmware(const char *device, const char *explicit_path);
+
+/* A session with a device: started by bwh_device_open, which also asks the
+ * device for its limits (HELLO); ended by bwh_device_close (QUIT, and the
+ * device stopped if it does not exit within 3 s). */
+typedef struct {
+    pid_t pid;
+    int fd, pipefd;
+    bwh_link_t link;
+    int have_limits;
+    bw_limits_t limits;
+} bwh_device_t;
+
+int bwh_device_open(bwh_device_t *dv, const char *device, const char *firmware);
+/* 0 when the device takes the job (or did not say what it takes); -1 with a
+ * message that says what it holds and what to do instead. */
+int bwh_device_admit(const bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p);
+int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p,
+                   const int32_t *samples, const bwh_rx_opts_t *o, bwh_received_t *r);
+void bwh_device_close(bwh_device_t *dv);
 
 /* Encodes dims/p/samples on `device` ("qemu" or "linux") with the image
  * `firmware` (NULL: bwh_device_firmware's choice). The session ends (QUIT)

@@ -88,6 +88,15 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     for (size_t i = 0; i < n; i++)
         if (x[i] > BW_SAMPLE_MAX || x[i] < -BW_SAMPLE_MAX)
             return bwh_fail("sample %zu = %d is outside the codec's range +-%d", i, x[i], BW_SAMPLE_MAX);
+    /* a device is asked first what it takes: a job it cannot take is
+     * refused before the host spends any work on it */
+    bwh_device_t dv;
+    if (o->device && (bwh_device_open(&dv, o->device, o->firmware) != 0))
+        return -1;
+    if (o->device && bwh_device_admit(&dv, dims, &p) != 0) {
+        bwh_device_close(&dv);
+        return -1;
+    }
     size_t wb = bw_work_bound(n, dims->bands), cap = bw_payload_bound(n);
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
     uint8_t *buf = malloc(cap);
@@ -95,6 +104,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         free(work);
         free(ver);
         free(buf);
+        if (o->device)
+            bwh_device_close(&dv);
         return bwh_fail("out of memory");
     }
     size_t len = 0;
@@ -118,13 +129,9 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0,
                             SIZE_MAX};
         bwh_received_t r;
-        if (strcmp(o->device, "qemu") != 0 && strcmp(o->device, "linux") != 0) {
-            free(work);
-            free(ver);
-            free(buf);
-            return bwh_fail("unknown device '%s' (known: qemu, linux)", o->device);
-        }
-        if (bwh_device_encode(o->device, o->firmware, dims, &p, x, &ro, &r) != 0) {
+        int drc = bwh_device_run(&dv, dims, &p, x, &ro, &r);
+        bwh_device_close(&dv);
+        if (drc != 0) {
             free(work);
             free(ver);
             free(buf);

@@ -179,6 +179,39 @@ static void a_job_too_large_is_answered_with_the_device_limits(void **state)
     assert_false(bw_error_unpack(sent[0].data, 3, &st, &lim));
 }
 
+static void hello_is_answered_with_the_link_version_and_the_limits(void **state)
+{
+    (void)state;
+    script(SPECTRA);
+    to_len = 0; /* no job: HELLO, then QUIT */
+    host_sends(BW_FT_HELLO, NULL, 0);
+    host_sends(BW_FT_QUIT, NULL, 0);
+    read_size = sizeof to_device;
+    if (setjmp(hung))
+        fail_msg("the device did not stop on QUIT after HELLO");
+    assert_int_equal(bw_app_run(&hal), 0);
+    assert_int_equal(n_sent, 1);
+    assert_int_equal(sent[0].type, BW_FT_HELLO);
+    uint8_t version;
+    bw_limits_t lim;
+    assert_true(bw_hello_unpack(sent[0].data, sent[0].len, &version, &lim));
+    assert_int_equal(version, BW_LINK_VERSION);
+    assert_int_equal(lim.max_samples, APP_MAX_SAMPLES);
+    assert_int_equal(lim.stream_level, APP_STREAM_LEVEL);
+    /* the host's rule and the device's agree: this job is too large to hold,
+     * and streamed it fits */
+    bw_dims_t d;
+    bw_params_t p;
+    bool streamed;
+    memset(&p, 0, sizeof p);
+    assert_int_equal(bw_dims_make(&d, BW_SHAPE_BRDF_ISO, 4, 0, 256, 1), BW_OK);
+    assert_int_equal(bw_limits_admit(&lim, &d, &p, &streamed), BW_ERR_WORK);
+    p.flags = BW_FLAG_STREAM_ORDER;
+    p.basis = BW_BASIS_HAAR;
+    assert_int_equal(bw_limits_admit(&lim, &d, &p, &streamed), BW_OK);
+    assert_true(streamed);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -186,6 +219,7 @@ int main(void)
         cmocka_unit_test(frames_that_arrive_a_byte_at_a_time_are_all_heard),
         cmocka_unit_test(frames_cut_at_any_point_are_all_heard),
         cmocka_unit_test(a_job_too_large_is_answered_with_the_device_limits),
+        cmocka_unit_test(hello_is_answered_with_the_link_version_and_the_limits),
     };
     return cmocka_run_group_tests_name("app", tests, NULL, NULL);
 }
