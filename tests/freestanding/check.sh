@@ -177,7 +177,7 @@ check_target arm-cortex-m4-Os arm-none-eabi- \
     -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os -Wall -Wextra -Werror
 # the image's text less the harness that calls the codec (bw_entry, _start
 # in entry.c); the string.h routines it provides stay, as the core calls them
-img=build/freestanding/arm-cortex-m4-Os/codec-gc.elf
+img=$OUT/arm-cortex-m4-Os/codec-gc.elf
 image_text=$(arm-none-eabi-size "$img" | awk 'NR == 2 {print $1}')
 harness=0
 while read -r _ size _ name; do
