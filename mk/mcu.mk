@@ -10,6 +10,10 @@ OPT ?= -Os
 CFLAGS := $(WARN) $(OPT) $(CPU) -ffreestanding -ffunction-sections -fdata-sections $(CORE_INC)
 LINKER_SCRIPT := linker/stm32l476.ld
 
+# the core's switches for the device's flash (mk/core-device.mk)
+include mk/core-device.mk
+$(CORE_OBJ): CFLAGS += $(BW_DEVICE_CFG)
+
 # startup.c before vectors.c: both put their table in .isr_vector, which the
 # linker keeps in link order (the 16 system vectors, then IRQ 0..81)
 FW_SRC := firmware/link/bw_frame.c firmware/app/app.c firmware/app/main.c \

@@ -143,7 +143,7 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->dims = *dims;
     pl->n = bw_dims_samples(dims);
     pl->basis = basis;
-    pl->spec_levels = !BW_SMALL && basis == BW_BASIS_PRED ? 0u : bw_spec_levels(dims->bands);
+    pl->spec_levels = BW_CFG_ENCODE_PRED && basis == BW_BASIS_PRED ? 0u : bw_spec_levels(dims->bands);
     pl->spec_cls = work + pl->n;
     pl->spec_gain = pl->spec_cls + dims->bands;
     /* the lifting scratch shares the class table's room: it is only used
@@ -259,14 +259,14 @@ static void transform_inv(const plan_t *pl, int32_t *x)
 /* The direction index of the mirror image (x, -y, z) of direction o at a
  * level: base triangle b goes to 3 - b, and in every child digit the
  * corners 2 and 3 trade places (0, 1, 2, 3 -> 0, 1, 3, 2). */
-BW_SMALL_NOINLINE static uint32_t mirror_index(uint32_t o, unsigned level)
+BW_NOINLINE_SMALL static uint32_t mirror_index(uint32_t o, unsigned level)
 {
     unsigned sh = 2u * level;
     uint32_t r = o & ((1u << sh) - 1u);
     return (3u - (o >> sh)) << sh | (r ^ ((r >> 1) & 0x55555555u));
 }
 
-#if !BW_SMALL
+#if BW_CFG_ENCODE_PRED
 /* ---- prediction (BW_BASIS_PRED) ------------------------------------------
  *
  * Spectrum by spectrum, band by band, over the decoded samples r: sample k
@@ -424,7 +424,7 @@ static uint64_t elem_step(uint32_t step_q8, uint32_t g_in, uint32_t g_out, uint3
 /* floor((256 a + off) / st): a 32-bit division (one instruction on
  * Cortex-M4) when the operands fit, which they do for every coefficient of
  * valid input. */
-BW_SMALL_NOINLINE static uint64_t div_q8_off(uint32_t a, uint64_t st, uint64_t off)
+BW_NOINLINE_SMALL static uint64_t div_q8_off(uint32_t a, uint64_t st, uint64_t off)
 {
     uint64_t num = ((uint64_t)a << 8) + off;
     if (num <= UINT32_MAX && st <= UINT32_MAX)
@@ -584,7 +584,7 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
             continue;
         uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
         if (forward) {
-#if BW_SMALL
+#if !BW_CFG_FAST_QUANT
             /* the offset of each coefficient computed in place: less code */
             for (; k < end; k++)
                 v[k] = quant(v[k], st, (st * (round_q8 + (k < kc))) >> 8);
@@ -950,7 +950,7 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
-    if (!BW_SMALL && se->rice && !pl->stream) {
+    if (BW_CFG_FAST_RICE && se->rice && !pl->stream) {
         /* the coarse-to-fine order of walk_next as loops (Rice strips need
          * no context class): the 4 scaling coefficients, then per level j
          * the children 1..3 of every parent */
@@ -1163,7 +1163,7 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
  * a transform basis has its spectral levels. */
 static bool pred_ok(const bw_dims_t *d, unsigned mode, unsigned flags)
 {
-    return !BW_SMALL && d->shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR &&
+    return BW_CFG_ENCODE_PRED && d->shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR &&
            !(flags & BW_FLAG_STREAM_ORDER);
 }
 
@@ -1306,8 +1306,8 @@ static BW_ALWAYS_INLINE uint32_t load_pass(int32_t *out, const int32_t *in, size
 static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
     prequant_t pq = prequant_of(q);
-#if BW_SMALL
-    /* a build for size checks each sample exactly: the same result, less code */
+#if !BW_CFG_FAST_LOADS
+    /* each sample checked exactly: the same result, less code */
     uint32_t bad = 0;
     for (size_t i = 0; i < n; i++) {
         int32_t x = in[i];
@@ -1395,7 +1395,7 @@ static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
 
 /* Prediction in place of the prequantiser and the transform (out of line, so
  * that the transforms' encode is built as without it). */
-#if BW_SMALL
+#if !BW_CFG_ENCODE_PRED
 #define PREQUANT_OF(pl) ((pl)->prequant)
 #define TRANSFORM_FWD(pl, x, done) transform_fwd(pl, x, done)
 #else
@@ -1418,7 +1418,7 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
 {
     /* Haar spectra without a symmetry step: load and the first levels at once */
     unsigned fused = 0;
-    if (!BW_SMALL && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
+    if (BW_CFG_FAST_LOADS && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
         !pl->recip)
         fused = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
     bw_status_t st = fused == 2u   ? load_haar2(pl, work, samples)
@@ -1513,7 +1513,7 @@ static bw_status_t count_bytes(plan_t *pl, const bw_params_t *pa, const int32_t 
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, sz);
 }
 
-#if !BW_SMALL
+#if BW_CFG_BUDGET_FILL_HALF
 /* The largest value of *field in [*lo, hi] whose payload fits the budget
  * (*lo fits; the size grows with it), into *lo. */
 static bw_status_t fill_search(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
@@ -1640,7 +1640,7 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
         }
         pl->round_q8 = lo_t / n;
         pl->round_cut = lo_t % n;
-#if !BW_SMALL
+#if BW_CFG_BUDGET_FILL_HALF
         /* all of that fits and the payload is still short: the step jumped
          * where integer coefficients of a few units (data coded nearly
          * exactly, at a step just above 1) fell a level together, and no
@@ -1701,7 +1701,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     }
     /* no spectral transform: every transform basis codes alike */
     bool one_transform = bw_spec_levels(dims->bands) == 0u;
-    if (one_transform && (BW_SMALL || last < BW_BASIS_COUNT))
+    if (one_transform && (!BW_CFG_ENCODE_PRED || last < BW_BASIS_COUNT))
         last = first;
     unsigned best = first;
     if (first != last) {
@@ -1711,7 +1711,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
         size_t best_sz = 0;
         for (unsigned b = first; b <= last; b++) {
             size_t sz;
-            if (!BW_SMALL && one_transform && b != first && b < BW_BASIS_COUNT)
+            if (BW_CFG_ENCODE_PRED && one_transform && b != first && b < BW_BASIS_COUNT)
                 continue;
             plan_for(&pl, dims, b, pa, work);
             st = encode_basis(&pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
@@ -1779,7 +1779,7 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     }
     if (st != BW_OK)
         return st;
-#if !BW_SMALL
+#if BW_CFG_ENCODE_PRED
     if (pl.basis == BW_BASIS_PRED) {
         predict(&pl, work, NULL, false); /* decoded samples: no prequantiser left */
         memcpy(samples, work, n * sizeof *samples);

@@ -62,7 +62,8 @@ typedef enum {
     BW_BASIS_97 = 2,   /* integer-lifted CDF 9/7               */
     BW_BASIS_COUNT = 3, /* the transform bases above                 */
     /* Prediction instead of a transform (SPECTRA, LOSSLESS and MAX_ERROR
-     * only; not in a build for size): each sample is predicted from the
+     * only; not offered by an encoder built without BW_CFG_ENCODE_PRED,
+     * bw_config.h): each sample is predicted from the
      * decoded samples before it in its spectrum and in the previous one,
      * and the prediction error quantised in the loop. */
     BW_BASIS_PRED = 3,

@@ -252,12 +252,12 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
-    /* a build for size splits and lifts every basis the same way */
-    if (!BW_SMALL && basis == BW_BASIS_HAAR) {
+    /* without BW_CFG_FAST_SPECTRAL every basis is split and lifted alike */
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_HAAR) {
         fwd_haar(x, ns, nd, tmp);
         return;
     }
-    if (!BW_SMALL && basis == BW_BASIS_53 && n >= 3u) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         fwd_53(x, ns, nd, tmp);
         return;
     }
@@ -274,11 +274,11 @@ void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
-    if (!BW_SMALL && basis == BW_BASIS_HAAR) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_HAAR) {
         inv_haar(x, ns, nd, tmp);
         return;
     }
-    if (!BW_SMALL && basis == BW_BASIS_53 && n >= 3u) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         inv_53(x, ns, nd, tmp);
         return;
     }

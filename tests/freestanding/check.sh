@@ -172,9 +172,12 @@ check_target arm-cortex-m4 arm-none-eabi- \
     -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -O2 -Wall -Wextra -Werror
 
 # the device build: the codec (encoder, decoder, streaming encoder and the
-# library helpers they pull in) must fit 16 KiB of flash at -Os
+# library helpers they pull in) must fit 16 KiB of flash at -Os with the
+# device's switches (mk/core-device.mk)
+DEVICE_CFG=$(sed -n 's/^BW_DEVICE_CFG := //p' mk/core-device.mk)
+# shellcheck disable=SC2086
 check_target arm-cortex-m4-Os arm-none-eabi- \
-    -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os -Wall -Wextra -Werror
+    -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os $DEVICE_CFG -Wall -Wextra -Werror
 # the image's text less the harness that calls the codec (bw_entry, _start
 # in entry.c); the string.h routines it provides stay, as the core calls them
 img=$OUT/arm-cortex-m4-Os/codec-gc.elf

@@ -31,6 +31,7 @@
 
 #include "bw_biohaar.h"
 #include "bw_codec.h"
+#include "bw_config.h"
 #include "bw_crc32.h"
 #include "bw_error.h"
 #include "bw_geodesic.h"
@@ -202,10 +203,16 @@ static bw_status_t encode_new(const bw_dims_t *d, const bw_params_t *p, const in
     return st;
 }
 
-/* Whether the core was built with prediction (a build for size, -Os,
- * leaves it out and refuses the basis). */
-static bool pred_built(void)
+/* The encoder features of the core under test (bw_config.h): this file is
+ * compiled with the core's switches. */
+static bool pred_built(void) { return BW_CFG_ENCODE_PRED; }
+static bool fill_half_built(void) { return BW_CFG_BUDGET_FILL_HALF; }
+
+/* The switch tells what the encoder offers: prediction is coded exactly
+ * when the core was built with it, else refused as an invalid argument. */
+static void encoder_offers_prediction_exactly_when_built_with_it(void **state)
 {
+    (void)state;
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 1, 8);
     int32_t x[8] = {1, 2, 3, 4, 5, 6, 7, 8};
     bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_PRED);
@@ -213,15 +220,8 @@ static bool pred_built(void)
     size_t len;
     bw_status_t st = encode_new(&d, &p, x, true, &out, &len);
     free(out);
-    if (st != BW_OK && st != BW_ERR_ARG)
-        fail_msg("prediction probe: %s", bw_strerror(st));
-    return st == BW_OK;
+    assert_int_equal(st, pred_built() ? BW_OK : BW_ERR_ARG);
 }
-
-/* The core built for size (-Os, BW_SMALL) also leaves out the byte
- * budget's rounding beyond 1/8 of a step: the prediction probe tells that
- * build. */
-static bool built_for_size(void) { return !pred_built(); }
 
 /* Decodes into a new array sized from the header (*samples: free it). */
 static bw_status_t decode_new(const uint8_t *payload, size_t len, int32_t **samples,
@@ -1770,7 +1770,7 @@ static void byte_budget_fills_between_rounding_offsets(void **state)
 static void byte_budget_fills_the_gap_below_the_exact_coding(void **state)
 {
     (void)state;
-    if (built_for_size())
+    if (!fill_half_built())
         skip();
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 8, 512);
     size_t n = bw_dims_samples(&d);
@@ -3185,7 +3185,7 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     static const struct {
@@ -3253,7 +3253,7 @@ static void prediction_beats_the_transforms_on_field_spectra_within_a_bound(void
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     bw_dims_t d;
@@ -3291,7 +3291,7 @@ static void prediction_is_refused_where_it_does_not_apply(void **state)
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     /* the encoder: other shapes, modes and the stream order */
@@ -3420,6 +3420,7 @@ int main(void)
         cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),
         cmocka_unit_test(streaming_encoder_refuses_what_it_cannot_do),
+        cmocka_unit_test(encoder_offers_prediction_exactly_when_built_with_it),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),
         cmocka_unit_test(prediction_is_refused_where_it_does_not_apply),
