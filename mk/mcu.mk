@@ -10,9 +10,10 @@ OPT ?= -Os
 CFLAGS := $(WARN) $(OPT) $(CPU) -ffreestanding -ffunction-sections -fdata-sections $(CORE_INC)
 LINKER_SCRIPT := linker/stm32l476.ld
 
-# the core's switches for the device's flash (mk/core-device.mk)
+# the core with the switches for the device's flash (mk/core-device.mk) and
+# link-time optimisation (fat objects: libbwcore.a links without it too)
 include mk/core-device.mk
-$(CORE_OBJ): CFLAGS += $(BW_DEVICE_CFG)
+$(CORE_OBJ): CFLAGS += $(BW_DEVICE_CFG) -flto -ffat-lto-objects
 
 # startup.c before vectors.c: both put their table in .isr_vector, which the
 # linker keeps in link order (the 16 system vectors, then IRQ 0..81)
@@ -42,7 +43,7 @@ $(BUILD)/libbwcore.a: $(CORE_OBJ)
 # the firmware image; the linker script asserts that .data + .bss + stack fit
 $(FW_ELF): $(CORE_OBJ) $(FW_OBJ) $(LINKER_SCRIPT) linker/cortex-m.ld
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CPU) -T $(LINKER_SCRIPT) -Llinker -nostartfiles --specs=nano.specs \
+	$(Q)$(CC) $(CPU) $(OPT) -flto -T $(LINKER_SCRIPT) -Llinker -nostartfiles --specs=nano.specs \
 	    --specs=nosys.specs -Wl,--gc-sections -Wl,-Map,$(BUILD)/brdfwave-fw.map \
 	    $(CORE_OBJ) $(FW_OBJ) -o $@
 	$(Q)$(SIZE) $@
