@@ -14,9 +14,9 @@
  * The byte-budget mode repeats the pass while it searches the step.
  * See docs/FORMAT.md for the payload.
  */
-#include "bw_codec.h"
-
 #include <string.h>
+
+#include "bw_internal.h"
 
 #include "bw_biohaar.h"
 #include "bw_coder.h"
@@ -28,117 +28,17 @@
 #include "bw_rice.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 6u
-#define STEP_ONE_Q8 256u     /* a step of 1: coefficients are kept exactly */
 #define STEP_FRAC 32u        /* budget search: 32 steps per octave          */
 #define STEP_T_MAX (24u * STEP_FRAC)
 #define STEP_REFINE 16384u   /* then bisection on the step to 1/16384 of it */
 #define ROUND_MAX_Q8 32u     /* then the rounding offset, up to 1/8 of a step */
 #define ROUND_WIDE_Q8 128u   /* or 1/2, where 1/8 leaves the budget unfilled  */
 #define ROUND_FILL 128u      /* when the payload is more than 1/128 under */
-#define VEC_THRESH_Q8 256u   /* default vector threshold: one step          */
 #define VEC_THRESH_MAX_LOG2 16u /* a budget may raise it up to 2^16 steps     */
-
-static const uint8_t magic[2] = {'B', 'W'};
-
-/* ---- sizes and dims ------------------------------------------------------ */
-
-size_t bw_payload_bound(size_t n) { return BW_PAYLOAD_BOUND(n); }
-size_t bw_work_bound(size_t n, size_t bands) { return BW_WORK_BOUND(n, bands); }
-
-static uint32_t tri_count(unsigned level) { return 4u << (2u * level); }
-
-size_t bw_dims_samples(const bw_dims_t *d) { return (size_t)d->n_in * d->n_out * d->bands; }
-
-bw_status_t bw_dims_check(const bw_dims_t *d)
-{
-    if (!d || d->bands < 1u || d->bands > BW_MAX_BANDS || d->n_in < 1u || d->n_in > BW_MAX_N_IN)
-        return BW_ERR_SHAPE;
-    switch (d->shape) {
-    case BW_SHAPE_SPECTRA:
-        if (d->n_out != 1u || d->level_out != 0u || d->level_in != 0u)
-            return BW_ERR_SHAPE;
-        break;
-    case BW_SHAPE_REFLECTANCE:
-    case BW_SHAPE_BRDF_ISO:
-        if (d->level_out > BW_MAX_LEVEL || d->n_out != tri_count(d->level_out) || d->level_in != 0u)
-            return BW_ERR_SHAPE;
-        if (d->shape == BW_SHAPE_REFLECTANCE && d->n_in != 1u)
-            return BW_ERR_SHAPE;
-        break;
-    case BW_SHAPE_BRDF_FULL:
-        if (d->level_out > BW_MAX_LEVEL || d->level_in > BW_MAX_LEVEL ||
-            d->n_out != tri_count(d->level_out) || d->n_in != tri_count(d->level_in))
-            return BW_ERR_SHAPE;
-        break;
-    default:
-        return BW_ERR_SHAPE;
-    }
-    /* n_in * n_out * bands <= BW_MAX_SAMPLES without overflow */
-    uint64_t n = (uint64_t)d->n_in * d->n_out * d->bands;
-    return n <= BW_MAX_SAMPLES ? BW_OK : BW_ERR_SHAPE;
-}
-
-bw_status_t bw_dims_make(bw_dims_t *d, bw_shape_t shape, unsigned level_out, unsigned level_in,
-                         uint32_t n_in, uint32_t bands)
-{
-    if (!d)
-        return BW_ERR_ARG;
-    memset(d, 0, sizeof *d);
-    d->shape = (uint8_t)shape;
-    d->bands = bands;
-    switch (shape) {
-    case BW_SHAPE_SPECTRA:
-        d->n_in = n_in;
-        d->n_out = 1u;
-        break;
-    case BW_SHAPE_REFLECTANCE:
-    case BW_SHAPE_BRDF_ISO:
-        if (level_out > BW_MAX_LEVEL)
-            return BW_ERR_SHAPE;
-        d->level_out = (uint8_t)level_out;
-        d->n_in = shape == BW_SHAPE_REFLECTANCE ? 1u : n_in;
-        d->n_out = tri_count(level_out);
-        break;
-    case BW_SHAPE_BRDF_FULL:
-        if (level_out > BW_MAX_LEVEL || level_in > BW_MAX_LEVEL)
-            return BW_ERR_SHAPE;
-        d->level_out = (uint8_t)level_out;
-        d->level_in = (uint8_t)level_in;
-        d->n_in = tri_count(level_in);
-        d->n_out = tri_count(level_out);
-        break;
-    default:
-        return BW_ERR_SHAPE;
-    }
-    return bw_dims_check(d);
-}
 
 /* ---- the transform plan -------------------------------------------------- */
 
-typedef struct {
-    bw_dims_t dims;
-    size_t n;
-    unsigned basis;
-    unsigned spec_levels;
-    uint32_t prequant;
-    uint32_t step_q8;
-    uint32_t vec_thresh_q8;
-    uint32_t round_q8;  /* encoder: rounding offset of the quantiser, Q8 */
-    uint32_t round_cut; /* encoder: coefficient k of the v-th vector quantised
-                         * takes round_q8 + 1 where k V + v < round_cut (V vectors) */
-    bool mirror;        /* BW_FLAG_MIRROR */
-    bool recip;         /* BW_FLAG_RECIPROCAL */
-    bool stream;        /* coding order: streamed (post-order) instead of coarse-to-fine */
-    int32_t *spec_cls;  /* [bands] context class of each spectral coefficient */
-    int32_t *spec_gain; /* [bands] its inverse gain, Q16                      */
-    int32_t *tmp;       /* [bands] lifting scratch                           */
-} plan_t;
-
-static bool has_out(const bw_dims_t *d) { return d->shape != BW_SHAPE_SPECTRA; }
-static bool has_in(const bw_dims_t *d) { return d->shape == BW_SHAPE_BRDF_FULL; }
-
-static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t *work)
+static void plan_init(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t *work)
 {
     pl->dims = *dims;
     pl->n = bw_dims_samples(dims);
@@ -150,8 +50,8 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
      * while transforming, the tables only while (de)quantising and coding */
     pl->tmp = pl->spec_cls;
     pl->prequant = 1u;
-    pl->step_q8 = STEP_ONE_Q8;
-    pl->vec_thresh_q8 = VEC_THRESH_Q8;
+    pl->step_q8 = BW_STEP_ONE_Q8;
+    pl->vec_thresh_q8 = BW_VEC_THRESH_Q8;
     pl->round_q8 = 0;
     pl->round_cut = 0;
     pl->mirror = false;
@@ -159,25 +59,10 @@ static void plan_init(plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t
     pl->stream = false;
 }
 
-/* spec_cls[k] packs the context class of spectral coefficient k (bits 0-1)
- * and 1 + the index of its spectral parent (above; 0: none). */
-#define SPEC_CLS(v) ((unsigned)(v) & 3u)
-#define SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
-
-/* The parent of band k of vector v (sc = spec_cls[k]): band k of the parent
- * vector pv (coarse-to-fine order), else the spectral parent in v; NULL for
- * none. */
-static inline const int32_t *parent_of(const int32_t *pv, const int32_t *v, int32_t sc,
-                                       uint32_t k)
-{
-    int32_t sp = SPEC_PAR(sc);
-    return pv ? pv + k : sp >= 0 ? v + sp : NULL;
-}
-
 /* The spectral parent of a detail coefficient (Mallat order) is the one at
  * the same place in the next coarser detail band; the coarsest details and
  * the approximation have none. */
-static void plan_tables(plan_t *pl)
+static void bw_plan_tables(bw_plan_t *pl)
 {
     unsigned L = pl->spec_levels;
     /* band sb = 1..L (1 finest) is [len_sb, len_sb-1), len_0 = bands and
@@ -201,28 +86,8 @@ static void plan_tables(plan_t *pl)
     }
 }
 
-/* Coarse-to-fine direction index -> in-place position, and its classes. */
-static uint32_t in_pos(const plan_t *pl, uint32_t i)
-{
-    return has_in(&pl->dims) ? bw_biohaar_pos(i, pl->dims.level_in) : i;
-}
-/* Context class of an outgoing coefficient from its parent level j (-1 for
- * a scaling coefficient): 0 finest details, 1 next, 2 coarser. */
-static unsigned level_cls(const plan_t *pl, int j)
-{
-    if (!has_out(&pl->dims))
-        return 2u;
-    int fine = (int)pl->dims.level_out - 1;
-    return j == fine ? 0u : (j == fine - 1 ? 1u : 2u);
-}
-static uint32_t in_gain(const plan_t *pl, uint32_t i)
-{
-    return has_in(&pl->dims) ? bw_biohaar_inv_gain_q16(pl->dims.level_in, bw_biohaar_coef_level(i))
-                             : 65536u;
-}
-
 /* done: the first spectral levels already applied (load_haar1, load_haar2) */
-static void transform_fwd(const plan_t *pl, int32_t *x, unsigned done)
+static void transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done)
 {
     const bw_dims_t *d = &pl->dims;
     size_t vectors = (size_t)d->n_in * d->n_out;
@@ -233,20 +98,20 @@ static void transform_fwd(const plan_t *pl, int32_t *x, unsigned done)
     if (levels)
         for (size_t v = 0; v < vectors; v++)
             bw_spec_fwd(x + v * d->bands, n, pl->basis, levels, pl->tmp);
-    if (has_out(d))
+    if (bw_has_out(d))
         for (uint32_t i = 0; i < d->n_in; i++)
             bw_biohaar_fwd(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
-    if (has_in(d))
+    if (bw_has_in(d))
         bw_biohaar_fwd(x, d->level_in, (size_t)d->n_out * d->bands);
 }
 
-static void transform_inv(const plan_t *pl, int32_t *x)
+static void transform_inv(const bw_plan_t *pl, int32_t *x)
 {
     const bw_dims_t *d = &pl->dims;
     size_t vectors = (size_t)d->n_in * d->n_out;
-    if (has_in(d))
+    if (bw_has_in(d))
         bw_biohaar_inv(x, d->level_in, (size_t)d->n_out * d->bands);
-    if (has_out(d))
+    if (bw_has_out(d))
         for (uint32_t i = 0; i < d->n_in; i++)
             bw_biohaar_inv(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
     if (pl->spec_levels)
@@ -327,7 +192,7 @@ static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
 /* Encoder (fwd) on range-checked samples x -> coded errors, in place, the
  * decoded spectra in two rows of `bands` (rows); decoder: coded errors ->
  * decoded samples, in place. */
-static BW_NOINLINE void predict(const plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
+static BW_NOINLINE void predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
 {
     uint32_t bands = pl->dims.bands, D = pl->prequant, E = D / 2u;
     const int32_t *prev = NULL;
@@ -365,12 +230,12 @@ static BW_NOINLINE void predict(const plan_t *pl, int32_t *x, int32_t *rows, boo
  * still holds its samples); inverse the other way round. In 32-bit wrapping
  * arithmetic: a corrupt body decodes to wrong samples, never to undefined
  * behaviour; forward, BW_ERR_RANGE if a difference leaves +-BW_SAMPLE_MAX. */
-static bw_status_t symmetry(const plan_t *pl, int32_t *x, bool forward)
+static bw_status_t symmetry(const bw_plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     unsigned lo = d->level_out, li = d->level_in, sh = 2u * lo + 2u;
     uint32_t ni = d->n_in, no = d->n_out, rows = pl->mirror ? ni / 2u : ni;
-    bool full = has_in(d);
+    bool full = bw_has_in(d);
     size_t b = d->bands, total = (size_t)ni << sh;
     uint32_t neg = forward ? ~0u : 0u, bad = 0; /* p ^ neg - neg: -p or p */
     for (unsigned step = 0; step < 2u; step++) {
@@ -495,7 +360,7 @@ typedef struct {
     uint32_t gain[BW_SPEC_MAX_LEVELS + 1u]; /* inverse gain, Q16 */
 } spec_bands_t;
 
-static void spec_bands(const plan_t *pl, spec_bands_t *sb)
+static void spec_bands(const bw_plan_t *pl, spec_bands_t *sb)
 {
     uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
     unsigned L = pl->spec_levels;
@@ -512,14 +377,14 @@ static void spec_bands(const plan_t *pl, spec_bands_t *sb)
 
 /* The threshold on a vector's energy in steps (vec_energy): the square of
  * vec_thresh_q8 / 256, at least 1. */
-static uint64_t vec_thr(const plan_t *pl)
+static uint64_t vec_thr(const bw_plan_t *pl)
 {
     uint64_t t = ((uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8) >> 16;
     return t ? t : 1u;
 }
 
 /* Per subband, the step of a vector whose incoming x outgoing gain is gio. */
-static void vec_steps(const plan_t *pl, const spec_bands_t *sb, uint32_t gio, uint64_t *st)
+static void vec_steps(const bw_plan_t *pl, const spec_bands_t *sb, uint32_t gio, uint64_t *st)
 {
     for (unsigned i = 0; i < sb->count; i++)
         st[i] = elem_step(pl->step_q8, gio, 65536u, sb->gain[i]);
@@ -555,7 +420,7 @@ static uint64_t vec_energy(const spec_bands_t *sb, const uint64_t *steps, const 
  * round / 256 (0: the dead-zone quantiser, floor(|c| / step)). */
 static inline int32_t quant(int32_t c, uint64_t st, uint64_t off)
 {
-    if (st <= STEP_ONE_Q8)
+    if (st <= BW_STEP_ONE_Q8)
         return c;
     uint32_t q = (uint32_t)div_q8_off(bw_abs32(c), st, off);
     return c < 0 ? -(int32_t)q : (int32_t)q;
@@ -565,7 +430,7 @@ static inline int32_t quant(int32_t c, uint64_t st, uint64_t off)
  * band is below the midpoint. */
 static inline int32_t dequant(int32_t q, uint64_t st)
 {
-    if (st <= STEP_ONE_Q8 || q == 0)
+    if (st <= BW_STEP_ONE_Q8 || q == 0)
         return q;
     uint64_t m = (((uint64_t)bw_abs32(q) * 8u + 3u) * st) >> 11;
     if (m > INT32_MAX)
@@ -580,7 +445,7 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
 {
     for (unsigned i = 0; i < sb->count; i++) {
         uint64_t st = steps[i];
-        if (st <= STEP_ONE_Q8)
+        if (st <= BW_STEP_ONE_Q8)
             continue;
         uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
         if (forward) {
@@ -607,7 +472,7 @@ static void vec_quant(const spec_bands_t *sb, const uint64_t *steps, int32_t *v,
 /* The step of every vector, walking the outgoing hemisphere as the coder
  * does; the subband steps are recomputed only when the vector's gain
  * changes (once per level). */
-static void quantise(const plan_t *pl, int32_t *x, bool forward)
+static void quantise(const bw_plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
@@ -619,9 +484,9 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
     size_t vecs = (size_t)d->n_in * d->n_out;
     spec_bands(pl, &sb);
     for (uint32_t i = 0; i < d->n_in; i++) {
-        uint32_t gi = in_gain(pl, i);
-        int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
-        for (int pass = forward && has_in(d) ? 0 : 1; pass < 2; pass++) {
+        uint32_t gi = bw_in_gain_q16(pl, i);
+        int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+        for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
             /* pass 0: the incoming space, drop a whole [outgoing][band] block
              * whose energy stays below the threshold; pass 1: every vector */
             uint64_t e = 0;
@@ -629,7 +494,7 @@ static void quantise(const plan_t *pl, int32_t *x, bool forward)
             walk_init(&w);
             for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
                 uint32_t pos = 0, g_out = 65536u;
-                if (has_out(d)) {
+                if (bw_has_out(d)) {
                     int j;
                     pos = walk_next(&w, L, &j);
                     g_out = bw_biohaar_inv_gain_q16(L, j);
@@ -705,7 +570,7 @@ static void stream_leaf(unsigned L, uint32_t t, stream_queue_t *q)
 }
 
 typedef struct {
-    const plan_t *pl;
+    const bw_plan_t *pl;
     int32_t *x;
     uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
     int32_t *vec;
@@ -721,10 +586,10 @@ typedef struct {
 
 static void iter_vec(iter_t *it)
 {
-    const plan_t *pl = it->pl;
+    const bw_plan_t *pl = it->pl;
     uint32_t pos_out = 0;
     int level = -1;
-    if (has_out(&pl->dims)) {
+    if (bw_has_out(&pl->dims)) {
         if (pl->stream) {
             while (it->qi == it->q.n) {
                 stream_leaf(pl->dims.level_out, it->leaf++, &it->q);
@@ -736,7 +601,7 @@ static void iter_vec(iter_t *it)
             pos_out = walk_next(&it->w, pl->dims.level_out, &level);
         }
     }
-    size_t b = pl->dims.bands, base = (size_t)in_pos(pl, it->i) * pl->dims.n_out;
+    size_t b = pl->dims.bands, base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
     it->prev = pl->stream || b == 1u ? NULL : it->vec;
     it->vec = it->x + (base + pos_out) * b;
     /* the parent: the vector at the position with this level's digit cleared
@@ -744,10 +609,10 @@ static void iter_vec(iter_t *it)
     it->par = level < 0 || pl->stream
                   ? NULL
                   : it->x + (base + (pos_out & ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) * b;
-    it->cls_dir = level_cls(pl, level);
+    it->cls_dir = bw_level_cls(pl, level);
 }
 
-static void iter_init(iter_t *it, const plan_t *pl, int32_t *x)
+static void iter_init(iter_t *it, const bw_plan_t *pl, int32_t *x)
 {
     it->pl = pl;
     it->x = x;
@@ -782,9 +647,9 @@ static inline int32_t *iter_next(iter_t *it, unsigned *cls, const int32_t **par,
 {
     uint32_t k = it->k;
     int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
-    *par = parent_of(it->par, it->vec, sc, k);
+    *par = bw_parent_of(it->par, it->vec, sc, k);
     *prv = it->prev ? it->prev + k : NULL;
-    *cls = SPEC_CLS(sc) * 3u + it->cls_dir;
+    *cls = BW_SPEC_CLS(sc) * 3u + it->cls_dir;
     if (++it->k == it->pl->dims.bands)
         iter_next_vec(it);
     return p;
@@ -946,7 +811,7 @@ static inline void rice_push(strip_enc_t *se, const int32_t *v, uint32_t b)
     }
 }
 
-static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
+static void code_body(const bw_plan_t *pl, int32_t *x, strip_enc_t *se)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
@@ -956,8 +821,8 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
          * the children 1..3 of every parent */
         unsigned L = d->level_out;
         for (uint32_t i = 0; i < d->n_in; i++) {
-            const int32_t *blk = x + (size_t)in_pos(pl, i) * d->n_out * b;
-            if (!has_out(d)) {
+            const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+            if (!bw_has_out(d)) {
                 for (uint32_t o = 0; o < d->n_out; o++)
                     rice_push(se, blk, b);
                 continue;
@@ -988,7 +853,7 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
             unsigned cd = it.cls_dir;
             for (uint32_t k = 0; k < b; k++) {
                 int32_t sc = pl->spec_cls[k];
-                strip_put(se, v[k], SPEC_CLS(sc) * 3u + cd, parent_of(it.par, v, sc, k),
+                strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
                           it.prev ? it.prev + k : NULL);
             }
         }
@@ -996,7 +861,7 @@ static void code_body(const plan_t *pl, int32_t *x, strip_enc_t *se)
     }
 }
 
-static bw_status_t decode_body_rice(const plan_t *pl, int32_t *x, const uint8_t *body,
+static bw_status_t decode_body_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *body,
                                    size_t len)
 {
     iter_t it;
@@ -1017,7 +882,7 @@ static bw_status_t decode_body_rice(const plan_t *pl, int32_t *x, const uint8_t 
     return BW_OK;
 }
 
-static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, models_t *m)
+static bw_status_t decode_body(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, models_t *m)
 {
     iter_t it;
     iter_init(&it, pl, x);
@@ -1079,156 +944,6 @@ static bw_status_t decode_body(const plan_t *pl, int32_t *x, bw_rc_dec_t *rc, mo
     }
     /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
     return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
-}
-
-/* ---- header -------------------------------------------------------------- */
-
-#define SCALE_ONE_BITS 0x3F800000u /* 1.0f: the default scale, not stored */
-#define H_SCALE 0x40u              /* byte 3: a scale field follows          */
-#define H_OFFSET 0x80u             /* byte 3: an offset field follows        */
-
-/* Reads a LEB128 value of at most 32 bits at q, before end, in its shortest
- * form only (every encoding is then unique); returns the next byte, or NULL. */
-static const uint8_t *get_varint(const uint8_t *q, const uint8_t *end, uint32_t *v)
-{
-    uint32_t x = 0;
-    for (unsigned sh = 0; q < end && sh < 35u; sh += 7u) {
-        uint32_t b = *q++;
-        if (sh == 28u && b > 0x0Fu)
-            return NULL; /* beyond 32 bits */
-        x |= (b & 0x7Fu) << sh;
-        if (!(b & 0x80u)) {
-            *v = x;
-            return sh && !b ? NULL : q; /* NULL: not the shortest form */
-        }
-    }
-    return NULL;
-}
-
-/* The header's numbers: n_in, bands, the mode's parameter (E, or the step
- * above 1), then the scale and offset bits, stored when they differ from
- * 1.0f and 0. */
-enum { HV_N_IN, HV_BANDS, HV_PARAM, HV_SCALE, HV_OFFSET, HV_COUNT };
-
-/* Writes the header at out (NULL: only counts); returns its length. */
-static size_t header_write(uint8_t *out, const plan_t *pl, const bw_params_t *pa, uint32_t mode)
-{
-    uint8_t tmp[BW_HEADER_MAX], *h = out ? out : tmp;
-    uint32_t v[HV_COUNT] = {pl->dims.n_in, pl->dims.bands,
-                            mode == BW_MODE_MAX_ERROR ? pa->max_error : pl->step_q8 - STEP_ONE_Q8,
-                            pa->scale_bits, pa->offset_bits};
-    uint32_t b3 = pl->dims.shape | mode << 2 | pl->basis << 4;
-    size_t n = BW_HEADER_FIXED;
-    for (unsigned k = 0; k < HV_COUNT; k++) {
-        if (k < HV_SCALE) {
-            if (k != HV_PARAM || mode != BW_MODE_LOSSLESS)
-                for (uint32_t x = v[k];; x >>= 7) {
-                    h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
-                    if (x <= 0x7Fu)
-                        break;
-                }
-        } else if (v[k] != (k == HV_SCALE ? SCALE_ONE_BITS : 0u)) {
-            b3 |= H_SCALE << (k - HV_SCALE);
-            bw_put_u32(h + n, v[k]);
-            n += 4u;
-        }
-    }
-    h[0] = magic[0];
-    h[1] = magic[1];
-    h[2] = BW_VERSION;
-    h[3] = (uint8_t)b3;
-    h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
-    h[5] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
-    h[6] = (uint8_t)pl->spec_levels;
-    return n;
-}
-
-bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
-{
-    if (!p || !h)
-        return BW_ERR_ARG;
-    memset(h, 0, sizeof *h);
-    /* a wrong magic or version, or too short for a header, comes first;
-     * then the CRC; then the fields the CRC vouches for */
-    bw_status_t st = bw_header_parse_fields(p, len, h);
-    if (st == BW_ERR_MAGIC || st == BW_ERR_VERSION || st == BW_ERR_TRUNCATED)
-        return st;
-    h->crc = bw_get_u32(p + len - BW_TRAILER_SIZE);
-    if (bw_crc32(p, len - BW_TRAILER_SIZE) != h->crc)
-        return BW_ERR_CRC;
-    return st;
-}
-
-/* Prediction codes spectra, exactly or within a bound, in the plain order;
- * a transform basis has its spectral levels. */
-static bool pred_ok(const bw_dims_t *d, unsigned mode, unsigned flags)
-{
-    return BW_CFG_ENCODE_PRED && d->shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR &&
-           !(flags & BW_FLAG_STREAM_ORDER);
-}
-
-static bool basis_ok(const bw_header_t *h)
-{
-    if (h->basis == BW_BASIS_PRED)
-        return pred_ok(&h->dims, h->mode, h->flags) && h->spectral_levels == 0u;
-    return h->spectral_levels == bw_spec_levels(h->dims.bands);
-}
-
-bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
-{
-    if (len >= 2u && (p[0] != magic[0] || p[1] != magic[1]))
-        return BW_ERR_MAGIC;
-    if (len >= 3u && p[2] != BW_VERSION)
-        return BW_ERR_VERSION;
-    if (len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
-        return BW_ERR_TRUNCATED;
-    const uint8_t *q = p + BW_HEADER_FIXED, *end = p + len - BW_TRAILER_SIZE;
-    bw_dims_t *d = &h->dims;
-    h->version = p[2];
-    d->shape = p[3] & 3u;
-    h->mode = (uint8_t)(p[3] >> 2 & 3u);
-    h->basis = (uint8_t)(p[3] >> 4 & 3u);
-    d->level_out = p[4] & 15u;
-    d->level_in = p[4] >> 4;
-    h->flags = p[5];
-    h->spectral_levels = p[6];
-    uint32_t v[HV_COUNT] = {0u, 0u, 0u, SCALE_ONE_BITS, 0u};
-    for (unsigned k = 0; k < HV_COUNT; k++) {
-        if (k < HV_SCALE) {
-            if (k != HV_PARAM || h->mode != BW_MODE_LOSSLESS)
-                q = get_varint(q, end, &v[k]);
-        } else if (p[3] & (H_SCALE << (k - HV_SCALE))) {
-            /* stored only when it is not the default */
-            uint32_t w = end - q >= 4 ? bw_get_u32(q) : v[k];
-            q = w == v[k] ? NULL : q + 4;
-            v[k] = w;
-        }
-        if (!q)
-            return BW_ERR_HEADER;
-    }
-    d->n_in = v[HV_N_IN];
-    d->bands = v[HV_BANDS];
-    uint32_t e = v[HV_PARAM];
-    bool me = h->mode == BW_MODE_MAX_ERROR;
-    h->max_error = me ? e : 0u;
-    h->prequant = me ? 2u * e + 1u : 1u;
-    h->step_q8 = STEP_ONE_Q8 + (me ? 0u : e);
-    h->scale_bits = v[HV_SCALE];
-    h->offset_bits = v[HV_OFFSET];
-    h->header_len = (uint32_t)(q - p);
-    h->body_len = (uint32_t)(end - q);
-    h->payload_len = (uint32_t)len;
-    d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
-               : d->level_out <= BW_MAX_LEVEL ? tri_count(d->level_out)
-                                              : 0u;
-    if (bw_dims_check(d) != BW_OK || !basis_ok(h) || (h->flags & ~BW_FLAGS_KNOWN) != 0u ||
-        ((h->flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL) ||
-        ((h->flags & BW_FLAG_MIRROR) && d->shape == BW_SHAPE_SPECTRA) ||
-        ((h->flags & BW_FLAG_RECIPROCAL) &&
-         (d->shape != BW_SHAPE_BRDF_FULL || d->level_in != d->level_out)) ||
-        (me ? e - 1u >= (uint32_t)BW_SAMPLE_MAX : e > UINT32_MAX - STEP_ONE_Q8))
-        return BW_ERR_HEADER;
-    return BW_OK;
 }
 
 /* ---- encoder ------------------------------------------------------------- */
@@ -1325,7 +1040,7 @@ static bw_status_t load_samples(int32_t *out, const int32_t *in, size_t n, uint3
  * pass: from the caller's samples the approximation and the details go
  * straight to their places in out, with no scratch. Same values (the k of
  * the prequantiser cancels in the details). */
-static BW_ALWAYS_INLINE uint32_t haar1_pass(const plan_t *pl, int32_t *o, const int32_t *x,
+static BW_ALWAYS_INLINE uint32_t haar1_pass(const bw_plan_t *pl, int32_t *o, const int32_t *x,
                                             const prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
@@ -1348,7 +1063,7 @@ static BW_ALWAYS_INLINE uint32_t haar1_pass(const plan_t *pl, int32_t *o, const 
     return acc;
 }
 
-static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
+static bw_status_t load_haar1(const bw_plan_t *pl, int32_t *out, const int32_t *in)
 {
     prequant_t pq = prequant_of(pl->prequant);
     uint32_t acc = pq.q == 1u ? haar1_pass(pl, out, in, &pq, false)
@@ -1360,7 +1075,7 @@ static bw_status_t load_haar1(const plan_t *pl, int32_t *out, const int32_t *in)
  * 4: each 4 samples give two level-1 details, one level-2 detail and one
  * approximation, written to their places in out. Same values (k cancels in
  * every detail). */
-static BW_ALWAYS_INLINE uint32_t haar2_pass(const plan_t *pl, int32_t *o, const int32_t *x,
+static BW_ALWAYS_INLINE uint32_t haar2_pass(const bw_plan_t *pl, int32_t *o, const int32_t *x,
                                             const prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
@@ -1385,7 +1100,7 @@ static BW_ALWAYS_INLINE uint32_t haar2_pass(const plan_t *pl, int32_t *o, const 
     return acc;
 }
 
-static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
+static bw_status_t load_haar2(const bw_plan_t *pl, int32_t *out, const int32_t *in)
 {
     prequant_t pq = prequant_of(pl->prequant);
     uint32_t acc = pq.q == 1u ? haar2_pass(pl, out, in, &pq, false)
@@ -1401,7 +1116,7 @@ static bw_status_t load_haar2(const plan_t *pl, int32_t *out, const int32_t *in)
 #else
 #define PREQUANT_OF(pl) ((pl)->basis == BW_BASIS_PRED ? 1u : (pl)->prequant)
 #define TRANSFORM_FWD(pl, x, done) transform_or_predict(pl, x, done)
-static BW_NOINLINE void transform_or_predict(const plan_t *pl, int32_t *x, unsigned done)
+static BW_NOINLINE void transform_or_predict(const bw_plan_t *pl, int32_t *x, unsigned done)
 {
     if (pl->basis == BW_BASIS_PRED)
         predict(pl, x, x + pl->n, true);
@@ -1412,7 +1127,7 @@ static BW_NOINLINE void transform_or_predict(const plan_t *pl, int32_t *x, unsig
 
 /* One encode at fixed plan: load, transform, quantise, code. out may be NULL
  * (count only). */
-static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
+static bw_status_t encode_pass(bw_plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                const int32_t *samples, int32_t *work, uint8_t *out,
                                size_t cap, size_t *len)
 {
@@ -1429,13 +1144,13 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
     if (st != BW_OK)
         return st;
     TRANSFORM_FWD(pl, work, fused);
-    plan_tables(pl);
-    if (pl->step_q8 > STEP_ONE_Q8)
+    bw_plan_tables(pl);
+    if (pl->step_q8 > BW_STEP_ONE_Q8)
         quantise(pl, work, true);
 
     strip_enc_t se;
     bool counting = out == NULL;
-    size_t body_cap = 0, hl = header_write(NULL, pl, pa, mode);
+    size_t body_cap = 0, hl = bw_header_write(NULL, pl, pa, mode);
     if (!counting) {
         if (cap < hl + BW_TRAILER_SIZE)
             return BW_ERR_OUTPUT_FULL;
@@ -1449,7 +1164,7 @@ static bw_status_t encode_pass(plan_t *pl, const bw_params_t *pa, uint32_t mode,
         return BW_OK;
     if (strip_enc_overflow(&se) || *len > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
-    header_write(out, pl, pa, mode);
+    bw_header_write(out, pl, pa, mode);
     bw_put_u32(out + hl + body, bw_crc32(out, hl + body));
     return BW_OK;
 }
@@ -1462,11 +1177,11 @@ static uint32_t step_of(unsigned t)
         41584, 42495, 43425, 44376, 45348, 46341, 47356, 48393, 49452, 50535, 51642,
         52773, 53928, 55109, 56316, 57549, 58809, 60097, 61413, 62757, 64132,
     };
-    uint64_t s = ((uint64_t)STEP_ONE_Q8 << (t / STEP_FRAC)) * frac_q15[t % STEP_FRAC] >> 15;
+    uint64_t s = ((uint64_t)BW_STEP_ONE_Q8 << (t / STEP_FRAC)) * frac_q15[t % STEP_FRAC] >> 15;
     return s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
 }
 
-static bw_status_t verify_payload(const plan_t *pl, const bw_params_t *pa, uint32_t mode,
+static bw_status_t verify_payload(const bw_plan_t *pl, const bw_params_t *pa, uint32_t mode,
                                   const int32_t *samples, const uint8_t *out, size_t len,
                                   int32_t *verify, uint64_t *sse)
 {
@@ -1489,8 +1204,17 @@ static bw_status_t verify_payload(const plan_t *pl, const bw_params_t *pa, uint3
     return BW_OK;
 }
 
+/* The parameter of the mode: E, the step, or (BYTES, whose search sets the
+ * step) a step of 1. */
+static uint32_t mode_param(const bw_params_t *pa)
+{
+    return pa->mode == BW_MODE_MAX_ERROR ? pa->max_error
+           : pa->mode == BW_MODE_STEP    ? pa->step_q8
+                                         : BW_STEP_ONE_Q8;
+}
+
 /* The plan of one encode: basis, prequantiser and step from the mode. */
-static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw_params_t *pa,
+static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw_params_t *pa,
                      int32_t *work)
 {
     plan_init(pl, dims, basis, work);
@@ -1507,7 +1231,7 @@ static void plan_for(plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw
 
 /* Encodes with one basis; for BYTES searches the step. */
 /* The size of the BYTES payload at the plan's current settings. */
-static bw_status_t count_bytes(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+static bw_status_t count_bytes(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                int32_t *work, size_t *sz)
 {
     return encode_pass(pl, pa, BW_MODE_BYTES, samples, work, NULL, 0, sz);
@@ -1516,7 +1240,7 @@ static bw_status_t count_bytes(plan_t *pl, const bw_params_t *pa, const int32_t 
 #if BW_CFG_BUDGET_FILL_HALF
 /* The largest value of *field in [*lo, hi] whose payload fits the budget
  * (*lo fits; the size grows with it), into *lo. */
-static bw_status_t fill_search(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+static bw_status_t fill_search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                int32_t *work, size_t budget, uint32_t *field, uint32_t hi,
                                uint32_t *lo)
 {
@@ -1538,7 +1262,7 @@ static bw_status_t fill_search(plan_t *pl, const bw_params_t *pa, const int32_t 
 }
 #endif
 
-static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+static bw_status_t encode_basis(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                 int32_t *work, uint8_t *out, size_t cap, size_t *len)
 {
     size_t sz;
@@ -1549,7 +1273,7 @@ static bw_status_t encode_basis(plan_t *pl, const bw_params_t *pa, const int32_t
     size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
     /* the exact coding first: if it fits, nothing is lost, and the payload
      * is the lossless one */
-    pl->step_q8 = STEP_ONE_Q8;
+    pl->step_q8 = BW_STEP_ONE_Q8;
     st = encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, NULL, 0, &sz);
     if (st != BW_OK)
         return st;
@@ -1671,28 +1395,13 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
     if (!dims || !pa || !samples || !work || !out || !out_len)
         return BW_ERR_ARG;
     *out_len = 0;
-    bw_status_t st = bw_dims_check(dims);
+    bw_status_t st = bw_params_check(dims, pa->mode, pa->basis, pa->flags, mode_param(pa),
+                                     BW_FOR_ENCODE);
     if (st != BW_OK)
         return st;
-    bool pred = pred_ok(dims, pa->mode, pa->flags);
-    if (pa->mode > BW_MODE_STEP ||
-        (pa->basis >= BW_BASIS_COUNT && pa->basis != BW_BASIS_AUTO &&
-         !(pa->basis == BW_BASIS_PRED && pred)) ||
-        (pa->flags & ~BW_FLAGS_KNOWN) != 0u)
-        return BW_ERR_ARG;
-    if ((pa->flags & BW_FLAG_STREAM_ORDER) && dims->shape == BW_SHAPE_BRDF_FULL)
-        return BW_ERR_SHAPE; /* the incoming transform needs every hemisphere at once */
-    if ((pa->flags & BW_FLAG_MIRROR) && dims->shape == BW_SHAPE_SPECTRA)
-        return BW_ERR_SHAPE; /* no directions to mirror */
-    if ((pa->flags & BW_FLAG_RECIPROCAL) &&
-        (dims->shape != BW_SHAPE_BRDF_FULL || dims->level_in != dims->level_out))
-        return BW_ERR_SHAPE; /* incoming and outgoing on different grids */
-    if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
-        return BW_ERR_ARG;
-    if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
-        return BW_ERR_ARG;
+    bool pred = BW_CFG_ENCODE_PRED && bw_pred_applies(dims, pa->mode, pa->flags);
 
-    plan_t pl;
+    bw_plan_t pl;
     bw_status_t fit = BW_OK;
     unsigned first = pa->basis, last = pa->basis;
     if (pa->basis == BW_BASIS_AUTO) {
@@ -1758,14 +1467,14 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     size_t n = bw_dims_samples(d);
     if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
-    plan_t pl;
+    bw_plan_t pl;
     plan_init(&pl, d, h->basis, work);
     pl.prequant = h->prequant;
     pl.step_q8 = h->step_q8;
     pl.stream = (h->flags & BW_FLAG_STREAM_ORDER) != 0u;
     pl.mirror = (h->flags & BW_FLAG_MIRROR) != 0u;
     pl.recip = (h->flags & BW_FLAG_RECIPROCAL) != 0u;
-    plan_tables(&pl);
+    bw_plan_tables(&pl);
 
     bw_status_t st;
     if (h->flags & BW_FLAG_RICE) {
@@ -1786,7 +1495,7 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
         return BW_OK;
     }
 #endif
-    if (pl.step_q8 > STEP_ONE_Q8)
+    if (pl.step_q8 > BW_STEP_ONE_Q8)
         quantise(&pl, work, false);
     transform_inv(&pl, work);
     if (pl.mirror || pl.recip)
@@ -1826,9 +1535,7 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
 
 /* ---- streaming encoder --------------------------------------------------- */
 
-size_t bw_stream_mem_bound(unsigned level, size_t bands) { return BW_STREAM_MEM_BOUND(level, bands); }
-
-static void stream_plan(const bw_stream_t *s, plan_t *pl)
+static void stream_plan(const bw_stream_t *s, bw_plan_t *pl)
 {
     memset(pl, 0, sizeof *pl);
     pl->dims = s->dims;
@@ -1837,7 +1544,7 @@ static void stream_plan(const bw_stream_t *s, plan_t *pl)
     pl->spec_levels = s->spec_levels;
     pl->prequant = s->prequant;
     pl->step_q8 = s->step_q8;
-    pl->vec_thresh_q8 = s->params.vec_thresh_q8 ? s->params.vec_thresh_q8 : VEC_THRESH_Q8;
+    pl->vec_thresh_q8 = s->params.vec_thresh_q8 ? s->params.vec_thresh_q8 : BW_VEC_THRESH_Q8;
     pl->stream = true;
     pl->spec_cls = s->cls;
     pl->spec_gain = s->gain;
@@ -1851,19 +1558,10 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
         return BW_ERR_ARG;
     memset(s, 0, sizeof *s);
     s->err = BW_ERR_ARG;
-    bw_status_t st = bw_dims_check(dims);
+    bw_status_t st = bw_params_check(dims, pa->mode, pa->basis, pa->flags, mode_param(pa),
+                                     BW_FOR_STREAM);
     if (st != BW_OK)
         return st;
-    if (dims->shape == BW_SHAPE_BRDF_FULL)
-        return BW_ERR_SHAPE;
-    if ((pa->mode != BW_MODE_LOSSLESS && pa->mode != BW_MODE_MAX_ERROR &&
-         pa->mode != BW_MODE_STEP) ||
-        pa->basis >= BW_BASIS_COUNT || (pa->flags & (~BW_FLAGS_KNOWN | BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL)) != 0u)
-        return BW_ERR_ARG;
-    if (pa->mode == BW_MODE_MAX_ERROR && (pa->max_error < 1u || pa->max_error > BW_SAMPLE_MAX))
-        return BW_ERR_ARG;
-    if (pa->mode == BW_MODE_STEP && pa->step_q8 < STEP_ONE_Q8)
-        return BW_ERR_ARG;
     if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
         return BW_ERR_WORK;
     s->dims = *dims;
@@ -1872,16 +1570,16 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->basis = pa->basis;
     s->spec_levels = (uint8_t)bw_spec_levels(dims->bands);
     s->prequant = pa->mode == BW_MODE_MAX_ERROR ? 2u * pa->max_error + 1u : 1u;
-    s->step_q8 = pa->mode == BW_MODE_STEP ? pa->step_q8 : STEP_ONE_Q8;
+    s->step_q8 = pa->mode == BW_MODE_STEP ? pa->step_q8 : BW_STEP_ONE_Q8;
     size_t b = dims->bands;
     s->cls = mem;
     s->gain = mem + b;
     s->tmp = mem + 2u * b;
     s->pend = mem + 3u * b;
-    plan_t pl;
+    bw_plan_t pl;
     stream_plan(s, &pl);
-    plan_tables(&pl);
-    size_t hl = header_write(NULL, &pl, &s->params, s->params.mode);
+    bw_plan_tables(&pl);
+    size_t hl = bw_header_write(NULL, &pl, &s->params, s->params.mode);
     if (cap < hl + BW_TRAILER_SIZE)
         return BW_ERR_OUTPUT_FULL;
     s->out = out;
@@ -1898,12 +1596,12 @@ static int32_t *pend_slot(bw_stream_t *s, unsigned level, unsigned slot)
 
 /* Quantises (as quantise() does) and codes one completed vector whose
  * parent level is j (-1: scaling). */
-static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
+static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
 {
     uint32_t b = s->dims.bands;
-    uint32_t gio = has_out(&s->dims) ? bw_biohaar_inv_gain_q16(s->dims.level_out, j) : 65536u;
-    unsigned cd = level_cls(pl, j);
-    if (s->step_q8 > STEP_ONE_Q8) {
+    uint32_t gio = bw_has_out(&s->dims) ? bw_biohaar_inv_gain_q16(s->dims.level_out, j) : 65536u;
+    unsigned cd = bw_level_cls(pl, j);
+    if (s->step_q8 > BW_STEP_ONE_Q8) {
         uint64_t thr = vec_thr(pl);
         spec_bands_t sb;
         uint64_t steps[BW_SPEC_MAX_LEVELS + 1u];
@@ -1916,7 +1614,7 @@ static void stream_emit(bw_stream_t *s, const plan_t *pl, int32_t *v, int j)
     }
     /* stream order: no directional parent, no previous vector */
     for (uint32_t k = 0; k < b; k++)
-        strip_put(&s->se, v[k], SPEC_CLS(s->cls[k]) * 3u + cd, parent_of(NULL, v, s->cls[k], k),
+        strip_put(&s->se, v[k], BW_SPEC_CLS(s->cls[k]) * 3u + cd, bw_parent_of(NULL, v, s->cls[k], k),
                   NULL);
 }
 
@@ -1931,9 +1629,9 @@ bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
         return s->err = BW_ERR_ARG; /* more spectra than the shape holds */
     uint32_t b = d->bands;
     unsigned L = d->level_out;
-    plan_t pl;
+    bw_plan_t pl;
     stream_plan(s, &pl);
-    unsigned lv = has_out(d) ? L : 0u;
+    unsigned lv = bw_has_out(d) ? L : 0u;
     int32_t *v = pend_slot(s, lv, s->pend_n[lv]);
     bw_status_t st = load_samples(v, spectrum, b, s->prequant);
     if (st != BW_OK)
@@ -1941,7 +1639,7 @@ bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
     if (s->spec_levels)
         bw_spec_fwd(v, b, s->basis, s->spec_levels, s->tmp);
     s->pushed++;
-    if (!has_out(d)) {
+    if (!bw_has_out(d)) {
         stream_emit(s, &pl, v, -1);
         return BW_OK;
     }
@@ -1984,10 +1682,10 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
     if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
         return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
     size_t body = strip_enc_finish(&s->se);
-    plan_t pl;
+    bw_plan_t pl;
     stream_plan(s, &pl);
     /* the header's room was kept at init */
-    size_t hl = header_write(s->out, &pl, &s->params, s->params.mode);
+    size_t hl = bw_header_write(s->out, &pl, &s->params, s->params.mode);
     if (strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
         return s->err = BW_ERR_OUTPUT_FULL;
     bw_put_u32(s->out + hl + body, bw_crc32(s->out, hl + body));

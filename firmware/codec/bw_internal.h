@@ -1,0 +1,126 @@
+/*
+ * brdfwave codec core: what the core's modules share and callers do not see.
+ *
+ * The plan of one encode or decode (bw_plan_t, made by bw_plan_make from the
+ * dims, the basis, the mode and the flags), the helpers every module reads it
+ * with, and each module's functions for the others. The modules and their
+ * jobs are listed in bw_codec.h.
+ */
+#ifndef BW_INTERNAL_H
+#define BW_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_biohaar.h"
+#include "bw_codec.h"
+#include "bw_config.h"
+#include "bw_fixed.h"
+#include "bw_spectral.h"
+
+#define BW_VERSION 6u
+#define BW_MAGIC0 'B'
+#define BW_MAGIC1 'W'
+#define BW_STEP_ONE_Q8 256u   /* a step of 1.0 (Q24.8): coefficients are kept exactly */
+#define BW_VEC_THRESH_Q8 256u /* default vector threshold: one step (Q8)             */
+
+/* ---- the plan (bw_plan.c) ------------------------------------------------ */
+
+typedef struct {
+    bw_dims_t dims;
+    size_t n;
+    unsigned basis;
+    unsigned spec_levels;
+    uint32_t prequant;      /* max-error prequantiser 2E + 1, else 1            */
+    uint32_t step_q8;       /* base quantiser step, unsigned Q24.8               */
+    uint32_t vec_thresh_q8; /* vector threshold in steps, Q8                     */
+    uint32_t round_q8;      /* encoder: rounding offset of the quantiser, Q8     */
+    uint32_t round_cut;     /* encoder: coefficient k of the v-th vector quantised
+                             * takes round_q8 + 1 where k V + v < round_cut (V vectors) */
+    bool mirror;            /* BW_FLAG_MIRROR */
+    bool recip;             /* BW_FLAG_RECIPROCAL */
+    bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
+    int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
+    int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
+    int32_t *tmp;           /* [bands] lifting scratch                           */
+} bw_plan_t;
+
+/* The prequantiser of a mode: 2E + 1 for MAX_ERROR, else 1. */
+static inline uint32_t bw_prequant(unsigned mode, uint32_t max_error)
+{
+    return mode == BW_MODE_MAX_ERROR ? 2u * max_error + 1u : 1u;
+}
+
+/* The spectral decomposition depth of a basis: none for prediction. */
+static inline unsigned bw_plan_spec_levels(unsigned basis, uint32_t bands)
+{
+    return basis == BW_BASIS_PRED ? 0u : bw_spec_levels(bands);
+}
+
+static inline uint32_t bw_tri_count(unsigned level) { return 4u << (2u * level); }
+static inline bool bw_has_out(const bw_dims_t *d) { return d->shape != BW_SHAPE_SPECTRA; }
+static inline bool bw_has_in(const bw_dims_t *d) { return d->shape == BW_SHAPE_BRDF_FULL; }
+
+/* Coarse-to-fine incoming index -> in-place position. */
+static inline uint32_t bw_in_pos(const bw_plan_t *pl, uint32_t i)
+{
+    return bw_has_in(&pl->dims) ? bw_biohaar_pos(i, pl->dims.level_in) : i;
+}
+/* Its inverse gain, Q16. */
+static inline uint32_t bw_in_gain_q16(const bw_plan_t *pl, uint32_t i)
+{
+    return bw_has_in(&pl->dims)
+               ? bw_biohaar_inv_gain_q16(pl->dims.level_in, bw_biohaar_coef_level(i))
+               : 65536u;
+}
+/* Context class of an outgoing coefficient from its parent level j (-1 for
+ * a scaling coefficient): 0 finest details, 1 next, 2 coarser. */
+static inline unsigned bw_level_cls(const bw_plan_t *pl, int j)
+{
+    if (!bw_has_out(&pl->dims))
+        return 2u;
+    int fine = (int)pl->dims.level_out - 1;
+    return j == fine ? 0u : (j == fine - 1 ? 1u : 2u);
+}
+
+/* spec_cls[k] packs the context class of spectral coefficient k (bits 0-1)
+ * and 1 + the index of its spectral parent (above; 0: none). */
+#define BW_SPEC_CLS(v) ((unsigned)(v) & 3u)
+#define BW_SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
+
+/* The parent of band k of vector v (sc = spec_cls[k]): band k of the parent
+ * vector pv (coarse-to-fine order), else the spectral parent in v; NULL for
+ * none. */
+static inline const int32_t *bw_parent_of(const int32_t *pv, const int32_t *v, int32_t sc,
+                                          uint32_t k)
+{
+    int32_t sp = BW_SPEC_PAR(sc);
+    return pv ? pv + k : sp >= 0 ? v + sp : NULL;
+}
+
+/* ---- parameters (bw_params.c) -------------------------------------------- */
+
+/* Who asks bw_params_check: the rules are the format's; the encoders offer
+ * less (bw_encode: BW_BASIS_AUTO, and prediction only with
+ * BW_CFG_ENCODE_PRED; the streaming encoder: no full BRDF, no BYTES, no
+ * prediction, no symmetry flags). */
+enum { BW_FOR_ENCODE, BW_FOR_STREAM, BW_FOR_PAYLOAD };
+
+/* Whether shape, mode, basis, flags and the mode's parameter (MAX_ERROR: E;
+ * STEP: the step, Q24.8) go together: BW_OK, else the status the encoders
+ * return (the header parser turns any into BW_ERR_HEADER). */
+bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, unsigned flags,
+                            uint32_t param, unsigned use);
+
+/* Where prediction applies: sets of spectra, LOSSLESS or MAX_ERROR, not in
+ * stream order. */
+bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags);
+
+/* ---- header (bw_header.c) ------------------------------------------------- */
+
+/* Writes the header of the plan at out (NULL: only counts); returns its
+ * length (at most BW_HEADER_MAX). */
+size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode);
+
+#endif
