@@ -38,54 +38,6 @@
 
 /* ---- the transform plan -------------------------------------------------- */
 
-static void plan_init(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, int32_t *work)
-{
-    pl->dims = *dims;
-    pl->n = bw_dims_samples(dims);
-    pl->basis = basis;
-    pl->spec_levels = BW_CFG_ENCODE_PRED && basis == BW_BASIS_PRED ? 0u : bw_spec_levels(dims->bands);
-    pl->spec_cls = work + pl->n;
-    pl->spec_gain = pl->spec_cls + dims->bands;
-    /* the lifting scratch shares the class table's room: it is only used
-     * while transforming, the tables only while (de)quantising and coding */
-    pl->tmp = pl->spec_cls;
-    pl->prequant = 1u;
-    pl->step_q8 = BW_STEP_ONE_Q8;
-    pl->vec_thresh_q8 = BW_VEC_THRESH_Q8;
-    pl->round_q8 = 0;
-    pl->round_cut = 0;
-    pl->mirror = false;
-    pl->recip = false;
-    pl->stream = false;
-}
-
-/* The spectral parent of a detail coefficient (Mallat order) is the one at
- * the same place in the next coarser detail band; the coarsest details and
- * the approximation have none. */
-static void bw_plan_tables(bw_plan_t *pl)
-{
-    unsigned L = pl->spec_levels;
-    /* band sb = 1..L (1 finest) is [len_sb, len_sb-1), len_0 = bands and
-     * len_sb = (len_sb-1 + 1) / 2; then the approximation [0, len_L) */
-    for (uint32_t end = pl->dims.bands, sb = 1;; sb++) {
-        bool approx = sb > L;
-        uint32_t lo = approx ? 0u : (end + 1u) / 2u, plo = (lo + 1u) / 2u;
-        /* 0 finest details, 1 next, 2 coarser details, 3 approximation */
-        uint32_t cls = approx ? 3u : sb >= 3u ? 2u : sb - 1u;
-        int32_t gain = (int32_t)bw_spec_inv_gain_q16(pl->basis, L, approx ? 0u : sb);
-        for (uint32_t k = lo; k < end; k++) {
-            uint32_t par = 0, i = (k - lo) / 2u;
-            if (sb < L)
-                par = 1u + plo + (i < lo - plo ? i : lo - plo - 1u);
-            pl->spec_cls[k] = (int32_t)(cls | par << 2);
-            pl->spec_gain[k] = gain;
-        }
-        if (approx)
-            return;
-        end = lo;
-    }
-}
-
 /* done: the first spectral levels already applied (load_haar1, load_haar2) */
 static void transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done)
 {
@@ -1213,20 +1165,15 @@ static uint32_t mode_param(const bw_params_t *pa)
                                          : BW_STEP_ONE_Q8;
 }
 
-/* The plan of one encode: basis, prequantiser and step from the mode. */
+/* The plan of one encode with one basis; the work array holds the
+ * coefficients, then the spectral tables (which share their room with the
+ * lifting scratch). */
 static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const bw_params_t *pa,
                      int32_t *work)
 {
-    plan_init(pl, dims, basis, work);
-    if (pa->mode == BW_MODE_MAX_ERROR)
-        pl->prequant = 2u * pa->max_error + 1u;
-    if (pa->mode == BW_MODE_STEP)
-        pl->step_q8 = pa->step_q8;
-    if (pa->vec_thresh_q8)
-        pl->vec_thresh_q8 = pa->vec_thresh_q8;
-    pl->stream = (pa->flags & BW_FLAG_STREAM_ORDER) != 0u;
-    pl->mirror = (pa->flags & BW_FLAG_MIRROR) != 0u;
-    pl->recip = (pa->flags & BW_FLAG_RECIPROCAL) != 0u;
+    int32_t *tables = work + bw_dims_samples(dims);
+    bw_plan_make(pl, dims, basis, pa->mode, mode_param(pa), pa->flags, pa->vec_thresh_q8, tables,
+                 tables);
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
@@ -1468,12 +1415,9 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
     if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    plan_init(&pl, d, h->basis, work);
-    pl.prequant = h->prequant;
-    pl.step_q8 = h->step_q8;
-    pl.stream = (h->flags & BW_FLAG_STREAM_ORDER) != 0u;
-    pl.mirror = (h->flags & BW_FLAG_MIRROR) != 0u;
-    pl.recip = (h->flags & BW_FLAG_RECIPROCAL) != 0u;
+    bw_plan_make(&pl, d, h->basis, h->mode,
+                 h->mode == BW_MODE_MAX_ERROR ? h->max_error : h->step_q8, h->flags, 0u,
+                 work + n, work + n);
     bw_plan_tables(&pl);
 
     bw_status_t st;
@@ -1537,18 +1481,8 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
 
 static void stream_plan(const bw_stream_t *s, bw_plan_t *pl)
 {
-    memset(pl, 0, sizeof *pl);
-    pl->dims = s->dims;
-    pl->n = bw_dims_samples(&s->dims);
-    pl->basis = s->basis;
-    pl->spec_levels = s->spec_levels;
-    pl->prequant = s->prequant;
-    pl->step_q8 = s->step_q8;
-    pl->vec_thresh_q8 = s->params.vec_thresh_q8 ? s->params.vec_thresh_q8 : BW_VEC_THRESH_Q8;
-    pl->stream = true;
-    pl->spec_cls = s->cls;
-    pl->spec_gain = s->gain;
-    pl->tmp = s->tmp;
+    bw_plan_make(pl, &s->dims, s->basis, s->params.mode, mode_param(&s->params),
+                 s->params.flags, s->params.vec_thresh_q8, s->cls, s->tmp);
 }
 
 bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_params_t *pa,

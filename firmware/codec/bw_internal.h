@@ -58,6 +58,18 @@ static inline unsigned bw_plan_spec_levels(unsigned basis, uint32_t bands)
     return basis == BW_BASIS_PRED ? 0u : bw_spec_levels(bands);
 }
 
+/* The one plan constructor (encoder, decoder, streaming encoder). mode and
+ * param: MAX_ERROR and E, STEP or BYTES and the step (Q24.8), LOSSLESS and
+ * anything; vec_thresh_q8 0 for the default; tables holds 2 * bands int32
+ * for the spectral tables (spec_cls, spec_gain), tmp bands int32 of lifting
+ * scratch (it may be tables: the scratch is used only while transforming,
+ * the tables only while quantising and coding). */
+void bw_plan_make(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, unsigned mode,
+                  uint32_t param, unsigned flags, uint32_t vec_thresh_q8, int32_t *tables,
+                  int32_t *tmp);
+/* Fills the spectral tables (the class and the gain of each band). */
+void bw_plan_tables(const bw_plan_t *pl);
+
 static inline uint32_t bw_tri_count(unsigned level) { return 4u << (2u * level); }
 static inline bool bw_has_out(const bw_dims_t *d) { return d->shape != BW_SHAPE_SPECTRA; }
 static inline bool bw_has_in(const bw_dims_t *d) { return d->shape == BW_SHAPE_BRDF_FULL; }
