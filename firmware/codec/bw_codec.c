@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "bw_internal.h"
+#include "bw_strip_coder.h"
 
 #include "bw_biohaar.h"
 #include "bw_coder.h"
@@ -262,47 +263,6 @@ BW_NOINLINE_SMALL static uint64_t div_q8_off(uint32_t a, uint64_t st, uint64_t o
 /* floor(256 a / st) */
 static inline uint64_t div_q8(uint32_t a, uint64_t st) { return div_q8_off(a, st, 0u); }
 
-/* The outgoing coefficients in coarse-to-fine order (the order of
- * bw_biohaar_pos) without a division per step: the next one is child m of
- * parent p at level j (j = -1: the scaling coefficient of base p). */
-typedef struct {
-    int j;
-    uint32_t p, m;
-} out_walk_t;
-
-static void walk_init(out_walk_t *w)
-{
-    w->j = -1;
-    w->p = 0;
-    w->m = 1;
-}
-
-/* The in-place position of the current coefficient of a level-L hemisphere
- * and its parent level (-1: scaling); steps to the next. */
-static uint32_t walk_next(out_walk_t *w, unsigned L, int *level)
-{
-    uint32_t pos;
-    *level = w->j;
-    if (w->j < 0) {
-        pos = w->p << (2u * L);
-        if (++w->p == 4u) {
-            w->j = 0;
-            w->p = 0;
-            w->m = 1;
-        }
-        return pos;
-    }
-    pos = (4u * w->p + w->m) << (2u * (L - (unsigned)w->j - 1u));
-    if (++w->m == 4u) {
-        w->m = 1;
-        if (++w->p == 4u << (2u * (unsigned)w->j)) {
-            w->p = 0;
-            w->j++;
-        }
-    }
-    return pos;
-}
-
 /* The spectral subbands of a vector, Mallat order: subband 0 the
  * approximation, then the details from coarse to fine; band i holds the
  * elements [lo[i], lo[i + 1]). */
@@ -442,13 +402,13 @@ static void quantise(const bw_plan_t *pl, int32_t *x, bool forward)
             /* pass 0: the incoming space, drop a whole [outgoing][band] block
              * whose energy stays below the threshold; pass 1: every vector */
             uint64_t e = 0;
-            out_walk_t w;
-            walk_init(&w);
+            bw_walk_t w;
+            bw_walk_init(&w);
             for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
                 uint32_t pos = 0, g_out = 65536u;
                 if (bw_has_out(d)) {
                     int j;
-                    pos = walk_next(&w, L, &j);
+                    pos = bw_walk_next(&w, L, &j);
                     g_out = bw_biohaar_inv_gain_q16(L, j);
                 }
                 uint32_t gio = (uint32_t)(((uint64_t)gi * g_out) >> 16);
@@ -475,427 +435,6 @@ static void quantise(const bw_plan_t *pl, int32_t *x, bool forward)
             }
         }
     }
-}
-
-/* ---- strip coding -------------------------------------------------------- */
-
-#define NB_CTX BW_CODER_NB_CTX
-
-typedef bw_models_t models_t;
-
-static void models_init(models_t *m)
-{
-    bw_prob_t *p = (bw_prob_t *)m;
-    for (size_t i = 0; i < sizeof *m / sizeof *p; i++)
-        p[i] = BW_PROB_INIT;
-}
-
-/* Walks the coefficients in coding order: incoming (coarse to fine), then
- * outgoing, then spectral (Mallat order as stored). The outgoing order is
- * coarse to fine, or with `stream` the order in which a streaming encoder
- * completes them (post-order, see stream_leaf). */
-#define STREAM_QUEUE (3u * BW_MAX_LEVEL + 1u)
-
-typedef struct {
-    uint32_t pos[STREAM_QUEUE];
-    int8_t level[STREAM_QUEUE];
-    unsigned n;
-} stream_queue_t;
-
-/* The outgoing vectors completed by leaf t of a level-L hemisphere, in order:
- * the details of every ancestor whose last leaf t is (lowest first), then
- * the scaling coefficient of the base triangle when t ends it. */
-static void stream_leaf(unsigned L, uint32_t t, stream_queue_t *q)
-{
-    q->n = 0;
-    for (unsigned k = 1; k <= L && ((t + 1u) & ((1u << (2u * k)) - 1u)) == 0u; k++) {
-        uint32_t p = t >> (2u * k);
-        for (uint32_t m = 1; m <= 3u; m++) {
-            q->pos[q->n] = (4u * p + m) << (2u * (k - 1u));
-            q->level[q->n++] = (int8_t)(L - k);
-        }
-    }
-    if (((t + 1u) & ((1u << (2u * L)) - 1u)) == 0u) {
-        q->pos[q->n] = (t >> (2u * L)) << (2u * L);
-        q->level[q->n++] = -1;
-    }
-}
-
-typedef struct {
-    const bw_plan_t *pl;
-    int32_t *x;
-    uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
-    int32_t *vec;
-    const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
-    const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
-    unsigned cls_dir;
-    uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
-    unsigned qi;
-    stream_queue_t q;
-    out_walk_t w; /* coarse-to-fine order */
-} iter_t;
-
-
-static void iter_vec(iter_t *it)
-{
-    const bw_plan_t *pl = it->pl;
-    uint32_t pos_out = 0;
-    int level = -1;
-    if (bw_has_out(&pl->dims)) {
-        if (pl->stream) {
-            while (it->qi == it->q.n) {
-                stream_leaf(pl->dims.level_out, it->leaf++, &it->q);
-                it->qi = 0;
-            }
-            pos_out = it->q.pos[it->qi];
-            level = it->q.level[it->qi++];
-        } else {
-            pos_out = walk_next(&it->w, pl->dims.level_out, &level);
-        }
-    }
-    size_t b = pl->dims.bands, base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
-    it->prev = pl->stream || b == 1u ? NULL : it->vec;
-    it->vec = it->x + (base + pos_out) * b;
-    /* the parent: the vector at the position with this level's digit cleared
-     * (coded before, at a coarser level) */
-    it->par = level < 0 || pl->stream
-                  ? NULL
-                  : it->x + (base + (pos_out & ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) * b;
-    it->cls_dir = bw_level_cls(pl, level);
-}
-
-static void iter_init(iter_t *it, const bw_plan_t *pl, int32_t *x)
-{
-    it->pl = pl;
-    it->x = x;
-    it->i = it->o = it->k = 0;
-    it->leaf = 0;
-    it->qi = it->q.n = 0;
-    walk_init(&it->w);
-    it->vec = NULL;
-    iter_vec(it);
-}
-
-/* Moves to the next vector in coding order. */
-static void iter_next_vec(iter_t *it)
-{
-    it->k = 0;
-    if (++it->o == it->pl->dims.n_out) {
-        it->o = 0;
-        it->i++;
-        it->leaf = 0;
-        it->qi = it->q.n = 0;
-        walk_init(&it->w);
-    }
-    if (it->i < it->pl->dims.n_in)
-        iter_vec(it);
-}
-
-/* The next coefficient, its class and where its contexts come from: the
- * parent (directional, else spectral) and the same band of the previous
- * vector (NULL: none). */
-static inline int32_t *iter_next(iter_t *it, unsigned *cls, const int32_t **par,
-                                 const int32_t **prv)
-{
-    uint32_t k = it->k;
-    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
-    *par = bw_parent_of(it->par, it->vec, sc, k);
-    *prv = it->prev ? it->prev + k : NULL;
-    *cls = BW_SPEC_CLS(sc) * 3u + it->cls_dir;
-    if (++it->k == it->pl->dims.bands)
-        iter_next_vec(it);
-    return p;
-}
-
-/* The strip encoder, fed one coefficient at a time: a strip is coded when
- * its 32nd element arrives (or at the end, shorter). */
-typedef bw_strip_enc_t strip_enc_t;
-
-static void strip_enc_init(strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
-{
-    se->rice = rice;
-    if (rice) {
-        bw_rice_enc_init(&se->re, out, cap);
-    } else {
-        bw_rc_enc_init(&se->rc, out, cap);
-        models_init(&se->m);
-    }
-    se->cnt = 0;
-    memset(se->e_above, 0, sizeof se->e_above);
-    se->prev_mask = 0;
-    se->e_left = 0;
-}
-
-/* Contexts of a coefficient from the bit lengths of its neighbours
- * (NO_CTX: no such neighbour): its parent pe, the previous coefficient in
- * the strip and the one above it (the same band of the previous vector
- * when there is one, else the same place in the previous strip). */
-#define NO_CTX 0xFFu
-
-static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
-/* sign context of a value: 0 none or zero, 1 positive, 2 negative */
-static inline unsigned sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
-/* the sign model of a value is left + this, left the sign context of the
- * previous value of the strip (0 for the first) */
-static inline unsigned sign_ctx_up(const int32_t *par, const int32_t *prv)
-{
-    return 3u * (sign_ctx(par) + 3u * sign_ctx(prv));
-}
-
-/* significance: the bit above, and whether the parent is zero, small or not */
-static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
-{
-    return above_bit + (pe == 0u || pe == NO_CTX ? 0u : pe <= 2u ? 2u : 4u);
-}
-
-static inline unsigned mag_ctx(unsigned left, unsigned above, unsigned pe)
-{
-    unsigned c = pe == NO_CTX ? (left + above + 1u) >> 1 : (left + above + 2u * pe + 2u) >> 2;
-    return c < NB_CTX ? c : NB_CTX - 1u;
-}
-
-static void strip_code(strip_enc_t *se)
-{
-    if (se->rice) {
-        bw_rice_enc_strip(&se->re, se->v, se->cnt);
-        se->cnt = 0;
-        return;
-    }
-    bw_rc_enc_t *rc = &se->rc;
-    models_t *m = &se->m;
-    unsigned cnt = se->cnt;
-    const int32_t *v = se->v;
-    const uint8_t *cls = se->cls;
-    uint32_t mask = 0;
-    se->cnt = 0;
-    for (unsigned b = 0; b < cnt; b++)
-        if (v[b])
-            mask |= 1u << b;
-    bw_rc_enc_bit(rc, &m->present[cls[0]][se->prev_mask != 0], mask != 0);
-    if (!mask) {
-        se->prev_mask = 0;
-        memset(se->e_above, 0, sizeof se->e_above);
-        se->e_left = 0;
-        return;
-    }
-    unsigned prev_bit = 0;
-    for (unsigned b = 0; b < cnt; b++) {
-        unsigned bit = (mask >> b) & 1u;
-        unsigned pe = se->pe[b];
-        bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((se->prev_mask >> b) & 1u, pe)], bit);
-        prev_bit = bit;
-        if (!bit) {
-            se->e_above[b] = 0;
-            se->e_left = 0;
-            continue;
-        }
-        uint32_t a = bw_abs32(v[b]);
-        unsigned e = bw_bitlen(a); /* 1..32 */
-        unsigned above = se->pv[b] != NO_CTX ? se->pv[b] : se->e_above[b];
-        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(se->e_left, above, pe)];
-        unsigned node = 1, sym = e - 1u;
-        for (int sh = 4; sh >= 0; sh--) {
-            unsigned bt = (sym >> sh) & 1u;
-            bw_rc_enc_bit(rc, &tree[node], bt);
-            node = node * 2u + bt;
-        }
-        if (e >= 2u) {
-            bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
-            if (e >= 3u)
-                bw_rc_enc_direct(rc, a, e - 2u);
-        }
-        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], v[b] < 0);
-        se->e_above[b] = (uint8_t)e;
-        se->e_left = e;
-    }
-    se->prev_mask = mask;
-}
-
-/* par, prv: the parent and the same band in the previous vector (NULL:
- * none); their bit lengths and signs are the contexts */
-static inline void strip_put(strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
-                             const int32_t *prv)
-{
-    se->v[se->cnt] = v;
-    se->cls[se->cnt] = (uint8_t)cls;
-    se->pe[se->cnt] = (uint8_t)ctx_len(par);
-    se->ps[se->cnt] = (uint8_t)sign_ctx_up(par, prv);
-    se->pv[se->cnt] = (uint8_t)ctx_len(prv);
-    if (++se->cnt == BW_STRIP)
-        strip_code(se);
-}
-
-/* Codes what is left; returns the body size. */
-static size_t strip_enc_finish(strip_enc_t *se)
-{
-    if (se->cnt)
-        strip_code(se);
-    return se->rice ? bw_rice_enc_finish(&se->re) : bw_rc_enc_finish(&se->rc);
-}
-
-static bool strip_enc_overflow(const strip_enc_t *se)
-{
-    return se->rice ? se->re.w.overflow : se->rc.overflow;
-}
-
-/* Rice: the values in coding order, whole strips straight from a vector. */
-static void rice_vector(strip_enc_t *se, const int32_t *v, uint32_t b)
-{
-    uint32_t k = 0;
-    if (se->cnt == 0u)
-        for (; k + BW_STRIP <= b; k += BW_STRIP)
-            bw_rice_enc_strip(&se->re, v + k, BW_STRIP);
-    for (; k < b; k++) {
-        se->v[se->cnt] = v[k];
-        if (++se->cnt == BW_STRIP)
-            strip_code(se);
-    }
-}
-
-static inline void rice_push(strip_enc_t *se, const int32_t *v, uint32_t b)
-{
-    if (b == 1u) { /* one value per direction */
-        se->v[se->cnt] = *v;
-        if (++se->cnt == BW_STRIP)
-            strip_code(se);
-    } else {
-        rice_vector(se, v, b);
-    }
-}
-
-static void code_body(const bw_plan_t *pl, int32_t *x, strip_enc_t *se)
-{
-    const bw_dims_t *d = &pl->dims;
-    uint32_t b = d->bands;
-    if (BW_CFG_FAST_RICE && se->rice && !pl->stream) {
-        /* the coarse-to-fine order of walk_next as loops (Rice strips need
-         * no context class): the 4 scaling coefficients, then per level j
-         * the children 1..3 of every parent */
-        unsigned L = d->level_out;
-        for (uint32_t i = 0; i < d->n_in; i++) {
-            const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
-            if (!bw_has_out(d)) {
-                for (uint32_t o = 0; o < d->n_out; o++)
-                    rice_push(se, blk, b);
-                continue;
-            }
-            for (uint32_t p = 0; p < 4u; p++)
-                rice_push(se, blk + ((size_t)p << (2u * L)) * b, b);
-            for (unsigned j = 0; j < L; j++) {
-                unsigned sh = 2u * (L - j - 1u);
-                size_t step = ((size_t)1 << sh) * b;
-                const int32_t *c = blk;
-                for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
-                    rice_push(se, c + step, b);
-                    rice_push(se, c + 2u * step, b);
-                    rice_push(se, c + 3u * step, b);
-                }
-            }
-        }
-        return;
-    }
-    iter_t it;
-    iter_init(&it, pl, x);
-    size_t vectors = (size_t)d->n_in * d->n_out;
-    for (size_t n = 0; n < vectors; n++) {
-        const int32_t *v = it.vec;
-        if (se->rice) {
-            rice_vector(se, v, b);
-        } else {
-            unsigned cd = it.cls_dir;
-            for (uint32_t k = 0; k < b; k++) {
-                int32_t sc = pl->spec_cls[k];
-                strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
-                          it.prev ? it.prev + k : NULL);
-            }
-        }
-        iter_next_vec(&it);
-    }
-}
-
-static bw_status_t decode_body_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *body,
-                                   size_t len)
-{
-    iter_t it;
-    iter_init(&it, pl, x);
-    bw_rice_dec_t rd;
-    bw_rice_dec_init(&rd, body, len);
-    int32_t v[BW_STRIP];
-    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
-        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
-        if (!bw_rice_dec_strip(&rd, v, cnt))
-            return BW_ERR_CORRUPT;
-        for (unsigned b = 0; b < cnt; b++) {
-            unsigned cls;
-            const int32_t *par, *prv;
-            *iter_next(&it, &cls, &par, &prv) = v[b];
-        }
-    }
-    return BW_OK;
-}
-
-static bw_status_t decode_body(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, models_t *m)
-{
-    iter_t it;
-    iter_init(&it, pl, x);
-    uint8_t e_above[BW_STRIP] = {0};
-    uint32_t prev_mask = 0;
-    unsigned e_left = 0;
-    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
-        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
-        int32_t *dst[BW_STRIP];
-        const int32_t *par[BW_STRIP], *prv[BW_STRIP];
-        unsigned cls[BW_STRIP];
-        cls[0] = 0;
-        for (unsigned b = 0; b < cnt; b++)
-            dst[b] = iter_next(&it, &cls[b], &par[b], &prv[b]);
-        if (!bw_rc_dec_bit(rc, &m->present[cls[0]][prev_mask != 0])) {
-            for (unsigned b = 0; b < cnt; b++)
-                *dst[b] = 0;
-            prev_mask = 0;
-            memset(e_above, 0, sizeof e_above);
-            e_left = 0;
-            continue;
-        }
-        uint32_t mask = 0;
-        unsigned prev_bit = 0;
-        for (unsigned b = 0; b < cnt; b++) {
-            unsigned pe = ctx_len(par[b]);
-            unsigned bit =
-                bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((prev_mask >> b) & 1u, pe)]);
-            mask |= (uint32_t)bit << b;
-            prev_bit = bit;
-            if (!bit) {
-                *dst[b] = 0;
-                e_above[b] = 0;
-                e_left = 0;
-                continue;
-            }
-            unsigned above = prv[b] ? ctx_len(prv[b]) : e_above[b];
-            bw_prob_t *tree = m->mag[cls[b]][mag_ctx(e_left, above, pe)];
-            unsigned node = 1;
-            for (int s = 0; s < 5; s++)
-                node = node * 2u + bw_rc_dec_bit(rc, &tree[node]);
-            unsigned e = node - 32u + 1u;
-            if (e > 31u)
-                return BW_ERR_CORRUPT;
-            uint32_t a = 1u;
-            if (e >= 2u) {
-                a = (a << 1) | bw_rc_dec_bit(rc, &m->mant[cls[b]][e]);
-                if (e >= 3u)
-                    a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
-            }
-            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + sign_ctx_up(par[b], prv[b]);
-            *dst[b] = bw_rc_dec_bit(rc, &m->sign[sc]) ? -(int32_t)a : (int32_t)a;
-            e_above[b] = (uint8_t)e;
-            e_left = e;
-        }
-        if (!mask)
-            return BW_ERR_CORRUPT; /* a present strip holds at least one value */
-        prev_mask = mask;
-    }
-    /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
-    return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
 }
 
 /* ---- encoder ------------------------------------------------------------- */
@@ -1100,7 +639,7 @@ static bw_status_t encode_pass(bw_plan_t *pl, const bw_params_t *pa, uint32_t mo
     if (pl->step_q8 > BW_STEP_ONE_Q8)
         quantise(pl, work, true);
 
-    strip_enc_t se;
+    bw_strip_enc_t se;
     bool counting = out == NULL;
     size_t body_cap = 0, hl = bw_header_write(NULL, pl, pa, mode);
     if (!counting) {
@@ -1108,13 +647,13 @@ static bw_status_t encode_pass(bw_plan_t *pl, const bw_params_t *pa, uint32_t mo
             return BW_ERR_OUTPUT_FULL;
         body_cap = cap - hl - BW_TRAILER_SIZE;
     }
-    strip_enc_init(&se, counting ? NULL : out + hl, body_cap, (pa->flags & BW_FLAG_RICE) != 0u);
-    code_body(pl, work, &se);
-    size_t body = strip_enc_finish(&se);
+    bw_strip_enc_init(&se, counting ? NULL : out + hl, body_cap, (pa->flags & BW_FLAG_RICE) != 0u);
+    bw_code_body(pl, work, &se);
+    size_t body = bw_strip_enc_finish(&se);
     *len = hl + body + BW_TRAILER_SIZE;
     if (counting)
         return BW_OK;
-    if (strip_enc_overflow(&se) || *len > UINT32_MAX)
+    if (bw_strip_enc_overflow(&se) || *len > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
     bw_header_write(out, pl, pa, mode);
     bw_put_u32(out + hl + body, bw_crc32(out, hl + body));
@@ -1420,16 +959,9 @@ static bw_status_t decode_checked(const uint8_t *p, const bw_header_t *h, int32_
                  work + n, work + n);
     bw_plan_tables(&pl);
 
-    bw_status_t st;
-    if (h->flags & BW_FLAG_RICE) {
-        st = decode_body_rice(&pl, work, p + h->header_len, h->body_len);
-    } else {
-        models_t m;
-        models_init(&m);
-        bw_rc_dec_t rc;
-        bw_rc_dec_init(&rc, p + h->header_len, h->body_len);
-        st = decode_body(&pl, work, &rc, &m);
-    }
+    bw_models_t m;
+    bw_status_t st = bw_decode_body(&pl, work, p + h->header_len, h->body_len,
+                                    (h->flags & BW_FLAG_RICE) != 0u, &m);
     if (st != BW_OK)
         return st;
 #if BW_CFG_ENCODE_PRED
@@ -1518,7 +1050,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
         return BW_ERR_OUTPUT_FULL;
     s->out = out;
     s->cap = cap;
-    strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE, (pa->flags & BW_FLAG_RICE) != 0u);
+    bw_strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE, (pa->flags & BW_FLAG_RICE) != 0u);
     s->err = BW_OK;
     return BW_OK;
 }
@@ -1548,8 +1080,8 @@ static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
     }
     /* stream order: no directional parent, no previous vector */
     for (uint32_t k = 0; k < b; k++)
-        strip_put(&s->se, v[k], BW_SPEC_CLS(s->cls[k]) * 3u + cd, bw_parent_of(NULL, v, s->cls[k], k),
-                  NULL);
+        bw_strip_put(&s->se, v[k], BW_SPEC_CLS(s->cls[k]) * 3u + cd,
+                     bw_parent_of(NULL, v, s->cls[k], k), NULL);
 }
 
 bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
@@ -1615,12 +1147,12 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
         return s->err;
     if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
         return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
-    size_t body = strip_enc_finish(&s->se);
+    size_t body = bw_strip_enc_finish(&s->se);
     bw_plan_t pl;
     stream_plan(s, &pl);
     /* the header's room was kept at init */
     size_t hl = bw_header_write(s->out, &pl, &s->params, s->params.mode);
-    if (strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
+    if (bw_strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
         return s->err = BW_ERR_OUTPUT_FULL;
     bw_put_u32(s->out + hl + body, bw_crc32(s->out, hl + body));
     *len = hl + body + BW_TRAILER_SIZE;

@@ -1,6 +1,7 @@
 /*
  * Types of the strip coder's state, so that callers can own it (the
- * streaming encoder context embeds one). The functions are in bw_codec.c.
+ * streaming encoder context embeds one). The functions are in
+ * bw_strip_coder.c, declared in bw_strip_coder.h.
  */
 #ifndef BW_CODER_H
 #define BW_CODER_H
@@ -14,6 +15,7 @@
 #define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
 #define BW_CODER_NB_CTX 8u
 
+/* The range coder's adaptive models, 7,302 bytes. */
 typedef struct {
     bw_prob_t present[BW_CODER_CLASSES][2];
     bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* [previous bit][above bit + 2 parent] */

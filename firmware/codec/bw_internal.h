@@ -129,6 +129,69 @@ bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, u
  * stream order. */
 bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags);
 
+/* ---- coding order (bw_order.c) ------------------------------------------- */
+
+/* The outgoing coefficients in coarse-to-fine order (the order of
+ * bw_biohaar_pos) without a division per step: the next one is child m of
+ * parent p at level j (j = -1: the scaling coefficient of base p). */
+typedef struct {
+    int j;
+    uint32_t p, m;
+} bw_walk_t;
+
+void bw_walk_init(bw_walk_t *w);
+/* The in-place position of the current coefficient of a level-L hemisphere
+ * and its parent level (-1: scaling); steps to the next. */
+uint32_t bw_walk_next(bw_walk_t *w, unsigned L, int *level);
+
+/* The outgoing vectors a streaming encoder completes with one leaf: at most
+ * 3 details per level and a scaling vector. */
+#define BW_STREAM_QUEUE (3u * BW_MAX_LEVEL + 1u)
+
+typedef struct {
+    uint32_t pos[BW_STREAM_QUEUE];
+    int8_t level[BW_STREAM_QUEUE];
+    unsigned n;
+} bw_stream_queue_t;
+
+/* Walks the coefficients in coding order: incoming (coarse to fine), then
+ * outgoing, then spectral (Mallat order as stored). The outgoing order is
+ * coarse to fine, or with the plan's `stream` the order in which a
+ * streaming encoder completes them (post-order, docs/FORMAT.md). */
+typedef struct {
+    const bw_plan_t *pl;
+    int32_t *x;
+    uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
+    int32_t *vec;
+    const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
+    const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
+    unsigned cls_dir;
+    uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
+    unsigned qi;
+    bw_stream_queue_t q;
+    bw_walk_t w; /* coarse-to-fine order */
+} bw_iter_t;
+
+void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x);
+/* Moves to the next vector in coding order. */
+void bw_iter_next_vec(bw_iter_t *it);
+
+/* The next coefficient, its class and where its contexts come from: the
+ * parent (directional, else spectral) and the same band of the previous
+ * vector (NULL: none). */
+static inline int32_t *bw_iter_next(bw_iter_t *it, unsigned *cls, const int32_t **par,
+                                    const int32_t **prv)
+{
+    uint32_t k = it->k;
+    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
+    *par = bw_parent_of(it->par, it->vec, sc, k);
+    *prv = it->prev ? it->prev + k : NULL;
+    *cls = BW_SPEC_CLS(sc) * 3u + it->cls_dir;
+    if (++it->k == it->pl->dims.bands)
+        bw_iter_next_vec(it);
+    return p;
+}
+
 /* ---- header (bw_header.c) ------------------------------------------------- */
 
 /* Writes the header of the plan at out (NULL: only counts); returns its
