@@ -16,6 +16,12 @@
 
 /* q16_t: signed Q15.16, used for lifting constants. */
 typedef int32_t q16_t;
+/* uq16_t: unsigned Q16.16, gains (65536 = 1.0). */
+typedef uint32_t uq16_t;
+/* uq24_8_t: unsigned Q24.8, quantiser steps in sample units (256 = 1.0). */
+typedef uint32_t uq24_8_t;
+/* uq56_8_t: unsigned Q56.8, a step times its gains. */
+typedef uint64_t uq56_8_t;
 
 static inline int32_t bw_wadd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (uint32_t)b); }
 static inline int32_t bw_wsub(int32_t a, int32_t b) { return (int32_t)((uint32_t)a - (uint32_t)b); }

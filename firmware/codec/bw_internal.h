@@ -129,6 +129,42 @@ bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, u
  * stream order. */
 bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags);
 
+/* ---- loads (bw_load.c) ----------------------------------------------------
+ * Both check every sample against +-BW_SAMPLE_MAX and return BW_ERR_RANGE,
+ * after loading all, when one lies outside. */
+
+/* n samples into out, each prequantised: floor((x + E) / q) for q = 2E + 1
+ * (1: none). */
+bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t prequant);
+/* The encoder's load of a plan into out; for the Haar basis without a
+ * symmetry step (BW_CFG_FAST_LOADS) the first one or two spectral levels in
+ * the same pass, their number in *done. */
+bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsigned *done);
+
+/* ---- transforms (bw_transform.c), symmetry (bw_symmetry.c), prediction
+ * (bw_predict.c) ------------------------------------------------------------ */
+
+/* done: the first spectral levels already applied (bw_load). */
+void bw_transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done);
+void bw_transform_inv(const bw_plan_t *pl, int32_t *x);
+/* The mirror and reciprocity steps of the plan's flags; forward, BW_ERR_RANGE
+ * if a difference leaves +-BW_SAMPLE_MAX. */
+bw_status_t bw_symmetry(const bw_plan_t *pl, int32_t *x, bool forward);
+/* Prediction in place of the prequantiser and the transforms, in place:
+ * forward, range-checked samples -> coded errors (rows: 2 * bands int32 for
+ * the decoded spectra); back, coded errors -> decoded samples (rows unused). */
+void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
+
+/* ---- quantiser (bw_quant.c) ---------------------------------------------- */
+
+/* Every coefficient of the plan, forward (thresholds, then the dead-zone
+ * quantiser with the plan's rounding offsets) or back. */
+void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);
+/* One outgoing vector of parent level j (-1: scaling) forward, as
+ * bw_quantise does for a spectral set or a reflectance (no rounding
+ * offsets). */
+void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
+
 /* ---- coding order (bw_order.c) ------------------------------------------- */
 
 /* The outgoing coefficients in coarse-to-fine order (the order of
