@@ -235,12 +235,10 @@ bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size
 
 typedef struct {
     bw_dims_t dims;
-    bw_params_t params;
-    uint8_t basis, spec_levels;
-    uint32_t prequant, step_q8;
-    int32_t *cls, *gain, *tmp, *pend; /* in the caller's memory */
+    bw_params_t params; /* with BW_FLAG_STREAM_ORDER */
+    int32_t *mem;       /* the caller's: spectral tables, lifting scratch, pending vectors */
     uint8_t pend_n[BW_MAX_LEVEL + 1u];
-    uint32_t in, leaf; /* the next spectrum's incoming index and leaf */
+    uint32_t leaf; /* the next spectrum's leaf */
     size_t pushed;
     uint8_t *out;
     size_t cap;
