@@ -34,36 +34,45 @@ static inline int64_t sat64(int64_t v, int64_t m) { return v > m ? m : v < -m ? 
 
 typedef struct {
     int32_t w_q16[PRED_TAPS];
-    int64_t d[PRED_TAPS];
+    int64_t d[PRED_TAPS];  /* the differences of the current sample */
+    int32_t ds[PRED_TAPS]; /* the same saturated to +-PRED_SAT */
 } pred_t;
 
+static inline int32_t sat_d(int64_t d) { return (int32_t)sat64(d, PRED_SAT); }
+
 /* The prediction of band k of spectrum cur (bands before k decoded), prev
- * the decoded previous spectrum (NULL for the first); sets pr->d. */
+ * the decoded previous spectrum (NULL for the first); sets pr->d and pr->ds.
+ * d_3 and d_2 are the previous band's d_0 and d_1 (0 before band 1). */
 static int32_t pred_value(pred_t *pr, const int32_t *cur, const int32_t *prev, uint32_t k,
                           uint32_t bands)
 {
+    pr->d[3] = pr->d[0];
+    pr->d[2] = pr->d[1];
+    pr->ds[3] = pr->ds[0];
+    pr->ds[2] = pr->ds[1];
     pr->d[0] = k >= 2u ? (int64_t)cur[k - 1] - cur[k - 2] : 0;
     pr->d[1] = prev && k + 1u < bands ? (int64_t)prev[k + 1] - prev[k] : 0;
-    pr->d[2] = prev && k ? (int64_t)prev[k] - prev[k - 1] : 0;
-    pr->d[3] = k >= 3u ? (int64_t)cur[k - 2] - cur[k - 3] : 0;
+    pr->ds[0] = sat_d(pr->d[0]);
+    pr->ds[1] = sat_d(pr->d[1]);
     int64_t acc = 0, a1 = k ? cur[k - 1] : prev ? prev[0] : 0;
     for (unsigned i = 0; i < PRED_TAPS; i++)
         acc += pr->w_q16[i] * pr->d[i];
     return (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
 }
 
+/* The weights learn from the decoded error err of the current sample. */
 static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
 {
-    int64_t e = sat64(err, PRED_SAT), d[PRED_TAPS], nrm = (int64_t)D * D;
-    for (unsigned i = 0; i < PRED_TAPS; i++) {
-        d[i] = sat64(pr->d[i], PRED_SAT);
-        nrm += d[i] * d[i];
-    }
+    int32_t e = sat_d(err);
+    int64_t nrm = (int64_t)D * D;
+    for (unsigned i = 0; i < PRED_TAPS; i++)
+        nrm += (int64_t)pr->ds[i] * pr->ds[i];
     /* divided by 2^floor(log2(nrm)) instead of nrm: no division */
     uint32_t hi = (uint32_t)((uint64_t)nrm >> 32);
     unsigned sh = hi ? 31u + bw_bitlen(hi) : bw_bitlen((uint32_t)nrm) - 1u;
     for (unsigned i = 0; i < PRED_TAPS; i++)
-        pr->w_q16[i] = (int32_t)sat64(pr->w_q16[i] + bw_asr64(e * d[i] * PRED_MU, sh), PRED_W_MAX);
+        pr->w_q16[i] = (int32_t)sat64(
+            pr->w_q16[i] + bw_asr64((int64_t)e * pr->ds[i] * PRED_MU, sh), PRED_W_MAX);
 }
 
 /* Encoder (forward) on range-checked samples x -> coded errors, in place,
@@ -75,7 +84,7 @@ BW_NOINLINE void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool
     const int32_t *prev = NULL;
     for (size_t s = 0; s < pl->dims.n_in; s++) {
         int32_t *v = x + s * bands, *cur = fwd ? rows + (s & 1u) * bands : v;
-        pred_t pr = {{0}, {0}};
+        pred_t pr = {{0}, {0}, {0}};
         for (uint32_t k = 0; k < bands; k++) {
             int32_t p = pred_value(&pr, cur, prev, k, bands);
             int64_t q = v[k];
