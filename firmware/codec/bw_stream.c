@@ -67,13 +67,8 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
  * and no previous vector. */
 static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
 {
-    uint32_t b = s->dims.bands;
-    unsigned cd = bw_level_cls(pl, j);
     bw_quant_vector(pl, v, j);
-    for (uint32_t k = 0; k < b; k++) {
-        int32_t sc = pl->spec_cls[k];
-        bw_strip_put(&s->se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(NULL, v, sc, k), NULL);
-    }
+    bw_strip_put_vector(&s->se, v, s->dims.bands, pl->spec_cls, bw_level_cls(pl, j), NULL, NULL);
 }
 
 bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)

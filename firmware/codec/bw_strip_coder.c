@@ -12,6 +12,22 @@
 
 #define NB_CTX BW_CODER_NB_CTX
 
+/* Contexts of a coefficient from the bit lengths of its neighbours
+ * (NO_CTX: no such neighbour): its parent pe, the previous coefficient in
+ * the strip and the one above it (the same band of the previous vector
+ * when there is one, else the same place in the previous strip). */
+#define NO_CTX 0xFFu
+
+static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
+/* sign context of a value: 0 none or zero, 1 positive, 2 negative */
+static inline unsigned sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
+/* the sign model of a value is left + this, left the sign context of the
+ * previous value of the strip (0 for the first) */
+static inline unsigned sign_ctx_up(const int32_t *par, const int32_t *prv)
+{
+    return 3u * (sign_ctx(par) + 3u * sign_ctx(prv));
+}
+
 void bw_models_init(bw_models_t *m)
 {
     bw_prob_t *p = (bw_prob_t *)m;
@@ -22,14 +38,14 @@ void bw_models_init(bw_models_t *m)
 /* significance: the bit above, and whether the parent is zero, small or not */
 static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
 {
-    return above_bit + (pe == 0u || pe == BW_NO_CTX ? 0u : pe <= 2u ? 2u : 4u);
+    return above_bit + (pe == 0u || pe == NO_CTX ? 0u : pe <= 2u ? 2u : 4u);
 }
 
 /* magnitude: the bit lengths of the left and above neighbours, and of the
  * parent when there is one */
 static inline unsigned mag_ctx(unsigned left, unsigned above, unsigned pe)
 {
-    unsigned c = pe == BW_NO_CTX ? (left + above + 1u) >> 1 : (left + above + 2u * pe + 2u) >> 2;
+    unsigned c = pe == NO_CTX ? (left + above + 1u) >> 1 : (left + above + 2u * pe + 2u) >> 2;
     return c < NB_CTX ? c : NB_CTX - 1u;
 }
 
@@ -87,7 +103,7 @@ void bw_strip_enc_code(bw_strip_enc_t *se)
         }
         uint32_t a = bw_abs32(v[b]);
         unsigned e = bw_bitlen(a); /* 1..32 */
-        unsigned above = se->pv[b] != BW_NO_CTX ? se->pv[b] : se->e_above[b];
+        unsigned above = se->pv[b] != NO_CTX ? se->pv[b] : se->e_above[b];
         bw_prob_t *tree = m->mag[cls[b]][mag_ctx(se->e_left, above, pe)];
         unsigned node = 1, sym = e - 1u;
         for (int sh = 4; sh >= 0; sh--) {
@@ -100,7 +116,7 @@ void bw_strip_enc_code(bw_strip_enc_t *se)
             if (e >= 3u)
                 bw_rc_enc_direct(rc, a, e - 2u);
         }
-        bw_rc_enc_bit(rc, &m->sign[(b ? bw_sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], v[b] < 0);
+        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], v[b] < 0);
         se->e_above[b] = (uint8_t)e;
         se->e_left = e;
     }
@@ -117,6 +133,20 @@ size_t bw_strip_enc_finish(bw_strip_enc_t *se)
 bool bw_strip_enc_overflow(const bw_strip_enc_t *se)
 {
     return se->rice ? se->re.w.overflow : se->rc.overflow;
+}
+
+/* par, prv: the parent and the same band in the previous vector (NULL:
+ * none); their bit lengths and signs are the contexts */
+static inline void strip_put(bw_strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
+                             const int32_t *prv)
+{
+    se->v[se->cnt] = v;
+    se->cls[se->cnt] = (uint8_t)cls;
+    se->pe[se->cnt] = (uint8_t)ctx_len(par);
+    se->ps[se->cnt] = (uint8_t)sign_ctx_up(par, prv);
+    se->pv[se->cnt] = (uint8_t)ctx_len(prv);
+    if (++se->cnt == BW_STRIP)
+        bw_strip_enc_code(se);
 }
 
 /* Rice: the values in coding order, whole strips straight from a vector. */
@@ -142,6 +172,28 @@ static inline void rice_push(bw_strip_enc_t *se, const int32_t *v, uint32_t b)
     } else {
         rice_vector(se, v, b);
     }
+}
+
+static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
+                              const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                              const int32_t *prev)
+{
+    if (se->rice) {
+        rice_vector(se, v, b);
+        return;
+    }
+    for (uint32_t k = 0; k < b; k++) {
+        int32_t sc = spec_cls[k];
+        strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
+                  prev ? prev + k : NULL);
+    }
+}
+
+void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
+                         const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                         const int32_t *prev)
+{
+    put_vector(se, v, b, spec_cls, cls_dir, par, prev);
 }
 
 void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
@@ -179,17 +231,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
     bw_iter_init(&it, pl, x);
     size_t vectors = (size_t)d->n_in * d->n_out;
     for (size_t n = 0; n < vectors; n++) {
-        const int32_t *v = it.vec;
-        if (se->rice) {
-            rice_vector(se, v, b);
-        } else {
-            unsigned cd = it.cls_dir;
-            for (uint32_t k = 0; k < b; k++) {
-                int32_t sc = pl->spec_cls[k];
-                bw_strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
-                             it.prev ? it.prev + k : NULL);
-            }
-        }
+        put_vector(se, it.vec, b, pl->spec_cls, it.cls_dir, it.par, it.prev);
         bw_iter_next_vec(&it);
     }
 }
@@ -242,7 +284,7 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
         uint32_t mask = 0;
         unsigned prev_bit = 0;
         for (unsigned b = 0; b < cnt; b++) {
-            unsigned pe = bw_ctx_len(par[b]);
+            unsigned pe = ctx_len(par[b]);
             unsigned bit =
                 bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((prev_mask >> b) & 1u, pe)]);
             mask |= (uint32_t)bit << b;
@@ -253,7 +295,7 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
                 e_left = 0;
                 continue;
             }
-            unsigned above = prv[b] ? bw_ctx_len(prv[b]) : e_above[b];
+            unsigned above = prv[b] ? ctx_len(prv[b]) : e_above[b];
             bw_prob_t *tree = m->mag[cls[b]][mag_ctx(e_left, above, pe)];
             unsigned node = 1;
             for (int s = 0; s < 5; s++)
@@ -267,7 +309,7 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
                 if (e >= 3u)
                     a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
             }
-            unsigned sc = (b ? bw_sign_ctx(dst[b - 1]) : 0u) + bw_sign_ctx_up(par[b], prv[b]);
+            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + sign_ctx_up(par[b], prv[b]);
             *dst[b] = bw_rc_dec_bit(rc, &m->sign[sc]) ? -(int32_t)a : (int32_t)a;
             e_above[b] = (uint8_t)e;
             e_left = e;

@@ -6,9 +6,9 @@
  * side by side in bw_strip_coder.c; the state's types are in bw_coder.h, so
  * that callers can own it.
  *
- * The encoder is fed one coefficient at a time (bw_strip_put) and codes a
- * strip when its 32nd arrives; bw_code_body and bw_decode_body walk a plan's
- * coefficients in coding order (bw_order.c).
+ * The encoder is fed a vector at a time (bw_strip_put_vector) and codes a
+ * strip when its 32nd coefficient arrives; bw_code_body and bw_decode_body
+ * walk a plan's coefficients in coding order (bw_order.c).
  */
 #ifndef BW_STRIP_CODER_H
 #define BW_STRIP_CODER_H
@@ -27,37 +27,13 @@ size_t bw_strip_enc_finish(bw_strip_enc_t *se);
 /* Whether the body ran past the output's capacity. */
 bool bw_strip_enc_overflow(const bw_strip_enc_t *se);
 
-/* Contexts of a coefficient from the bit lengths of its neighbours
- * (BW_NO_CTX: no such neighbour). */
-#define BW_NO_CTX 0xFFu
-
-static inline unsigned bw_ctx_len(const int32_t *p)
-{
-    return p ? bw_bitlen(bw_abs32(*p)) : BW_NO_CTX;
-}
-/* sign context of a value: 0 none or zero, 1 positive, 2 negative */
-static inline unsigned bw_sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
-/* the sign model of a value is left + this, left the sign context of the
- * previous value of the strip (0 for the first) */
-static inline unsigned bw_sign_ctx_up(const int32_t *par, const int32_t *prv)
-{
-    return 3u * (bw_sign_ctx(par) + 3u * bw_sign_ctx(prv));
-}
-
-/* One coefficient v of class cls; par, prv: its parent and the same band in
- * the previous vector (NULL: none), whose bit lengths and signs are its
- * contexts. */
-static inline void bw_strip_put(bw_strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
-                                const int32_t *prv)
-{
-    se->v[se->cnt] = v;
-    se->cls[se->cnt] = (uint8_t)cls;
-    se->pe[se->cnt] = (uint8_t)bw_ctx_len(par);
-    se->ps[se->cnt] = (uint8_t)bw_sign_ctx_up(par, prv);
-    se->pv[se->cnt] = (uint8_t)bw_ctx_len(prv);
-    if (++se->cnt == BW_STRIP)
-        bw_strip_enc_code(se);
-}
+/* The coefficients of one vector v of b bands in order: their classes
+ * from spec_cls (the plan's) and the vector's direction class cls_dir,
+ * their parents from the parent vector par (NULL: the spectral parents in
+ * v), the vector above them prev (NULL: none). */
+void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
+                         const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                         const int32_t *prev);
 
 /* Codes the plan's coefficients x in coding order into se. */
 void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se);
