@@ -24,6 +24,13 @@ typedef struct {
     bw_prob_t sign[27]; /* [left + 3 parent + 9 above], each 0 none/zero, 1 +, 2 - */
 } bw_models_t;
 
+/* What a strip leaves for the next one's contexts. */
+typedef struct {
+    uint8_t e_above[32]; /* bit lengths of its elements (0: zero) */
+    uint32_t prev_mask;  /* its valid bits (0: absent) */
+    unsigned e_left;     /* bit length of its last element */
+} bw_strip_state_t;
+
 /* The strip encoder, fed one coefficient at a time. */
 typedef struct {
     bool rice; /* the Rice strip coder (BW_FLAG_RICE) instead of rc + m */
@@ -36,9 +43,7 @@ typedef struct {
     uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
     uint8_t ps[32]; /* their signs' part of the sign model (sign_ctx_up)    */
     unsigned cnt;
-    uint8_t e_above[32];
-    uint32_t prev_mask;
-    unsigned e_left;
+    bw_strip_state_t st;
 } bw_strip_enc_t;
 
 #endif

@@ -32,6 +32,8 @@
  *   BW_CFG_FAST_RICE          the Rice writer held in registers, whole strips
  *                             with a fixed count, the coarse-to-fine order as
  *                             loops
+ *   BW_CFG_FAST_STRIPS        the range coder's strip code built once for each
+ *                             direction (else one copy codes and decodes)
  *   BW_CFG_CRC_SLICE4         CRC-32 four bytes a step (4 KiB of tables, else
  *                             a 64-byte nibble table)
  *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline
@@ -79,6 +81,9 @@
 #endif
 #ifndef BW_CFG_FAST_RICE
 #define BW_CFG_FAST_RICE BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_STRIPS
+#define BW_CFG_FAST_STRIPS BW_CFG_SPEED
 #endif
 #ifndef BW_CFG_CRC_SLICE4
 #define BW_CFG_CRC_SLICE4 BW_CFG_SPEED

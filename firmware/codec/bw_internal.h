@@ -215,14 +215,14 @@ void bw_iter_next_vec(bw_iter_t *it);
 /* The next coefficient, its class and where its contexts come from: the
  * parent (directional, else spectral) and the same band of the previous
  * vector (NULL: none). */
-static inline int32_t *bw_iter_next(bw_iter_t *it, unsigned *cls, const int32_t **par,
+static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t **par,
                                     const int32_t **prv)
 {
     uint32_t k = it->k;
     int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
     *par = bw_parent_of(it->par, it->vec, sc, k);
     *prv = it->prev ? it->prev + k : NULL;
-    *cls = BW_SPEC_CLS(sc) * 3u + it->cls_dir;
+    *cls = (uint8_t)(BW_SPEC_CLS(sc) * 3u + it->cls_dir);
     if (++it->k == it->pl->dims.bands)
         bw_iter_next_vec(it);
     return p;

@@ -61,66 +61,117 @@ void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
         bw_models_init(&se->m);
     }
     se->cnt = 0;
-    memset(se->e_above, 0, sizeof se->e_above);
-    se->prev_mask = 0;
-    se->e_left = 0;
+    memset(&se->st, 0, sizeof se->st);
+}
+
+/* The strip code both ways, once per direction (BW_CFG_FAST_STRIPS) or one
+ * copy for both. */
+#if BW_CFG_FAST_STRIPS
+#define STRIP_INLINE BW_ALWAYS_INLINE
+#else
+#define STRIP_INLINE BW_NOINLINE
+#endif
+
+/* One model bit: coded (dec NULL), or decoded (enc NULL) and returned. */
+static STRIP_INLINE unsigned rc_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
+                                    unsigned bit)
+{
+    if (dec)
+        return bw_rc_dec_bit(dec, p);
+    bw_rc_enc_bit(enc, p, bit);
+    return bit;
+}
+
+/*
+ * The range coder's side of a strip of cnt elements, both ways: the encoder
+ * (rcd NULL) codes the values v with the contexts put with them (pe, pv,
+ * ps); the decoder (rce NULL) decodes into v and *dst[b] and finds the
+ * contexts from par[b] and prv[b] as it goes (a parent or the vector above
+ * may lie earlier in the same strip). cls: the elements' classes; s: what
+ * the previous strip left. false: a corrupt strip.
+ */
+static STRIP_INLINE bool rc_strip(bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                  bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
+                                  const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
+                                  int32_t *const *dst, const int32_t *const *par,
+                                  const int32_t *const *prv)
+{
+    bool dec = rcd != NULL;
+    uint32_t mask = 0;
+    if (!dec)
+        for (unsigned b = 0; b < cnt; b++)
+            if (v[b])
+                mask |= 1u << b;
+    if (!rc_bit(rce, rcd, &m->present[cls[0]][s->prev_mask != 0], mask != 0)) {
+        if (dec)
+            for (unsigned b = 0; b < cnt; b++)
+                *dst[b] = 0;
+        s->prev_mask = 0;
+        memset(s->e_above, 0, sizeof s->e_above);
+        s->e_left = 0;
+        return true;
+    }
+    unsigned prev_bit = 0;
+    for (unsigned b = 0; b < cnt; b++) {
+        unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
+        unsigned bit = rc_bit(rce, rcd,
+                              &m->valid[cls[b]][prev_bit][valid_ctx((s->prev_mask >> b) & 1u, pe_b)],
+                              (mask >> b) & 1u);
+        mask |= (uint32_t)bit << b;
+        prev_bit = bit;
+        if (!bit) {
+            if (dec)
+                *dst[b] = v[b] = 0;
+            s->e_above[b] = 0;
+            s->e_left = 0;
+            continue;
+        }
+        uint32_t a = dec ? 1u : bw_abs32(v[b]);
+        unsigned e = dec ? 0u : bw_bitlen(a); /* 1..32 */
+        unsigned pv_b = dec ? ctx_len(prv[b]) : pv[b];
+        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
+        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(s->e_left, above, pe_b)];
+        unsigned node = 1, sym = e - 1u;
+        for (int sh = 4; sh >= 0; sh--)
+            node = node * 2u + rc_bit(rce, rcd, &tree[node], (sym >> sh) & 1u);
+        if (dec) {
+            e = node - 32u + 1u;
+            if (e > 31u)
+                return false;
+        }
+        if (e >= 2u) {
+            unsigned mb = rc_bit(rce, rcd, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
+            if (dec)
+                a = (a << 1) | mb;
+            if (e >= 3u) {
+                if (dec)
+                    a = (a << (e - 2u)) | bw_rc_dec_direct(rcd, e - 2u);
+                else
+                    bw_rc_enc_direct(rce, a, e - 2u);
+            }
+        }
+        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + (dec ? sign_ctx_up(par[b], prv[b]) : ps[b]);
+        unsigned neg = rc_bit(rce, rcd, &m->sign[sc], !dec && v[b] < 0);
+        if (dec)
+            *dst[b] = v[b] = neg ? -(int32_t)a : (int32_t)a;
+        s->e_above[b] = (uint8_t)e;
+        s->e_left = e;
+    }
+    if (dec && !mask)
+        return false; /* a present strip holds at least one value */
+    s->prev_mask = mask;
+    return true;
 }
 
 void bw_strip_enc_code(bw_strip_enc_t *se)
 {
-    if (se->rice) {
-        bw_rice_enc_strip(&se->re, se->v, se->cnt);
-        se->cnt = 0;
-        return;
-    }
-    bw_rc_enc_t *rc = &se->rc;
-    bw_models_t *m = &se->m;
     unsigned cnt = se->cnt;
-    const int32_t *v = se->v;
-    const uint8_t *cls = se->cls;
-    uint32_t mask = 0;
     se->cnt = 0;
-    for (unsigned b = 0; b < cnt; b++)
-        if (v[b])
-            mask |= 1u << b;
-    bw_rc_enc_bit(rc, &m->present[cls[0]][se->prev_mask != 0], mask != 0);
-    if (!mask) {
-        se->prev_mask = 0;
-        memset(se->e_above, 0, sizeof se->e_above);
-        se->e_left = 0;
-        return;
-    }
-    unsigned prev_bit = 0;
-    for (unsigned b = 0; b < cnt; b++) {
-        unsigned bit = (mask >> b) & 1u;
-        unsigned pe = se->pe[b];
-        bw_rc_enc_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((se->prev_mask >> b) & 1u, pe)], bit);
-        prev_bit = bit;
-        if (!bit) {
-            se->e_above[b] = 0;
-            se->e_left = 0;
-            continue;
-        }
-        uint32_t a = bw_abs32(v[b]);
-        unsigned e = bw_bitlen(a); /* 1..32 */
-        unsigned above = se->pv[b] != NO_CTX ? se->pv[b] : se->e_above[b];
-        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(se->e_left, above, pe)];
-        unsigned node = 1, sym = e - 1u;
-        for (int sh = 4; sh >= 0; sh--) {
-            unsigned bt = (sym >> sh) & 1u;
-            bw_rc_enc_bit(rc, &tree[node], bt);
-            node = node * 2u + bt;
-        }
-        if (e >= 2u) {
-            bw_rc_enc_bit(rc, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
-            if (e >= 3u)
-                bw_rc_enc_direct(rc, a, e - 2u);
-        }
-        bw_rc_enc_bit(rc, &m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], v[b] < 0);
-        se->e_above[b] = (uint8_t)e;
-        se->e_left = e;
-    }
-    se->prev_mask = mask;
+    if (se->rice)
+        bw_rice_enc_strip(&se->re, se->v, cnt);
+    else
+        rc_strip(&se->m, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
+                 NULL, NULL, NULL);
 }
 
 size_t bw_strip_enc_finish(bw_strip_enc_t *se)
@@ -231,7 +282,17 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
     bw_iter_init(&it, pl, x);
     size_t vectors = (size_t)d->n_in * d->n_out;
     for (size_t n = 0; n < vectors; n++) {
-        put_vector(se, it.vec, b, pl->spec_cls, it.cls_dir, it.par, it.prev);
+        const int32_t *v = it.vec;
+        if (se->rice) {
+            rice_vector(se, v, b);
+        } else {
+            unsigned cd = it.cls_dir;
+            for (uint32_t k = 0; k < b; k++) {
+                int32_t sc = pl->spec_cls[k];
+                strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
+                          it.prev ? it.prev + k : NULL);
+            }
+        }
         bw_iter_next_vec(&it);
     }
 }
@@ -250,7 +311,7 @@ static bw_status_t decode_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *b
         if (!bw_rice_dec_strip(&rd, v, cnt))
             return BW_ERR_CORRUPT;
         for (unsigned b = 0; b < cnt; b++) {
-            unsigned cls;
+            uint8_t cls;
             const int32_t *par, *prv;
             *bw_iter_next(&it, &cls, &par, &prv) = v[b];
         }
@@ -262,61 +323,17 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
 {
     bw_iter_t it;
     bw_iter_init(&it, pl, x);
-    uint8_t e_above[BW_STRIP] = {0};
-    uint32_t prev_mask = 0;
-    unsigned e_left = 0;
+    bw_strip_state_t st;
+    memset(&st, 0, sizeof st);
     for (size_t base = 0; base < pl->n; base += BW_STRIP) {
         unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
-        int32_t *dst[BW_STRIP];
+        int32_t *dst[BW_STRIP], v[BW_STRIP];
         const int32_t *par[BW_STRIP], *prv[BW_STRIP];
-        unsigned cls[BW_STRIP];
-        cls[0] = 0;
+        uint8_t cls[BW_STRIP];
         for (unsigned b = 0; b < cnt; b++)
             dst[b] = bw_iter_next(&it, &cls[b], &par[b], &prv[b]);
-        if (!bw_rc_dec_bit(rc, &m->present[cls[0]][prev_mask != 0])) {
-            for (unsigned b = 0; b < cnt; b++)
-                *dst[b] = 0;
-            prev_mask = 0;
-            memset(e_above, 0, sizeof e_above);
-            e_left = 0;
-            continue;
-        }
-        uint32_t mask = 0;
-        unsigned prev_bit = 0;
-        for (unsigned b = 0; b < cnt; b++) {
-            unsigned pe = ctx_len(par[b]);
-            unsigned bit =
-                bw_rc_dec_bit(rc, &m->valid[cls[b]][prev_bit][valid_ctx((prev_mask >> b) & 1u, pe)]);
-            mask |= (uint32_t)bit << b;
-            prev_bit = bit;
-            if (!bit) {
-                *dst[b] = 0;
-                e_above[b] = 0;
-                e_left = 0;
-                continue;
-            }
-            unsigned above = prv[b] ? ctx_len(prv[b]) : e_above[b];
-            bw_prob_t *tree = m->mag[cls[b]][mag_ctx(e_left, above, pe)];
-            unsigned node = 1;
-            for (int s = 0; s < 5; s++)
-                node = node * 2u + bw_rc_dec_bit(rc, &tree[node]);
-            unsigned e = node - 32u + 1u;
-            if (e > 31u)
-                return BW_ERR_CORRUPT;
-            uint32_t a = 1u;
-            if (e >= 2u) {
-                a = (a << 1) | bw_rc_dec_bit(rc, &m->mant[cls[b]][e]);
-                if (e >= 3u)
-                    a = (a << (e - 2u)) | bw_rc_dec_direct(rc, e - 2u);
-            }
-            unsigned sc = (b ? sign_ctx(dst[b - 1]) : 0u) + sign_ctx_up(par[b], prv[b]);
-            *dst[b] = bw_rc_dec_bit(rc, &m->sign[sc]) ? -(int32_t)a : (int32_t)a;
-            e_above[b] = (uint8_t)e;
-            e_left = e;
-        }
-        if (!mask)
-            return BW_ERR_CORRUPT; /* a present strip holds at least one value */
-        prev_mask = mask;
+        if (!rc_strip(m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv))
+            return BW_ERR_CORRUPT;
     }
     /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
     return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
