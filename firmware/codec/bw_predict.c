@@ -17,10 +17,13 @@
  *   w_i += floor(PRED_MU e' d'_i / 2^floor(log2(D^2 + sum_j d'_j^2))),  e' = q D,
  * with e' and d' saturated to +-2^20, and w_i kept within +-2^18.
  *
- * Scaling and overflow: samples and predictions are within +-2^24, so the
- * differences d_i within +-2^25 and sum w_i d_i within 4 * 2^18 * 2^25 =
- * 2^45, formed in 64 bits; the update's product e' d'_i PRED_MU is below
- * 2^20 * 2^20 * 2^13 = 2^53. All of it is integer: encoder and decoder
+ * Scaling and overflow: samples and predictions are within +-2^24 and the
+ * decoded samples within E < 2^24 of the samples, so below 2^25; the
+ * differences d_i are within +-2^26 (32 bits) and sum w_i d_i within
+ * 4 * 2^18 * 2^26 = 2^46, formed in 64 bits; the update's product
+ * e' d'_i PRED_MU is below 2^20 * 2^20 * 2^13 = 2^53. A corrupt payload may
+ * decode to samples beyond that: the differences wrap (defined), and it
+ * decodes to wrong samples. All of it is integer: encoder and decoder
  * predict alike.
  */
 #include "bw_internal.h"
@@ -34,15 +37,17 @@ static inline int64_t sat64(int64_t v, int64_t m) { return v > m ? m : v < -m ? 
 
 typedef struct {
     int32_t w_q16[PRED_TAPS];
-    int64_t d[PRED_TAPS];  /* the differences of the current sample */
+    int32_t d[PRED_TAPS];  /* the differences of the current sample */
     int32_t ds[PRED_TAPS]; /* the same saturated to +-PRED_SAT */
 } pred_t;
 
-static inline int32_t sat_d(int64_t d) { return (int32_t)sat64(d, PRED_SAT); }
+static inline int32_t sat_d(int32_t d) { return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d; }
 
 /* The prediction of band k of spectrum cur (bands before k decoded), prev
  * the decoded previous spectrum (NULL for the first); sets pr->d and pr->ds.
- * d_3 and d_2 are the previous band's d_0 and d_1 (0 before band 1). */
+ * d_3 and d_2 are the previous band's d_0 and d_1 (0 before band 1). The
+ * decoded samples of a valid payload lie within +-2^25, their differences
+ * within +-2^26: 32 bits (which wrap, defined, on a corrupt payload). */
 static int32_t pred_value(pred_t *pr, const int32_t *cur, const int32_t *prev, uint32_t k,
                           uint32_t bands)
 {
@@ -50,20 +55,20 @@ static int32_t pred_value(pred_t *pr, const int32_t *cur, const int32_t *prev, u
     pr->d[2] = pr->d[1];
     pr->ds[3] = pr->ds[0];
     pr->ds[2] = pr->ds[1];
-    pr->d[0] = k >= 2u ? (int64_t)cur[k - 1] - cur[k - 2] : 0;
-    pr->d[1] = prev && k + 1u < bands ? (int64_t)prev[k + 1] - prev[k] : 0;
+    pr->d[0] = k >= 2u ? bw_wsub(cur[k - 1], cur[k - 2]) : 0;
+    pr->d[1] = prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0;
     pr->ds[0] = sat_d(pr->d[0]);
     pr->ds[1] = sat_d(pr->d[1]);
     int64_t acc = 0, a1 = k ? cur[k - 1] : prev ? prev[0] : 0;
     for (unsigned i = 0; i < PRED_TAPS; i++)
-        acc += pr->w_q16[i] * pr->d[i];
+        acc += (int64_t)pr->w_q16[i] * pr->d[i];
     return (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
 }
 
 /* The weights learn from the decoded error err of the current sample. */
 static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
 {
-    int32_t e = sat_d(err);
+    int32_t e = (int32_t)sat64(err, PRED_SAT);
     int64_t nrm = (int64_t)D * D;
     for (unsigned i = 0; i < PRED_TAPS; i++)
         nrm += (int64_t)pr->ds[i] * pr->ds[i];
