@@ -27,10 +27,11 @@ $(FW_OBJ): mk/mcu.mk
 # The application's buffers in 96 KiB of SRAM1: a whole measurement of up to
 # 4096 samples and 1024 bands encoded at once (4 spectra of 1024 bands, or a
 # level-4 reflectance of 4 bands), a streamed job of up to level 4 and 128
-# bands encoded spectrum by spectrum, payloads of up to 16 KiB. That leaves
-# about 15 KiB below .bss for the stack: linker/stm32l476.ld reserves 8 KiB,
-# and the encoder's deepest call chain with the application's frames takes
-# about 8.5 KiB (-fstack-usage; build/bench/device.md).
+# bands encoded spectrum by spectrum, payloads of up to 16 KiB, and the
+# coder's state (bw_ctx_t, 7.5 KiB). That leaves about 9 KiB below .bss for
+# the stack: linker/stm32l476.ld reserves 4 KiB, and the deepest call chain
+# with the application's frames takes about 1.7 KiB (-fstack-usage;
+# build/bench/device.md).
 APP_SIZES := -DAPP_MAX_SAMPLES=4096u -DAPP_MAX_BANDS=1024u -DAPP_PAYLOAD_CAP=16384u \
              -DAPP_STREAM_LEVEL=4u -DAPP_STREAM_BANDS=128u
 $(BUILD)/firmware/app/app.o: CFLAGS += $(APP_SIZES)

@@ -38,13 +38,14 @@ typedef struct {
     const bw_params_t *pa;
     const int32_t *samples;
     int32_t *work;
+    bw_ctx_t *ctx;
     size_t budget;
 } budget_t;
 
 /* The size of the BYTES payload at the plan's current settings. */
 static bw_status_t count_bytes(const budget_t *b, size_t *sz)
 {
-    return bw_encode_pass(b->pl, b->pa, BW_MODE_BYTES, b->samples, b->work, NULL, 0, sz);
+    return bw_encode_pass(b->pl, b->pa, BW_MODE_BYTES, b->samples, b->work, b->ctx, NULL, 0, sz);
 }
 
 /* The settings a search moves: value t of each. */
@@ -100,19 +101,19 @@ static bw_status_t bisect(const budget_t *b, unsigned what, uint32_t aux, bool u
 }
 
 bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
-                             int32_t *work, uint8_t *out, size_t cap, size_t *len)
+                             int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
 {
     size_t sz;
     bw_status_t st;
-    budget_t b = {pl, pa, samples, work, pa->byte_budget < cap ? pa->byte_budget : cap};
+    budget_t b = {pl, pa, samples, work, ctx, pa->byte_budget < cap ? pa->byte_budget : cap};
     /* the exact coding first: if it fits, nothing is lost, and the payload
      * is the lossless one */
     pl->step_q8 = BW_STEP_ONE_Q8;
-    st = bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, NULL, 0, &sz);
+    st = bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, ctx, NULL, 0, &sz);
     if (st != BW_OK)
         return st;
     if (sz <= b.budget)
-        return bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, out, b.budget, len);
+        return bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, ctx, out, b.budget, len);
     uint32_t lo = 0, hi = STEP_T_MAX;
     pl->step_q8 = step_of(hi);
     st = count_bytes(&b, &sz);
@@ -129,7 +130,7 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
         if (hi_i > VEC_THRESH_MAX_LOG2)
             return BW_ERR_BUDGET;
         set(pl, SET_VEC, hi_i, vt0);
-        return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, b.budget, len);
+        return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, ctx, out, b.budget, len);
     }
     st = bisect(&b, SET_STEP_T, 0, false, false, &lo, &hi);
     if (st != BW_OK)
@@ -184,5 +185,5 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
         }
 #endif
     }
-    return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, out, b.budget, len);
+    return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, ctx, out, b.budget, len);
 }

@@ -167,6 +167,33 @@ bw_status_t bw_dims_make(bw_dims_t *dims, bw_shape_t shape, unsigned level_out, 
 bw_status_t bw_dims_check(const bw_dims_t *dims);
 size_t bw_dims_samples(const bw_dims_t *dims);
 
+/* ---- coder context ------------------------------------------------------ */
+
+/*
+ * The state of one encode or decode: the strip coder with the range coder's
+ * adaptive models, sizeof(bw_ctx_t) bytes (BW_CTX_SIZE on a 32-bit core), a
+ * size fixed at compile time. The caller owns it (a static, say) and lends
+ * it to one call at a time; every call initialises what it uses, so it
+ * needs no init of its own and holds nothing between calls.
+ *
+ * With it the encoder and the decoder keep their stack small: see
+ * BW_CTX_STACK_MAX. bw_encode, bw_decode and bw_decode_unchecked are the
+ * same calls with a bw_ctx_t on their stack: sizeof(bw_ctx_t) more, for
+ * hosts.
+ */
+typedef struct {
+    union {
+        bw_strip_enc_t enc; /* bw_encode_ctx */
+        bw_models_t models; /* bw_decode_ctx: the range decoder's models */
+    };
+} bw_ctx_t;
+
+/* The most stack, in bytes, that bw_encode_ctx (its deepest chain: the
+ * byte-budget search, then the self-check's decode) or bw_decode_ctx takes
+ * on the Cortex-M4 (-O2), interrupt frames not included; tests/target
+ * measures every golden case on the emulated board against it. */
+#define BW_CTX_STACK_MAX 2048u
+
 /* ---- encoder ------------------------------------------------------------ */
 
 /*
@@ -179,6 +206,10 @@ size_t bw_dims_samples(const bw_dims_t *dims);
  * (without it, by quantiser step).
  * On success *out_len is the payload size.
  */
+bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *params,
+                          const int32_t *samples, int32_t *work, int32_t *verify, uint8_t *out,
+                          size_t out_cap, size_t *out_len);
+/* The same with the context on the stack. */
 bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *params, const int32_t *samples,
                       int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
                       size_t *out_len);
@@ -212,6 +243,10 @@ bw_status_t bw_header_parse_fields(const uint8_t *payload, size_t len, bw_header
 
 /* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.
  * samples may be the same array as work. */
+bw_status_t bw_decode_ctx(bw_ctx_t *ctx, const uint8_t *payload, size_t len, int32_t *samples,
+                          size_t samples_cap, int32_t *work, size_t work_cap,
+                          bw_header_t *hdr_out);
+/* The same with the context on the stack. */
 bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
                       int32_t *work, size_t work_cap, bw_header_t *hdr_out);
 

@@ -9,8 +9,8 @@
 #include "bw_strip_coder.h"
 
 bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
-                           const int32_t *samples, int32_t *work, uint8_t *out, size_t cap,
-                           size_t *len)
+                           const int32_t *samples, int32_t *work, bw_ctx_t *ctx, uint8_t *out,
+                           size_t cap, size_t *len)
 {
     unsigned done;
     bw_status_t st = bw_load(pl, work, samples, &done);
@@ -26,7 +26,7 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
     if (pl->step_q8 > BW_STEP_ONE_Q8)
         bw_quantise(pl, work, true);
 
-    bw_strip_enc_t sec, *se = &sec;
+    bw_strip_enc_t *se = &ctx->enc;
     bool counting = out == NULL;
     size_t body_cap = 0, hl = bw_header_write(NULL, pl, pa, mode);
     if (!counting) {
@@ -49,12 +49,12 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
 
 /* Decodes the payload into verify and checks the mode's guarantee; *sse
  * (may be NULL): the squared error. */
-static bw_status_t verify_payload(const bw_plan_t *pl, const bw_params_t *pa, uint32_t mode,
-                                  const int32_t *samples, const uint8_t *out, size_t len,
-                                  int32_t *verify, uint64_t *sse)
+static bw_status_t verify_payload(bw_ctx_t *ctx, const bw_plan_t *pl, const bw_params_t *pa,
+                                  uint32_t mode, const int32_t *samples, const uint8_t *out,
+                                  size_t len, int32_t *verify, uint64_t *sse)
 {
     size_t wb = bw_work_bound(pl->n, pl->dims.bands);
-    bw_status_t st = bw_decode(out, len, verify, wb, verify, wb, NULL);
+    bw_status_t st = bw_decode_ctx(ctx, out, len, verify, wb, verify, wb, NULL);
     if (st != BW_OK)
         return BW_ERR_VERIFY;
     uint64_t acc = 0;
@@ -93,19 +93,20 @@ static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
-static bw_status_t encode_basis(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
-                                int32_t *work, uint8_t *out, size_t cap, size_t *len)
+static bw_status_t encode_basis(bw_ctx_t *ctx, bw_plan_t *pl, const bw_params_t *pa,
+                                const int32_t *samples, int32_t *work, uint8_t *out, size_t cap,
+                                size_t *len)
 {
     if (pa->mode != BW_MODE_BYTES)
-        return bw_encode_pass(pl, pa, pa->mode, samples, work, out, cap, len);
-    return bw_budget_encode(pl, pa, samples, work, out, cap, len);
+        return bw_encode_pass(pl, pa, pa->mode, samples, work, ctx, out, cap, len);
+    return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
 }
 
-bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_t *samples,
-                      int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
-                      size_t *out_len)
+bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
+                          const int32_t *samples, int32_t *work, int32_t *verify, uint8_t *out,
+                          size_t out_cap, size_t *out_len)
 {
-    if (!dims || !pa || !samples || !work || !out || !out_len)
+    if (!ctx || !dims || !pa || !samples || !work || !out || !out_len)
         return BW_ERR_ARG;
     *out_len = 0;
     bw_status_t st = bw_params_check(dims, pa->mode, pa->basis, pa->flags, mode_param(pa),
@@ -136,7 +137,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
             if (one_transform && b != first && b < BW_BASIS_COUNT)
                 continue;
             plan_for(&pl, dims, b, pa, work);
-            st = encode_basis(&pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
+            st = encode_basis(ctx, &pl, pa, samples, work, pa->mode == BW_MODE_BYTES ? out : NULL,
                               out_cap, &sz);
             if (st == BW_ERR_BUDGET) { /* another basis may still fit */
                 fit = st;
@@ -147,7 +148,7 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
             uint64_t score = sz;
             if (pa->mode == BW_MODE_BYTES) {
                 score = pl.step_q8;
-                if (verify && verify_payload(&pl, pa, BW_MODE_BYTES, samples, out, sz, verify,
+                if (verify && verify_payload(ctx, &pl, pa, BW_MODE_BYTES, samples, out, sz, verify,
                                              &score) != BW_OK)
                     return BW_ERR_VERIFY;
             }
@@ -163,10 +164,18 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_
             return fit; /* no basis fits the budget */
     }
     plan_for(&pl, dims, best, pa, work);
-    st = encode_basis(&pl, pa, samples, work, out, out_cap, out_len);
+    st = encode_basis(ctx, &pl, pa, samples, work, out, out_cap, out_len);
     if (st != BW_OK)
         return st;
     if (verify)
-        return verify_payload(&pl, pa, pa->mode, samples, out, *out_len, verify, NULL);
+        return verify_payload(ctx, &pl, pa, pa->mode, samples, out, *out_len, verify, NULL);
     return BW_OK;
+}
+
+bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *pa, const int32_t *samples,
+                      int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
+                      size_t *out_len)
+{
+    bw_ctx_t ctx;
+    return bw_encode_ctx(&ctx, dims, pa, samples, work, verify, out, out_cap, out_len);
 }

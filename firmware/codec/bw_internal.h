@@ -239,11 +239,12 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
 /* One encode at the plan's settings: load, transform, quantise, code; the
  * header records `mode`. out NULL: only counts (*len the payload size). */
 bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
-                           const int32_t *samples, int32_t *work, uint8_t *out, size_t cap,
-                           size_t *len);
+                           const int32_t *samples, int32_t *work, bw_ctx_t *ctx, uint8_t *out,
+                           size_t cap, size_t *len);
 /* BYTES: the payload of at most min(byte_budget, cap) bytes with the finest
  * quantiser the plan's basis reaches; BW_ERR_BUDGET if none fits. */
 bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
-                             int32_t *work, uint8_t *out, size_t cap, size_t *len);
+                             int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
+                             size_t *len);
 
 #endif

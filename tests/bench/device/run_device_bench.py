@@ -598,8 +598,8 @@ def main():
     stacks = {}
     for opt in ("O2", "Os"):
         frame, g = callgraph(os.path.join(OUT, "obj-" + opt))
-        stacks[opt] = {r: deepest(frame, g, r) for r in ("bw_encode", "bw_decode")}
-        stacks[opt]["device"] = deepest(frame, g, "bw_encode", skip=("verify_payload",))
+        stacks[opt] = {r: deepest(frame, g, r) for r in ("bw_encode_ctx", "bw_decode_ctx")}
+        stacks[opt]["device"] = deepest(frame, g, "bw_encode_ctx", skip=("verify_payload",))
 
     L = []
     A = L.append
@@ -841,12 +841,12 @@ def main():
     A("")
     A("| entry | static -O2 | chain -O2 | static -Os | measured -O2 (max) |")
     A("|---|---:|---|---:|---:|")
-    meas = {"bw_encode": max((parsed[d.key]["stack"] or {}).get("encode", 0) for d in sets),
-            "bw_decode": max((parsed[d.key]["stack"] or {}).get("decode", 0) for d in sets)}
+    meas = {"bw_encode_ctx": max((parsed[d.key]["stack"] or {}).get("encode", 0) for d in sets),
+            "bw_decode_ctx": max((parsed[d.key]["stack"] or {}).get("decode", 0) for d in sets)}
     meas_v = max((parsed[d.key]["stack"] or {}).get("encode_verify", 0) for d in sets)
-    rows = (("bw_encode without verify (the device path)", "device", meas["bw_encode"]),
-            ("bw_encode with verify", "bw_encode", meas_v),
-            ("bw_decode", "bw_decode", meas["bw_decode"]))
+    rows = (("bw_encode_ctx without verify (the device path)", "device", meas["bw_encode_ctx"]),
+            ("bw_encode_ctx with verify", "bw_encode_ctx", meas_v),
+            ("bw_decode_ctx", "bw_decode_ctx", meas["bw_decode_ctx"]))
     for label, key, mv in rows:
         s2, ss = stacks["O2"][key], stacks["Os"][key]
         A("| %s | %s | %s | %s | %d |" % (
@@ -857,10 +857,12 @@ def main():
         fr, _ = callgraph(os.path.join(OUT, "obj-" + opt))
         frames[opt] = {short(k): v for k, v in fr.items()}
     A("")
-    A("Largest frames: encode_pass %s (-O2) / %s (-Os) bytes and decode_checked %s / %s "
-      "bytes; each holds the range coder's probability models (`models_t` in bw_codec.c) as "
-      "a local." % (frames["O2"].get("encode_pass"), frames["Os"].get("encode_pass"),
-                    frames["O2"].get("decode_checked"), frames["Os"].get("decode_checked")))
+    big = {opt: max(frames[opt].items(), key=lambda kv: kv[1]) for opt in ("O2", "Os")}
+    A("Largest frames: %s %s bytes (-O2), %s %s bytes (-Os). The range coder's probability "
+      "models (`bw_models_t`, in the strip coder's state) are in the caller's `bw_ctx_t` "
+      "(sizeof %s bytes on this core), not on the stack; `bw_encode` and `bw_decode` without "
+      "`_ctx` keep one on theirs." % (big["O2"][0], big["O2"][1], big["Os"][0], big["Os"][1],
+                                       (parsed[sets[0].key]["mem"] or {}).get("ctx", "?")))
     A("")
     A("The board's stack region is %s bytes (linker/mps2-an386.ld); linker/stm32l476.ld "
       "reserves 8192." % ((parsed[sets[0].key]["stack"] or {}).get("stack_region", "?")))
