@@ -62,10 +62,10 @@ typedef enum {
     BW_BASIS_97 = 2,   /* integer-lifted CDF 9/7               */
     BW_BASIS_COUNT = 3, /* the transform bases above                 */
     /* Prediction instead of a transform (SPECTRA, LOSSLESS and MAX_ERROR
-     * only; not offered by an encoder built without BW_CFG_ENCODE_PRED,
-     * bw_config.h): each sample is predicted from the
-     * decoded samples before it in its spectrum and in the previous one,
-     * and the prediction error quantised in the loop. */
+     * only): each sample is predicted from the decoded samples before it
+     * in its spectrum and in the previous one, and the prediction error
+     * quantised in the loop. Every decoder decodes it; an encoder built
+     * without BW_CFG_ENCODE_PRED (bw_config.h) does not offer it. */
     BW_BASIS_PRED = 3,
     BW_BASIS_AUTO = 255 /* encoder option: try all, keep the smallest payload */
 } bw_basis_t;

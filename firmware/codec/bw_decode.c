@@ -1,6 +1,8 @@
 /*
  * The decoder: header and CRC, the body, then the quantiser, the transforms
- * and the symmetry steps backwards, or prediction.
+ * and the symmetry steps backwards, or prediction. Every payload the format
+ * allows decodes in every build, whatever its encoder leaves out
+ * (bw_config.h).
  */
 #include <string.h>
 
@@ -24,7 +26,7 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, const bw_head
                                     (h->flags & BW_FLAG_RICE) != 0u, &ctx->models);
     if (st != BW_OK)
         return st;
-    if (BW_CFG_ENCODE_PRED && pl.basis == BW_BASIS_PRED) {
+    if (pl.basis == BW_BASIS_PRED) {
         bw_predict(&pl, work, NULL, false); /* decoded samples: no prequantiser left */
         memcpy(samples, work, n * sizeof *samples);
         return BW_OK;

@@ -12,7 +12,7 @@ bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags)
 }
 
 /* The basis: a transform; BW_BASIS_AUTO for bw_encode; prediction where it
- * applies, in a core built with it. */
+ * applies, in every payload and from bw_encode built with it. */
 static bool basis_ok(const bw_dims_t *d, unsigned mode, unsigned basis, unsigned flags,
                      unsigned use)
 {
@@ -20,7 +20,8 @@ static bool basis_ok(const bw_dims_t *d, unsigned mode, unsigned basis, unsigned
         return true;
     if (basis == BW_BASIS_AUTO)
         return use == BW_FOR_ENCODE;
-    return basis == BW_BASIS_PRED && BW_CFG_ENCODE_PRED && bw_pred_applies(d, mode, flags);
+    return basis == BW_BASIS_PRED && (use == BW_FOR_PAYLOAD || BW_CFG_ENCODE_PRED) &&
+           bw_pred_applies(d, mode, flags);
 }
 
 bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, unsigned flags,
