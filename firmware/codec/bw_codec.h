@@ -21,6 +21,35 @@
  * Directions are in the codec's geodesic triangle order (bw_geodesic.h).
  * Monochromatic data is bands = 1 (the spectral transform is then the
  * identity).
+ *
+ * Modules (firmware/codec/), one job each
+ * ---------------------------------------
+ *   bw_codec.h         this interface; bw_internal.h, what the modules share
+ *   bw_config.h        build switches: encoder features and code forms
+ *   bw_dims.c          dimensions and the worst-case sizes (the BOUNDs)
+ *   bw_params.c        which shapes, modes, bases and flags go together
+ *   bw_plan.c          the plan of one encode or decode, its spectral tables
+ *   bw_load.c          samples in: range check, prequantiser, fused Haar levels
+ *   bw_symmetry.c      the mirror and reciprocity steps
+ *   bw_transform.c     the transform driver over the two kernels below
+ *   bw_spectral.c      integer lifting on the spectral axis (Haar, 5/3, 9/7)
+ *   bw_biohaar.c       Bio-Haar lifting on the geodesic hemisphere
+ *   bw_geodesic_*.c    its weight and area tables (generated)
+ *   bw_predict.c       prediction, in place of the prequantiser and transforms
+ *   bw_quant.c         thresholds and the dead-zone quantiser, with formats
+ *   bw_order.c         the coding order of the coefficients
+ *   bw_strip_coder.c   strips of 32, encoder and decoder side by side
+ *                      (bw_strip_coder.h; the state's types in bw_coder.h)
+ *   bw_rc.c            the adaptive binary range coder
+ *   bw_rice.c          the Rice strip coder (BW_FLAG_RICE)
+ *   bw_header.c        the payload's header and its CRC
+ *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
+ *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
+ *   bw_decode.c        bw_decode
+ *   bw_stream.c        the streaming encoder (bw_stream_*)
+ *   bw_crc32.c         CRC-32
+ *   bw_error.c         status messages
+ *   bw_strip.c         the paper's sparse strip arrays (not used by the codec)
  */
 #ifndef BW_CODEC_H
 #define BW_CODEC_H
@@ -43,7 +72,7 @@ extern "C" {
 #define BW_MAX_SAMPLES (1u << 28)  /* n_in * n_out * bands                      */
 #define BW_MAX_N_IN (1u << 24)
 /* Samples are signed integers with |x| <= BW_SAMPLE_MAX; transform
- * coefficients then stay well inside int32 (see bw_transform.c). */
+ * coefficients then stay well inside int32 (bw_spectral.c, bw_biohaar.c). */
 #define BW_SAMPLE_MAX ((1 << 24) - 1)
 #define BW_STRIP 32u               /* elements per strip (paper: B_s = 32)      */
 
@@ -145,9 +174,10 @@ typedef struct {
 #define BW_HEADER_MAX 27u  /* with the longest varints, scale, offset */
 #define BW_TRAILER_SIZE 4u  /* CRC-32 */
 
-/* Worst case payload size for n samples. The entropy coder spends at most
- * 9 bytes per sample (see bw_coder.c, "bounded length"), plus the strip
- * presence flags, the coder flush and the header and trailer. */
+/* Worst case payload size for n samples: 9 bytes per sample for the strip
+ * coder (bw_strip_coder.c), plus the strip presence flags, the coder flush
+ * and the header and trailer. An encode that needs more returns
+ * BW_ERR_OUTPUT_FULL and writes nothing past out_cap. */
 #define BW_PAYLOAD_BOUND(n) \
     ((size_t)BW_HEADER_MAX + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
 

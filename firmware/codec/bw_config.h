@@ -41,10 +41,11 @@
  * Builds in this repository and their bytes:
  *   the host library and CLI, the emulated board's firmware (make TARGET=qemu,
  *   -O2), the device benchmark's image: the defaults;
- *   the MCU build (make TARGET=mcu, -Os), the freestanding 16 KiB check, the
- *   sanitizer's first pass, the benchmark's -Os stack figures: the switches of
- *   mk/core-device.mk, BW_CFG_SPEED=0, BW_CFG_ENCODE_PRED=0 and
- *   BW_CFG_BUDGET_FILL_HALF=0, which keep the encoder within 16 KiB of flash.
+ *   the MCU build (make TARGET=mcu, -Os with link-time optimisation), the
+ *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
+ *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
+ *   BW_CFG_ENCODE_PRED=0 and BW_CFG_BUDGET_FILL_HALF=0, which keep encoder,
+ *   decoder and streaming encoder within 16 KiB of flash.
  *
  * Two builds write byte-identical payloads for the same input and options
  * exactly when their encoder features match; the code forms never matter.
