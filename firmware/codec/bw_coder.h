@@ -1,6 +1,6 @@
 /*
- * Types of the strip coder's state, so that callers can own it (the
- * streaming encoder context embeds one). The functions are in
+ * Types of the strip coder's state, so that callers can own it (bw_ctx_t
+ * and the streaming encoder's context embed one). The functions are in
  * bw_strip_coder.c, declared in bw_strip_coder.h.
  */
 #ifndef BW_CODER_H

@@ -36,7 +36,8 @@
  *                             direction (else one copy codes and decodes)
  *   BW_CFG_CRC_SLICE4         CRC-32 four bytes a step (4 KiB of tables, else
  *                             a 64-byte nibble table)
- *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline
+ *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline,
+ *                             the Bio-Haar levels built once per direction
  *
  * Builds in this repository and their bytes:
  *   the host library and CLI, the emulated board's firmware (make TARGET=qemu,

@@ -9,7 +9,10 @@
 
 size_t bw_payload_bound(size_t n) { return BW_PAYLOAD_BOUND(n); }
 size_t bw_work_bound(size_t n, size_t bands) { return BW_WORK_BOUND(n, bands); }
-size_t bw_stream_mem_bound(unsigned level, size_t bands) { return BW_STREAM_MEM_BOUND(level, bands); }
+size_t bw_stream_mem_bound(unsigned level, size_t bands)
+{
+    return BW_STREAM_MEM_BOUND(level, bands);
+}
 
 size_t bw_dims_samples(const bw_dims_t *d) { return (size_t)d->n_in * d->n_out * d->bands; }
 

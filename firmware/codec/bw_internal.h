@@ -150,7 +150,7 @@ void bw_transform_inv(const bw_plan_t *pl, int32_t *x);
 /* The mirror and reciprocity steps of the plan's flags; forward, BW_ERR_RANGE
  * if a difference leaves +-BW_SAMPLE_MAX. */
 bw_status_t bw_symmetry(const bw_plan_t *pl, int32_t *x, bool forward);
-/* Prediction in place of the prequantiser and the transforms, in place:
+/* Prediction instead of the prequantiser and the transforms, in place:
  * forward, range-checked samples -> coded errors (rows: 2 * bands int32 for
  * the decoded spectra); back, coded errors -> decoded samples (rows unused). */
 void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
@@ -161,8 +161,8 @@ void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
  * quantiser with the plan's rounding offsets) or back. */
 void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);
 /* One outgoing vector of parent level j (-1: scaling) forward, as
- * bw_quantise does for a spectral set or a reflectance (no rounding
- * offsets). */
+ * bw_quantise does where there is no incoming transform (the streaming
+ * encoder's shapes; no rounding offsets). */
 void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
 
 /* ---- coding order (bw_order.c) ------------------------------------------- */

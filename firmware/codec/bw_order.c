@@ -80,7 +80,9 @@ static void iter_vec(bw_iter_t *it)
      * (coded before, at a coarser level) */
     it->par = level < 0 || pl->stream
                   ? NULL
-                  : it->x + (base + (pos_out & ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) * b;
+                  : it->x + (base + (pos_out &
+                                     ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) *
+                                b;
     it->cls_dir = bw_level_cls(pl, level);
 }
 

@@ -41,7 +41,10 @@ typedef struct {
     int32_t ds[PRED_TAPS]; /* the same saturated to +-PRED_SAT */
 } pred_t;
 
-static inline int32_t sat_d(int32_t d) { return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d; }
+static inline int32_t sat_d(int32_t d)
+{
+    return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d;
+}
 
 /* The prediction of band k of spectrum cur (bands before k decoded), prev
  * the decoded previous spectrum (NULL for the first); sets pr->d and pr->ds.

@@ -114,9 +114,8 @@ static STRIP_INLINE bool rc_strip(bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t 
     unsigned prev_bit = 0;
     for (unsigned b = 0; b < cnt; b++) {
         unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
-        unsigned bit = rc_bit(rce, rcd,
-                              &m->valid[cls[b]][prev_bit][valid_ctx((s->prev_mask >> b) & 1u, pe_b)],
-                              (mask >> b) & 1u);
+        unsigned vc = valid_ctx((s->prev_mask >> b) & 1u, pe_b);
+        unsigned bit = rc_bit(rce, rcd, &m->valid[cls[b]][prev_bit][vc], (mask >> b) & 1u);
         mask |= (uint32_t)bit << b;
         prev_bit = bit;
         if (!bit) {
