@@ -857,15 +857,22 @@ def main():
         fr, _ = callgraph(os.path.join(OUT, "obj-" + opt))
         frames[opt] = {short(k): v for k, v in fr.items()}
     A("")
-    big = {opt: max(frames[opt].items(), key=lambda kv: kv[1]) for opt in ("O2", "Os")}
+    stack_ctx = ("bw_encode", "bw_decode", "bw_decode_unchecked")  # a bw_ctx_t on their stack
+    big = {opt: max(((k, v) for k, v in frames[opt].items() if k not in stack_ctx),
+                    key=lambda kv: kv[1]) for opt in ("O2", "Os")}
     A("Largest frames: %s %s bytes (-O2), %s %s bytes (-Os). The range coder's probability "
       "models (`bw_models_t`, in the strip coder's state) are in the caller's `bw_ctx_t` "
-      "(sizeof %s bytes on this core), not on the stack; `bw_encode` and `bw_decode` without "
-      "`_ctx` keep one on theirs." % (big["O2"][0], big["O2"][1], big["Os"][0], big["Os"][1],
-                                       (parsed[sets[0].key]["mem"] or {}).get("ctx", "?")))
+      "(sizeof %s bytes on this core), not on the stack; `bw_encode`, `bw_decode` and "
+      "`bw_decode_unchecked`, the calls without `_ctx`, keep one on theirs (%s, %s and %s "
+      "bytes at -O2)." % (big["O2"][0], big["O2"][1], big["Os"][0], big["Os"][1],
+                          (parsed[sets[0].key]["mem"] or {}).get("ctx", "?"),
+                          *(frames["O2"].get(k, "?") for k in stack_ctx)))
     A("")
+    with open(os.path.join(ROOT, "linker", "stm32l476.ld")) as f:
+        m = re.search(r"^STACK_SIZE\s*=\s*(0x[0-9a-fA-F]+|\d+)\s*;", f.read(), re.M)
     A("The board's stack region is %s bytes (linker/mps2-an386.ld); linker/stm32l476.ld "
-      "reserves 8192." % ((parsed[sets[0].key]["stack"] or {}).get("stack_region", "?")))
+      "reserves %s." % ((parsed[sets[0].key]["stack"] or {}).get("stack_region", "?"),
+                         int(m.group(1), 0) if m else "?"))
     A("")
 
     # data sets and commands
