@@ -359,9 +359,13 @@ def core_linked_size(mapfile):
 
 
 def callgraph(objdir):
-    """Nodes (function -> own frame bytes) and edges from GCC's .ci files."""
+    """Nodes (function -> own frame bytes) and edges from GCC's .ci files of the
+    core's current sources (not those a removed or renamed source left behind)."""
     frame, edges, local = {}, collections.defaultdict(set), {}
     for ci in sorted(glob.glob(os.path.join(objdir, "*.ci"))):
+        src = os.path.join(ROOT, "firmware", "codec", os.path.basename(ci)[:-3] + ".c")
+        if not os.path.exists(src):
+            continue
         with open(ci) as f:
             for l in f:
                 m = re.match(r'node: \{ title: "([^"]+)" label: "([^"]*)"', l)
