@@ -7,6 +7,8 @@
 # there. The image is compiled here with its own flags into
 # build/bench/device/, independent of TARGET.
 
+include mk/core-device.mk
+
 BD_DIR   := build/bench/device
 BD_CC    := arm-none-eabi-gcc
 BD_CPU   := -mcpu=cortex-m4 -mthumb -mfloat-abi=soft
@@ -15,7 +17,8 @@ BD_CORE_CFLAGS = $(BD_WARN) $(BD_CPU) -ffreestanding -ffunction-sections -fdata-
                  -Ifirmware/codec -g -fstack-usage -fcallgraph-info=su
 BD_CORE_SRC := $(wildcard firmware/codec/*.c)
 BD_CORE_HDR := $(wildcard firmware/codec/*.h)
-# -O2: linked into the image; -Os: stack frames only (as the MCU build)
+# -O2 with the default switches: linked into the image; -Os with the
+# device's switches (mk/core-device.mk): stack frames only (as the MCU build)
 BD_OBJ_O2 := $(patsubst firmware/codec/%.c,$(BD_DIR)/obj-O2/%.o,$(BD_CORE_SRC))
 BD_OBJ_OS := $(patsubst firmware/codec/%.c,$(BD_DIR)/obj-Os/%.o,$(BD_CORE_SRC))
 BD_IMG_SRC := tests/bench/device/bench_device.c hal/cortex-m/startup.c hal/qemu-mps2/board.c \
@@ -23,13 +26,13 @@ BD_IMG_SRC := tests/bench/device/bench_device.c hal/cortex-m/startup.c hal/qemu-
 BD_IMG_OBJ := $(patsubst %.c,$(BD_DIR)/obj-img/%.o,$(BD_IMG_SRC))
 BD_ELF := $(BD_DIR)/bench_device.elf
 
-$(BD_DIR)/obj-O2/%.o: firmware/codec/%.c $(BD_CORE_HDR) mk/bench-device.mk
+$(BD_DIR)/obj-O2/%.o: firmware/codec/%.c $(BD_CORE_HDR) mk/bench-device.mk mk/core-device.mk
 	@mkdir -p $(dir $@)
 	$(BD_CC) $(BD_CORE_CFLAGS) -O2 -c $< -o $@
 
-$(BD_DIR)/obj-Os/%.o: firmware/codec/%.c $(BD_CORE_HDR) mk/bench-device.mk
+$(BD_DIR)/obj-Os/%.o: firmware/codec/%.c $(BD_CORE_HDR) mk/bench-device.mk mk/core-device.mk
 	@mkdir -p $(dir $@)
-	$(BD_CC) $(BD_CORE_CFLAGS) -Os -c $< -o $@
+	$(BD_CC) $(BD_CORE_CFLAGS) -Os $(BW_DEVICE_CFG) -c $< -o $@
 
 $(BD_DIR)/obj-img/%.o: %.c $(BD_CORE_HDR) hal/bw_hal.h mk/bench-device.mk
 	@mkdir -p $(dir $@)

@@ -7,10 +7,12 @@
 # test_mesh, the reference model's RGL loader for test_sample, each test)
 # into $SANITIZE_BUILD (default build/sanitize), independent of the
 # Makefile's build. The codec core is
-# compiled for size (-Os, as for the device's flash budget), so that the
-# forms its loops take in that build (BW_SMALL) run here; the other builds
-# run the -O2 forms. test_codec then runs once more with the core built
-# without -Os, for what a build for size leaves out (prediction).
+# compiled as for the device (-Os and the switches of mk/core-device.mk:
+# the small code forms, the encoder without prediction), so that those forms
+# run here, and the tests are compiled with the same switches (they read
+# them, firmware/codec/bw_config.h); the other builds run the default forms.
+# test_codec then runs once more with the core and the test built with the
+# default switches, for what the device's encoder leaves out (prediction).
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
 # Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
@@ -22,6 +24,7 @@ CC=${SANITIZE_CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
         -fsanitize=address,undefined -fno-sanitize-recover=all
         -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
+DEVICE_CFG=$(sed -n 's/^BW_DEVICE_CFG := //p' mk/core-device.mk)
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c firmware/link/bw_i2cwin.c $(ls host-tools/lib/*.c)
          host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
@@ -35,13 +38,14 @@ core_o1=()
 for src in $LIB_SRC; do
     obj="$OUT/obj/$(echo "${src%.c}" | tr / _).o"
     opt=
-    case $src in firmware/codec/*) opt=-Os ;; esac
+    case $src in firmware/codec/*) opt="-Os $DEVICE_CFG" ;; esac
     # shellcheck disable=SC2086
     $CC $CFLAGS $opt -c "$src" -o "$obj"
     case $src in
     firmware/codec/*)
-        # the core once more as built for speed: the parts a build for size
-        # leaves out (prediction) run in the second pass of test_codec
+        # the core once more with the default switches: what the device's
+        # switches leave out (the prediction encoder) runs in the second pass
+        # of test_codec
         o1="$OUT/obj-O1/$(echo "${src%.c}" | tr / _).o"
         # shellcheck disable=SC2086
         $CC $CFLAGS -c "$src" -o "$o1"
@@ -54,13 +58,14 @@ done
 
 passed=0
 failed=0
-# run_test NAME SOURCE OBJECTS...
+# run_test NAME SOURCE SWITCHES OBJECTS...: SWITCHES, those of the core in
+# OBJECTS, for the test to read
 run_test() {
-    local name=$1 t=$2
-    shift 2
+    local name=$1 t=$2 cfg=$3
+    shift 3
     local bin="$OUT/$name" log="$OUT/$name.log"
     # shellcheck disable=SC2086
-    if ! $CC $CFLAGS "$t" "$@" -lcmocka -lm -o "$bin" >"$log" 2>&1; then
+    if ! $CC $CFLAGS $cfg "$t" "$@" -lcmocka -lm -o "$bin" >"$log" 2>&1; then
         printf '  %-24s does not build\n' "$name"
         sed 's/^/    | /' "$log" | tail -20
         failed=$((failed + 1))
@@ -85,8 +90,8 @@ run_test() {
     fi
 }
 for t in tests/unit/test_*.c; do
-    run_test "$(basename "${t%.c}")" "$t" "${objs[@]}"
+    run_test "$(basename "${t%.c}")" "$t" "$DEVICE_CFG" "${objs[@]}"
 done
-run_test test_codec_O1_core tests/unit/test_codec.c "${core_o1[@]}"
+run_test test_codec_O1_core tests/unit/test_codec.c "" "${core_o1[@]}"
 echo "RESULT: $passed passed, $failed failed"
 [ "$failed" = 0 ]

@@ -51,6 +51,7 @@ static int32_t stream_mem[BW_STREAM_MEM_BOUND(APP_STREAM_LEVEL, APP_STREAM_BANDS
 static int32_t spectrum[APP_STREAM_BANDS];
 static int32_t samples[APP_MAX_SAMPLES];
 static int32_t work[BW_WORK_BOUND(APP_MAX_SAMPLES, APP_MAX_BANDS)];
+static bw_ctx_t ctx; /* the coder's state, off the stack */
 static uint8_t payload[APP_PAYLOAD_CAP];
 static uint8_t txbuf[BW_FRAME_MAX];
 static bw_frame_rx_t rx;
@@ -182,7 +183,7 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
         return -1;
     }
     uint64_t t0 = bw_hal_counter(hal);
-    st = bw_encode(&d, &p, samples, work, NULL, payload, sizeof payload, &len);
+    st = bw_encode_ctx(&ctx, &d, &p, samples, work, NULL, payload, sizeof payload, &len);
     uint64_t spent = bw_hal_counter(hal) - t0;
     if (st != BW_OK) {
         send_error(hal, st);

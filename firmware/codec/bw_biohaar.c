@@ -6,6 +6,8 @@
  */
 #include "bw_biohaar.h"
 
+#include <stdbool.h>
+
 #include "bw_fixed.h"
 #include "bw_geodesic.h"
 
@@ -50,9 +52,31 @@ void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const 
     }
 }
 
-void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
+/* One parent's inverse step: c0 = s_P and c_m = d_m become the children. */
+static void unlift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
+                    size_t vlen)
 {
-    for (unsigned j = level; j-- > 0;) {
+    for (size_t e = 0; e < vlen; e++) {
+        int32_t s0 = bw_wsub(c0[e], update_term(w, c1[e], c2[e], c3[e]));
+        c0[e] = s0;
+        c1[e] = bw_wadd(c1[e], s0);
+        c2[e] = bw_wadd(c2[e], s0);
+        c3[e] = bw_wadd(c3[e], s0);
+    }
+}
+
+/* Every parent's step, the finest parents first (forward) or the coarsest
+ * (inverse); built once per direction with BW_CFG_UNROLL, else one copy
+ * runs both. */
+#if BW_CFG_UNROLL
+#define RUN_INLINE BW_ALWAYS_INLINE
+#else
+#define RUN_INLINE BW_NOINLINE
+#endif
+static RUN_INLINE void biohaar_run(int32_t *x, unsigned level, size_t vlen, bool inverse)
+{
+    for (unsigned i = 0; i < level; i++) {
+        unsigned j = inverse ? i : level - 1u - i;
         size_t h = (size_t)1 << (2u * (level - j - 1u)); /* child stride, leaves */
         uint32_t per_base = 1u << (2u * j);
         for (uint32_t p = 0; p < 4u * per_base; p++) {
@@ -60,31 +84,17 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen)
             bw_geo_weights(j, p & (per_base - 1u), w);
             int32_t *c0 = x + (size_t)p * 4u * h * vlen;
             int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
-            bw_biohaar_lift4(c0, c1, c2, c3, w, vlen);
+            if (inverse)
+                unlift4(c0, c1, c2, c3, w, vlen);
+            else
+                bw_biohaar_lift4(c0, c1, c2, c3, w, vlen);
         }
     }
 }
 
-void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen)
-{
-    for (unsigned j = 0; j < level; j++) {
-        size_t h = (size_t)1 << (2u * (level - j - 1u));
-        uint32_t per_base = 1u << (2u * j);
-        for (uint32_t p = 0; p < 4u * per_base; p++) {
-            uint16_t w[3];
-            bw_geo_weights(j, p & (per_base - 1u), w);
-            int32_t *c0 = x + (size_t)p * 4u * h * vlen;
-            int32_t *c1 = c0 + h * vlen, *c2 = c1 + h * vlen, *c3 = c2 + h * vlen;
-            for (size_t e = 0; e < vlen; e++) {
-                int32_t s0 = bw_wsub(c0[e], update_term(w, c1[e], c2[e], c3[e]));
-                c0[e] = s0;
-                c1[e] = bw_wadd(c1[e], s0);
-                c2[e] = bw_wadd(c2[e], s0);
-                c3[e] = bw_wadd(c3[e], s0);
-            }
-        }
-    }
-}
+void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, level, vlen, false); }
+
+void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, level, vlen, true); }
 
 int bw_biohaar_coef_level(uint32_t idx)
 {

@@ -21,6 +21,35 @@
  * Directions are in the codec's geodesic triangle order (bw_geodesic.h).
  * Monochromatic data is bands = 1 (the spectral transform is then the
  * identity).
+ *
+ * Modules (firmware/codec/), one job each
+ * ---------------------------------------
+ *   bw_codec.h         this interface; bw_internal.h, what the modules share
+ *   bw_config.h        build switches: encoder features and code forms
+ *   bw_dims.c          dimensions and the worst-case sizes (the BOUNDs)
+ *   bw_params.c        which shapes, modes, bases and flags go together
+ *   bw_plan.c          the plan of one encode or decode, its spectral tables
+ *   bw_load.c          samples in: range check, prequantiser, fused Haar levels
+ *   bw_symmetry.c      the mirror and reciprocity steps
+ *   bw_transform.c     the transform driver over the two kernels below
+ *   bw_spectral.c      integer lifting on the spectral axis (Haar, 5/3, 9/7)
+ *   bw_biohaar.c       Bio-Haar lifting on the geodesic hemisphere
+ *   bw_geodesic_*.c    its weight and area tables (generated)
+ *   bw_predict.c       prediction, in place of the prequantiser and transforms
+ *   bw_quant.c         thresholds and the dead-zone quantiser, with formats
+ *   bw_order.c         the coding order of the coefficients
+ *   bw_strip_coder.c   strips of 32, encoder and decoder side by side
+ *                      (bw_strip_coder.h; the state's types in bw_coder.h)
+ *   bw_rc.c            the adaptive binary range coder
+ *   bw_rice.c          the Rice strip coder (BW_FLAG_RICE)
+ *   bw_header.c        the payload's header and its CRC
+ *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
+ *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
+ *   bw_decode.c        bw_decode
+ *   bw_stream.c        the streaming encoder (bw_stream_*)
+ *   bw_crc32.c         CRC-32
+ *   bw_error.c         status messages
+ *   bw_strip.c         the paper's sparse strip arrays (not used by the codec)
  */
 #ifndef BW_CODEC_H
 #define BW_CODEC_H
@@ -43,7 +72,7 @@ extern "C" {
 #define BW_MAX_SAMPLES (1u << 28)  /* n_in * n_out * bands                      */
 #define BW_MAX_N_IN (1u << 24)
 /* Samples are signed integers with |x| <= BW_SAMPLE_MAX; transform
- * coefficients then stay well inside int32 (see bw_transform.c). */
+ * coefficients then stay well inside int32 (bw_spectral.c, bw_biohaar.c). */
 #define BW_SAMPLE_MAX ((1 << 24) - 1)
 #define BW_STRIP 32u               /* elements per strip (paper: B_s = 32)      */
 
@@ -62,9 +91,10 @@ typedef enum {
     BW_BASIS_97 = 2,   /* integer-lifted CDF 9/7               */
     BW_BASIS_COUNT = 3, /* the transform bases above                 */
     /* Prediction instead of a transform (SPECTRA, LOSSLESS and MAX_ERROR
-     * only; not in a build for size): each sample is predicted from the
-     * decoded samples before it in its spectrum and in the previous one,
-     * and the prediction error quantised in the loop. */
+     * only): each sample is predicted from the decoded samples before it
+     * in its spectrum and in the previous one, and the prediction error
+     * quantised in the loop. Every decoder decodes it; an encoder built
+     * without BW_CFG_ENCODE_PRED (bw_config.h) does not offer it. */
     BW_BASIS_PRED = 3,
     BW_BASIS_AUTO = 255 /* encoder option: try all, keep the smallest payload */
 } bw_basis_t;
@@ -144,9 +174,10 @@ typedef struct {
 #define BW_HEADER_MAX 27u  /* with the longest varints, scale, offset */
 #define BW_TRAILER_SIZE 4u  /* CRC-32 */
 
-/* Worst case payload size for n samples. The entropy coder spends at most
- * 9 bytes per sample (see bw_coder.c, "bounded length"), plus the strip
- * presence flags, the coder flush and the header and trailer. */
+/* Worst case payload size for n samples: 9 bytes per sample for the strip
+ * coder (bw_strip_coder.c), plus the strip presence flags, the coder flush
+ * and the header and trailer. An encode that needs more returns
+ * BW_ERR_OUTPUT_FULL and writes nothing past out_cap. */
 #define BW_PAYLOAD_BOUND(n) \
     ((size_t)BW_HEADER_MAX + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
 
@@ -166,6 +197,33 @@ bw_status_t bw_dims_make(bw_dims_t *dims, bw_shape_t shape, unsigned level_out, 
 bw_status_t bw_dims_check(const bw_dims_t *dims);
 size_t bw_dims_samples(const bw_dims_t *dims);
 
+/* ---- coder context ------------------------------------------------------ */
+
+/*
+ * The state of one encode or decode: the strip coder with the range coder's
+ * adaptive models, sizeof(bw_ctx_t) bytes (BW_CTX_SIZE on a 32-bit core), a
+ * size fixed at compile time. The caller owns it (a static, say) and lends
+ * it to one call at a time; every call initialises what it uses, so it
+ * needs no init of its own and holds nothing between calls.
+ *
+ * With it the encoder and the decoder keep their stack small: see
+ * BW_CTX_STACK_MAX. bw_encode, bw_decode and bw_decode_unchecked are the
+ * same calls with a bw_ctx_t on their stack: sizeof(bw_ctx_t) more, for
+ * hosts.
+ */
+typedef struct {
+    union {
+        bw_strip_enc_t enc; /* bw_encode_ctx */
+        bw_models_t models; /* bw_decode_ctx: the range decoder's models */
+    };
+} bw_ctx_t;
+
+/* The most stack, in bytes, that bw_encode_ctx (its deepest chain: the
+ * byte-budget search, then the self-check's decode) or bw_decode_ctx takes
+ * on the Cortex-M4 (-O2), interrupt frames not included; tests/target
+ * measures every golden case on the emulated board against it. */
+#define BW_CTX_STACK_MAX 2048u
+
 /* ---- encoder ------------------------------------------------------------ */
 
 /*
@@ -178,6 +236,10 @@ size_t bw_dims_samples(const bw_dims_t *dims);
  * (without it, by quantiser step).
  * On success *out_len is the payload size.
  */
+bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *params,
+                          const int32_t *samples, int32_t *work, int32_t *verify, uint8_t *out,
+                          size_t out_cap, size_t *out_len);
+/* The same with the context on the stack. */
 bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *params, const int32_t *samples,
                       int32_t *work, int32_t *verify, uint8_t *out, size_t out_cap,
                       size_t *out_len);
@@ -211,6 +273,10 @@ bw_status_t bw_header_parse_fields(const uint8_t *payload, size_t len, bw_header
 
 /* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.
  * samples may be the same array as work. */
+bw_status_t bw_decode_ctx(bw_ctx_t *ctx, const uint8_t *payload, size_t len, int32_t *samples,
+                          size_t samples_cap, int32_t *work, size_t work_cap,
+                          bw_header_t *hdr_out);
+/* The same with the context on the stack. */
 bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
                       int32_t *work, size_t work_cap, bw_header_t *hdr_out);
 
@@ -234,12 +300,10 @@ bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size
 
 typedef struct {
     bw_dims_t dims;
-    bw_params_t params;
-    uint8_t basis, spec_levels;
-    uint32_t prequant, step_q8;
-    int32_t *cls, *gain, *tmp, *pend; /* in the caller's memory */
+    bw_params_t params; /* with BW_FLAG_STREAM_ORDER */
+    int32_t *mem;       /* the caller's: spectral tables, lifting scratch, pending vectors */
     uint8_t pend_n[BW_MAX_LEVEL + 1u];
-    uint32_t in, leaf; /* the next spectrum's incoming index and leaf */
+    uint32_t leaf; /* the next spectrum's leaf */
     size_t pushed;
     uint8_t *out;
     size_t cap;

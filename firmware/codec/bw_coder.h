@@ -1,6 +1,7 @@
 /*
- * Types of the strip coder's state, so that callers can own it (the
- * streaming encoder context embeds one). The functions are in bw_codec.c.
+ * Types of the strip coder's state, so that callers can own it (bw_ctx_t
+ * and the streaming encoder's context embed one). The functions are in
+ * bw_strip_coder.c, declared in bw_strip_coder.h.
  */
 #ifndef BW_CODER_H
 #define BW_CODER_H
@@ -14,6 +15,7 @@
 #define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
 #define BW_CODER_NB_CTX 8u
 
+/* The range coder's adaptive models, 7,302 bytes. */
 typedef struct {
     bw_prob_t present[BW_CODER_CLASSES][2];
     bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* [previous bit][above bit + 2 parent] */
@@ -21,6 +23,13 @@ typedef struct {
     bw_prob_t mant[BW_CODER_CLASSES][32];
     bw_prob_t sign[27]; /* [left + 3 parent + 9 above], each 0 none/zero, 1 +, 2 - */
 } bw_models_t;
+
+/* What a strip leaves for the next one's contexts. */
+typedef struct {
+    uint8_t e_above[32]; /* bit lengths of its elements (0: zero) */
+    uint32_t prev_mask;  /* its valid bits (0: absent) */
+    unsigned e_left;     /* bit length of its last element */
+} bw_strip_state_t;
 
 /* The strip encoder, fed one coefficient at a time. */
 typedef struct {
@@ -34,9 +43,7 @@ typedef struct {
     uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
     uint8_t ps[32]; /* their signs' part of the sign model (sign_ctx_up)    */
     unsigned cnt;
-    uint8_t e_above[32];
-    uint32_t prev_mask;
-    unsigned e_left;
+    bw_strip_state_t st;
 } bw_strip_enc_t;
 
 #endif

@@ -19,7 +19,7 @@ static uint32_t crc_bytes(uint32_t crc, const uint8_t *p, size_t n)
     return crc;
 }
 
-#if BW_SMALL
+#if !BW_CFG_CRC_SLICE4
 uint32_t bw_crc32_update(uint32_t crc, const uint8_t *p, size_t n)
 {
     return ~crc_bytes(~crc, p, n);
@@ -27,8 +27,8 @@ uint32_t bw_crc32_update(uint32_t crc, const uint8_t *p, size_t n)
 #else
 /* Four bytes a step ("slicing by 4"): crc_slice[0] is the CRC of one byte,
  * crc_slice[k][i] = (crc_slice[k-1][i] >> 8) ^ crc_slice[0][crc_slice[k-1][i] & 0xFF],
- * the CRC of byte i followed by k zero bytes. 4 KiB of flash in builds
- * for speed; a build for size keeps the nibble table. */
+ * the CRC of byte i followed by k zero bytes. 4 KiB of flash
+ * (BW_CFG_CRC_SLICE4); without it, the nibble table above. */
 static const uint32_t crc_slice[4][256] = {
     {
         0x00000000u, 0x77073096u, 0xEE0E612Cu, 0x990951BAu, 0x076DC419u, 0x706AF48Fu,

@@ -12,8 +12,16 @@
 
 #include <stdint.h>
 
+#include "bw_config.h"
+
 /* q16_t: signed Q15.16, used for lifting constants. */
 typedef int32_t q16_t;
+/* uq16_t: unsigned Q16.16, gains (65536 = 1.0). */
+typedef uint32_t uq16_t;
+/* uq24_8_t: unsigned Q24.8, quantiser steps in sample units (256 = 1.0). */
+typedef uint32_t uq24_8_t;
+/* uq56_8_t: unsigned Q56.8, a step times its gains. */
+typedef uint64_t uq56_8_t;
 
 static inline int32_t bw_wadd(int32_t a, int32_t b) { return (int32_t)((uint32_t)a + (uint32_t)b); }
 static inline int32_t bw_wsub(int32_t a, int32_t b) { return (int32_t)((uint32_t)a - (uint32_t)b); }
@@ -33,19 +41,12 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
     return (int32_t)(uint32_t)(uint64_t)(((int64_t)c * v + 32768) >> 16);
 }
 
-/* 1 in a build for size (-Os): a few loops take their smaller, slower form;
- * the bits they produce are the same. */
-#if defined(__OPTIMIZE_SIZE__)
-#define BW_SMALL 1
+/* A helper kept out of line in the small code forms (BW_CFG_UNROLL 0,
+ * bw_config.h). */
+#if !BW_CFG_UNROLL && defined(__GNUC__)
+#define BW_NOINLINE_SMALL __attribute__((noinline))
 #else
-#define BW_SMALL 0
-#endif
-
-/* A helper kept out of line in a build for size. */
-#if BW_SMALL && defined(__GNUC__)
-#define BW_SMALL_NOINLINE __attribute__((noinline))
-#else
-#define BW_SMALL_NOINLINE
+#define BW_NOINLINE_SMALL
 #endif
 
 /* A function kept out of line, so that it does not change how its callers'
@@ -63,8 +64,8 @@ static inline int32_t bw_mul_q16_round(q16_t c, int32_t v)
 #define BW_ALWAYS_INLINE inline
 #endif
 
-/* Before a hot loop: unrolled 8 times where built for speed. */
-#if !BW_SMALL && defined(__GNUC__)
+/* Before a hot loop: unrolled 8 times with BW_CFG_UNROLL. */
+#if BW_CFG_UNROLL && defined(__GNUC__)
 #define BW_PRAGMA_(x) _Pragma(#x)
 #define BW_UNROLL8 BW_PRAGMA_(GCC unroll 8)
 #else

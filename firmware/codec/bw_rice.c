@@ -22,9 +22,9 @@
 #define KM_MAX 3u      /* sparse magnitude parameter: 2 bits */
 #define KG_MAX 7u      /* sparse gap parameter: 3 bits */
 
-/* A build for size (BW_SMALL, -Os) writes the same bits with the plain
- * writer and always sizes both codes of a strip: smaller and slower. */
-#define RICE_SMALL BW_SMALL
+/* Without BW_CFG_FAST_RICE the same bits are written with the plain writer,
+ * and both codes of a strip are always sized: smaller and slower. */
+#define RICE_SMALL (!BW_CFG_FAST_RICE)
 
 /* ---- bit writer ---------------------------------------------------------- */
 

@@ -21,6 +21,7 @@
  */
 #include "bw_spectral.h"
 
+#include <stdbool.h>
 #include <string.h>
 
 #include "bw_codec.h"
@@ -82,8 +83,20 @@ static inline int32_t lift_f(int kind, q16_t c, int32_t sum)
     return bw_mul_q16_round(c, sum);
 }
 
-static inline void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t ns, int kind,
-                           q16_t c, int sign)
+/* The lifting, one copy per basis and direction with the steps' constants
+ * folded in (BW_CFG_FAST_SPECTRAL), else one copy run through the steps. */
+#if BW_CFG_FAST_SPECTRAL
+#define STEP_INLINE BW_ALWAYS_INLINE
+#define LIFT_INLINE BW_ALWAYS_INLINE
+#define LIFT_UNROLL _Pragma("GCC unroll 4")
+#else
+#define STEP_INLINE inline
+#define LIFT_INLINE
+#define LIFT_UNROLL
+#endif
+
+static STEP_INLINE void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t ns, int kind,
+                                q16_t c, int sign)
 {
     uint32_t inner = nd < ns ? nd : ns - 1u; /* k + 1 < ns */
     uint32_t k = 0;
@@ -97,8 +110,8 @@ static inline void predict(int32_t *d, uint32_t nd, const int32_t *s, uint32_t n
     }
 }
 
-static inline void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd, int kind,
-                          q16_t c, int sign)
+static STEP_INLINE void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd, int kind,
+                               q16_t c, int sign)
 {
     /* k = 0 uses d[0] twice; k >= nd uses d[nd-1] for the missing d[k] */
     uint32_t inner = nd < ns ? nd : ns;
@@ -115,49 +128,62 @@ static inline void update(int32_t *s, uint32_t ns, const int32_t *d, uint32_t nd
     }
 }
 
-/* The reversible lifting steps of one level on s[ns], d[nd]. */
-static void lift_fwd(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned basis)
-{
-    switch (basis) {
-    case BW_BASIS_HAAR:
-        for (uint32_t k = 0; k < nd; k++) {
-            d[k] = bw_wsub(d[k], s[k]);
-            s[k] = bw_wadd(s[k], bw_asr32(d[k], 1));
-        }
-        break;
-    case BW_BASIS_53:
-        predict(d, nd, s, ns, F_HALF, 0, -1);
-        update(s, ns, d, nd, F_QUARTER, 0, +1);
-        break;
-    default: /* BW_BASIS_97 */
-        predict(d, nd, s, ns, F_Q16, Q16_A, +1);
-        update(s, ns, d, nd, F_Q16, Q16_B, +1);
-        predict(d, nd, s, ns, F_Q16, Q16_C, +1);
-        update(s, ns, d, nd, F_Q16, Q16_D, +1);
-        break;
-    }
-}
+/* The lifting steps of one level on s[ns], d[nd], in forward order: a
+ * predict (d from s) or an update (s from d), its f and constant, and the
+ * sign of the forward step; the inverse runs them backwards with the other
+ * sign. The Haar steps, d -= s[k] and s += floor(d[k] / 2), use one sample,
+ * not two, and are written out. */
+typedef struct {
+    uint8_t update, kind;
+    int8_t sign;
+    q16_t c;
+} lift_step_t;
 
-static void lift_inv(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned basis)
+static const lift_step_t lift_53[2] = {{0, F_HALF, -1, 0}, {1, F_QUARTER, +1, 0}};
+static const lift_step_t lift_97[4] = {
+    {0, F_Q16, +1, Q16_A}, {1, F_Q16, +1, Q16_B}, {0, F_Q16, +1, Q16_C}, {1, F_Q16, +1, Q16_D}};
+
+/* The steps of a table from first to last, or (inverse) from last to first
+ * with the other sign. */
+#define LIFT_STEPS(st, n, s, ns, d, nd, inverse)                                 \
+    do {                                                                         \
+        LIFT_UNROLL                                                              \
+        for (unsigned i_ = 0; i_ < (n); i_++) {                                  \
+            const lift_step_t *p_ = &(st)[(inverse) ? (n) - 1u - i_ : i_];       \
+            int sign_ = (inverse) ? -p_->sign : p_->sign;                        \
+            if (p_->update)                                                      \
+                update(s, ns, d, nd, p_->kind, p_->c, sign_);                    \
+            else                                                                 \
+                predict(d, nd, s, ns, p_->kind, p_->c, sign_);                   \
+        }                                                                        \
+    } while (0)
+
+static LIFT_INLINE void lift(int32_t *s, uint32_t ns, int32_t *d, uint32_t nd, unsigned basis,
+                             bool inverse)
 {
-    switch (basis) {
-    case BW_BASIS_HAAR:
+    if (basis == BW_BASIS_HAAR) {
         for (uint32_t k = 0; k < nd; k++) {
-            s[k] = bw_wsub(s[k], bw_asr32(d[k], 1));
-            d[k] = bw_wadd(d[k], s[k]);
+            if (inverse) {
+                s[k] = bw_wsub(s[k], bw_asr32(d[k], 1));
+                d[k] = bw_wadd(d[k], s[k]);
+            } else {
+                d[k] = bw_wsub(d[k], s[k]);
+                s[k] = bw_wadd(s[k], bw_asr32(d[k], 1));
+            }
         }
-        break;
-    case BW_BASIS_53:
-        update(s, ns, d, nd, F_QUARTER, 0, -1);
-        predict(d, nd, s, ns, F_HALF, 0, +1);
-        break;
-    default:
-        update(s, ns, d, nd, F_Q16, Q16_D, -1);
-        predict(d, nd, s, ns, F_Q16, Q16_C, -1);
-        update(s, ns, d, nd, F_Q16, Q16_B, -1);
-        predict(d, nd, s, ns, F_Q16, Q16_A, -1);
-        break;
+        return;
     }
+#if BW_CFG_FAST_SPECTRAL
+    /* a constant table each: its steps fold into the code */
+    if (basis == BW_BASIS_53)
+        LIFT_STEPS(lift_53, 2u, s, ns, d, nd, inverse);
+    else
+        LIFT_STEPS(lift_97, 4u, s, ns, d, nd, inverse);
+#else
+    const lift_step_t *st = basis == BW_BASIS_53 ? lift_53 : lift_97;
+    unsigned n = basis == BW_BASIS_53 ? 2u : 4u;
+    LIFT_STEPS(st, n, s, ns, d, nd, inverse);
+#endif
 }
 
 /* Haar and 5/3 in one pass over the interleaved samples (the same values
@@ -252,12 +278,12 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
-    /* a build for size splits and lifts every basis the same way */
-    if (!BW_SMALL && basis == BW_BASIS_HAAR) {
+    /* without BW_CFG_FAST_SPECTRAL every basis is split and lifted alike */
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_HAAR) {
         fwd_haar(x, ns, nd, tmp);
         return;
     }
-    if (!BW_SMALL && basis == BW_BASIS_53 && n >= 3u) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         fwd_53(x, ns, nd, tmp);
         return;
     }
@@ -265,7 +291,7 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
         tmp[k] = x[2u * k];
     for (uint32_t k = 0; k < nd; k++)
         tmp[ns + k] = x[2u * k + 1u];
-    lift_fwd(tmp, ns, tmp + ns, nd, basis);
+    lift(tmp, ns, tmp + ns, nd, basis, false);
     memcpy(x, tmp, (size_t)n * sizeof *x);
 }
 
@@ -274,15 +300,15 @@ void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     if (n < 2u)
         return;
     uint32_t ns = (n + 1u) / 2u, nd = n / 2u;
-    if (!BW_SMALL && basis == BW_BASIS_HAAR) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_HAAR) {
         inv_haar(x, ns, nd, tmp);
         return;
     }
-    if (!BW_SMALL && basis == BW_BASIS_53 && n >= 3u) {
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         inv_53(x, ns, nd, tmp);
         return;
     }
-    lift_inv(x, ns, x + ns, nd, basis);
+    lift(x, ns, x + ns, nd, basis, true);
     for (uint32_t k = 0; k < ns; k++)
         tmp[2u * k] = x[k];
     for (uint32_t k = 0; k < nd; k++)

@@ -8,10 +8,12 @@
 #      libm, or a floating-point helper (__aeabi_f*/__aeabi_d*, __*sf*/__*df*
 #      soft-float routines, __float*, __fix*);
 #   4. the objects link with tests/freestanding/entry.c (which calls
-#      bw_encode/bw_decode on static buffers) into an image with -nostdlib
+#      bw_encode_ctx/bw_decode_ctx on static buffers) into an image with -nostdlib
 #      -nostartfiles ... -lgcc, leaving no undefined symbol;
 #   5. the linked image has none of the symbols of 3 and holds the codec
 #      entry points.
+# The -Os image, the device's, is built with the device's switches
+# (mk/core-device.mk) and link-time optimisation, and must fit 16 KiB.
 # Prints the section sizes of the images and "RESULT: N passed, M failed".
 # Environment: CORE_DIR (default firmware/codec), FREESTANDING_BUILD (build/freestanding).
 set -eu
@@ -23,7 +25,10 @@ CORE_SRC=$(ls "$CORE_DIR"/*.c)
 ALLOWED_HEADERS='stdint.h|stddef.h|stdbool.h|string.h'
 FORBIDDEN='^(malloc|calloc|realloc|free|_malloc_r|_free_r|[a-z]*printf|_[a-z]*printf_r|puts|putchar|abort|exit|sqrtf?|floorf?|ceilf?|powf?|expf?|logf?|fabsf?|roundf?|lroundf?)$'
 FLOAT='^__aeabi_[fd]|^__aeabi_u?[il]2[fd]$|^__.*(sf|df|tf)[0-9]?$|^__(add|sub|mul|div|neg)(s|d|t)f[0-9]$|^__float|^__fix'
-REQUIRED='bw_encode bw_decode bw_decode_unchecked bw_header_read bw_spec_fwd bw_spec_inv bw_biohaar_fwd bw_biohaar_inv bw_crc32_update bw_rc_enc_shift_low bw_stream_push'
+REQUIRED='bw_encode_ctx bw_decode_ctx bw_decode_unchecked bw_header_read bw_spec_fwd bw_spec_inv bw_biohaar_fwd bw_biohaar_inv bw_crc32_update bw_rc_enc_shift_low bw_stream_push'
+# with link-time optimisation the kernels may be inlined into their callers:
+# the entry points entry.c calls
+REQUIRED_LTO='bw_encode_ctx bw_decode_ctx bw_decode_unchecked bw_header_read bw_stream_push'
 
 passed=0
 failed=0
@@ -57,13 +62,17 @@ forbidden_symbols() {
     "$nm" "$@" 2>/dev/null | awk 'NF >= 2 {print $NF}' | grep -E "$FORBIDDEN|$FLOAT" | sort -u || true
 }
 
-# $1 label, $2 prefix (arm-none-eabi-), rest: flags
+# $1 label, $2 prefix (arm-none-eabi-), rest: flags. With LTO=1 the core is
+# compiled for link-time optimisation (fat objects, which the symbol checks
+# read as usual) and the images are linked with it; entry.c, the harness
+# that provides the string.h routines, is not.
 check_target() {
     local label=$1 prefix=$2
     shift 2
     local cc=${prefix}gcc nm=${prefix}nm size=${prefix}size dir="$OUT/$label"
-    local flags=("$@")
-    echo "== $label: $cc ${flags[*]}"
+    local flags=("$@") lto=()
+    [ "${LTO:-0}" = 1 ] && lto=(-flto -ffat-lto-objects)
+    echo "== $label: $cc ${flags[*]} ${lto[*]}"
     if ! command -v "$cc" >/dev/null; then
         bad "$label: $cc not found (tests/deps.sh installs it)"
         return 0
@@ -93,7 +102,7 @@ HDR
     local objs=() src obj n_bad=0
     for src in $CORE_SRC; do
         obj="$dir/$(basename "${src%.c}").o"
-        if "$cc" "${flags[@]}" -I"$CORE_DIR" -ffunction-sections -fdata-sections -c "$src" -o "$obj"; then
+        if "$cc" "${flags[@]}" "${lto[@]}" -I"$CORE_DIR" -ffunction-sections -fdata-sections -c "$src" -o "$obj"; then
             objs+=("$obj")
         else
             n_bad=$((n_bad + 1))
@@ -123,16 +132,19 @@ HDR
     fi
 
     # 4. link (the whole core, and the parts the entry uses with --gc-sections)
-    "$cc" "${flags[@]}" -I"$CORE_DIR" -fno-tree-loop-distribute-patterns -c tests/freestanding/entry.c -o "$dir/entry.o"
+    # the harness in sections of its own too: the string.h routines the core
+    # does not call are left out of the image, as the core's unused code is
+    "$cc" "${flags[@]}" -I"$CORE_DIR" -ffunction-sections -fdata-sections \
+        -fno-tree-loop-distribute-patterns -c tests/freestanding/entry.c -o "$dir/entry.o"
     local linked=1
     local ldflags=(-nostdlib -nostartfiles "-Wl,-e,_start")
     if "$cc" "${flags[@]}" -Wl,--no-warn-rwx-segments -x c -o /dev/null - -nostdlib -nostartfiles \
         -Wl,-e,0 <<<'int x;' 2>/dev/null; then
         ldflags+=("-Wl,--no-warn-rwx-segments")
     fi
-    if "$cc" "${flags[@]}" "${ldflags[@]}" "${objs[@]}" "$dir/entry.o" -lgcc \
+    if "$cc" "${flags[@]}" "${lto[@]}" "${ldflags[@]}" "${objs[@]}" "$dir/entry.o" -lgcc \
         -o "$dir/core.elf" &&
-        "$cc" "${flags[@]}" "${ldflags[@]}" -Wl,--gc-sections \
+        "$cc" "${flags[@]}" "${lto[@]}" "${ldflags[@]}" -Wl,--gc-sections \
             "${objs[@]}" "$dir/entry.o" -lgcc -o "$dir/codec-gc.elf"; then
         local undef
         undef=$("$nm" -u "$dir/core.elf" | awk '{print $NF}' | tr '\n' ' ')
@@ -151,11 +163,13 @@ HDR
         bad "$label: image contains: $(echo "$sym" | tr '\n' ' ')"
     fi
     local missing="" f
-    for f in $REQUIRED; do
+    local required=$REQUIRED
+    [ "${LTO:-0}" = 1 ] && required=$REQUIRED_LTO
+    for f in $required; do
         "$nm" "$dir/codec-gc.elf" | awk '{print $NF}' | grep -qx "$f" || missing="$missing $f"
     done
     if [ -z "$missing" ]; then
-        ok "$label: the entry keeps the codec's code after --gc-sections ($REQUIRED)"
+        ok "$label: the entry keeps the codec's code after --gc-sections ($required)"
     else
         bad "$label: garbage-collected away:$missing"
     fi
@@ -172,12 +186,16 @@ check_target arm-cortex-m4 arm-none-eabi- \
     -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -O2 -Wall -Wextra -Werror
 
 # the device build: the codec (encoder, decoder, streaming encoder and the
-# library helpers they pull in) must fit 16 KiB of flash at -Os
-check_target arm-cortex-m4-Os arm-none-eabi- \
-    -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os -Wall -Wextra -Werror
+# library helpers they pull in) must fit 16 KiB of flash at -Os with the
+# device's switches (mk/core-device.mk) and link-time optimisation (as
+# mk/mcu.mk builds it)
+DEVICE_CFG=$(sed -n 's/^BW_DEVICE_CFG := //p' mk/core-device.mk)
+# shellcheck disable=SC2086
+LTO=1 check_target arm-cortex-m4-Os arm-none-eabi- \
+    -std=c11 -mcpu=cortex-m4 -mthumb -ffreestanding -Os $DEVICE_CFG -Wall -Wextra -Werror
 # the image's text less the harness that calls the codec (bw_entry, _start
 # in entry.c); the string.h routines it provides stay, as the core calls them
-img=build/freestanding/arm-cortex-m4-Os/codec-gc.elf
+img=$OUT/arm-cortex-m4-Os/codec-gc.elf
 image_text=$(arm-none-eabi-size "$img" | awk 'NR == 2 {print $1}')
 harness=0
 while read -r _ size _ name; do

@@ -21,6 +21,7 @@ static int32_t samples[N];
 static int32_t work[BW_WORK_BOUND(N, BANDS)];
 static int32_t check[BW_WORK_BOUND(N, BANDS)];
 static uint8_t payload[BW_PAYLOAD_BOUND(N)];
+static bw_ctx_t ctx; /* the coder's state, off the stack as on the device */
 volatile int32_t bw_entry_result;
 
 void _start(void);
@@ -87,9 +88,10 @@ int bw_entry(void)
             p.step_q8 = 1024;
             size_t len = 0;
             bw_header_t h;
-            int st = bw_encode(&d, &p, samples, work, check, payload, sizeof payload, &len);
+            int st = bw_encode_ctx(&ctx, &d, &p, samples, work, check, payload, sizeof payload,
+                                   &len);
             acc += st;
-            acc += bw_decode(payload, len, check, N, work, BW_WORK_BOUND(N, BANDS), &h);
+            acc += bw_decode_ctx(&ctx, payload, len, check, N, work, BW_WORK_BOUND(N, BANDS), &h);
             acc += bw_decode_unchecked(payload, len, check, N, work, BW_WORK_BOUND(N, BANDS));
             acc += bw_header_read(payload, len, &h) + (int32_t)h.body_len;
         }

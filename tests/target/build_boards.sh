@@ -5,10 +5,10 @@
 #      build/qemu/brdfwave-fw.elf and build/mcu/brdfwave-fw.elf (for the MCU
 #      image, linker/stm32l476.ld asserts that .data + .bss + its stack fit);
 #   2. the MCU image fits the STM32L476RG: text + data within 1 MiB of flash,
-#      data + bss + the 8 KiB stack of linker/stm32l476.ld within 96 KiB of
+#      data + bss + the 4 KiB stack of linker/stm32l476.ld within 96 KiB of
 #      SRAM1, and at least MIN_STACK bytes left below .bss for the stack (the
-#      encoder's deepest call chain with the application's and interrupt
-#      frames takes about 8.5 KiB);
+#      deepest call chain, the application's through the encoder, takes about
+#      1.7 KiB; the coder's state, bw_ctx_t, is in .bss);
 #   3. it holds no malloc/free (or calloc/realloc) and no printf family;
 #   4. its vector table: initial stack pointer at the top of SRAM1,
 #      Reset_Handler at 0x04, I2C1_EV_IRQHandler at 0xBC (IRQ 31, vector 47)
@@ -24,8 +24,8 @@ FLASH_BASE=0x08000000
 FLASH_SIZE=$((1024 * 1024))
 RAM_BASE=0x20000000
 RAM_SIZE=$((96 * 1024))
-STACK_RESERVED=$((8 * 1024))
-MIN_STACK=${MIN_STACK:-$((10 * 1024))}
+STACK_RESERVED=$((4 * 1024))
+MIN_STACK=${MIN_STACK:-$((4 * 1024))}
 
 passed=0
 failed=0

@@ -3,6 +3,9 @@
  * every golden case encodes to the very payload the host produces (CRC and
  * length from tests/golden/payload_crc.txt), decodes within its guarantee,
  * and reports the instructions it took (-icount shift=0: deterministic).
+ * The encoder (with its self-check, which decodes) and the decoder run with
+ * the coder's state in a static bw_ctx_t, and their stack stays within
+ * BW_CTX_STACK_MAX (bw_codec.h).
  * Ends with "RESULT: N passed, M failed"; the exit status is non-zero on a
  * failure.
  */
@@ -25,6 +28,10 @@ static int32_t verify[BW_WORK_BOUND(MAX_SAMPLES, MAX_BANDS)];
 static uint8_t payload[BW_PAYLOAD_BOUND(MAX_SAMPLES)];
 
 static unsigned passed, failed;
+static const bw_hal_t *hal;
+
+/* the coder's state, off the stack */
+static bw_ctx_t ctx;
 
 /* the streaming encoder's whole state: context, caller memory, one spectrum */
 static bw_stream_t stream;
@@ -46,6 +53,31 @@ static size_t stack_used(void (*fn)(void))
     while (p < sp && *p == 0xC0DEFACEu)
         p++;
     return (size_t)(sp - p) * 4u;
+}
+
+/* one encode (with verify) and one decode, each run under stack_used() */
+static struct {
+    const bw_dims_t *d;
+    const bw_params_t *p;
+    size_t len;
+    bw_status_t st;
+    bw_header_t h;
+    uint64_t instr;
+} job;
+
+static void run_encode(void)
+{
+    uint64_t t0 = bw_hal_counter(hal);
+    job.st = bw_encode_ctx(&ctx, job.d, job.p, x, work, verify, payload, sizeof payload, &job.len);
+    job.instr = bw_hal_counter(hal) - t0;
+}
+
+static void run_decode(void)
+{
+    uint64_t t0 = bw_hal_counter(hal);
+    job.st = bw_decode_ctx(&ctx, payload, job.len, verify, MAX_SAMPLES, work,
+                           sizeof work / sizeof *work, &job.h);
+    job.instr = bw_hal_counter(hal) - t0;
 }
 
 static const golden_case_t *stream_case;
@@ -104,7 +136,8 @@ static int golden_lookup(const char *name, uint32_t *crc, size_t *len)
 
 int main(void)
 {
-    const bw_hal_t *hal = bw_board();
+    size_t stack_enc = 0, stack_dec = 0;
+    hal = bw_board();
     printf("codec core on %s\n", "mps2-an386 (Cortex-M4)");
     for (size_t c = 0; c < GOLDEN_CASES; c++) {
         const golden_case_t *g = &golden_cases[c];
@@ -118,10 +151,15 @@ int main(void)
         size_t n = bw_dims_samples(&d);
         golden_input(&d, x);
         bw_params_t p = golden_params(g);
-        size_t len = 0;
-        uint64_t t0 = bw_hal_counter(hal);
-        bw_status_t st = bw_encode(&d, &p, x, work, verify, payload, sizeof payload, &len);
-        uint64_t t1 = bw_hal_counter(hal);
+        job.d = &d;
+        job.p = &p;
+        size_t stack = stack_used(run_encode);
+        size_t len = job.len;
+        uint64_t enc_instr = job.instr;
+        bw_status_t st = job.st;
+        if (stack > stack_enc)
+            stack_enc = stack;
+        check(stack <= BW_CTX_STACK_MAX, "encoder's stack above BW_CTX_STACK_MAX", g->name);
         check(st == BW_OK, bw_strerror(st), g->name);
         if (st != BW_OK)
             continue;
@@ -135,10 +173,11 @@ int main(void)
             check(crc == want_crc && len == want_len, "payload differs from the host's", g->name);
 
         /* decode alone, then the guarantee */
-        bw_header_t h;
-        uint64_t t2 = bw_hal_counter(hal);
-        st = bw_decode(payload, len, verify, MAX_SAMPLES, work, sizeof work / sizeof *work, &h);
-        uint64_t t3 = bw_hal_counter(hal);
+        stack = stack_used(run_decode);
+        st = job.st;
+        if (stack > stack_dec)
+            stack_dec = stack;
+        check(stack <= BW_CTX_STACK_MAX, "decoder's stack above BW_CTX_STACK_MAX", g->name);
         check(st == BW_OK, bw_strerror(st), g->name);
         uint32_t worst = 0;
         for (size_t i = 0; st == BW_OK && i < n; i++) {
@@ -152,8 +191,8 @@ int main(void)
         if (g->mode == BW_MODE_MAX_ERROR)
             check(worst <= g->param, "max error exceeded", g->name);
         printf("  %-32s %6lu samples %6lu bytes  encode+verify %8.1f instr/sample  decode %6.1f\n",
-               g->name, (unsigned long)n, (unsigned long)len, (double)(t1 - t0) / (double)n,
-               (double)(t3 - t2) / (double)n);
+               g->name, (unsigned long)n, (unsigned long)len, (double)enc_instr / (double)n,
+               (double)job.instr / (double)n);
 
         if (g->flags & BW_FLAG_STREAM_ORDER) {
             /* the streaming encoder, spectrum by spectrum, makes the same payload */
@@ -164,7 +203,7 @@ int main(void)
             }
             stream_case = g;
             uint64_t s0 = bw_hal_counter(hal);
-            size_t stack = stack_used(run_stream);
+            stack = stack_used(run_stream);
             uint64_t s1 = bw_hal_counter(hal);
             check(stream_status == BW_OK, bw_strerror(stream_status), g->name);
             check(stream_status == BW_OK && stream_len == want_len &&
@@ -179,6 +218,10 @@ int main(void)
                    (unsigned long)(d.bands * 4u), (unsigned long)stack);
         }
     }
+    printf("stack: encode with verify %lu bytes, decode %lu bytes (BW_CTX_STACK_MAX %lu; the "
+           "coder's state, bw_ctx_t, %lu bytes, is static)\n",
+           (unsigned long)stack_enc, (unsigned long)stack_dec, (unsigned long)BW_CTX_STACK_MAX,
+           (unsigned long)sizeof ctx);
     printf("RESULT: %u passed, %u failed\n", passed, failed);
     return failed ? 1 : 0;
 }

@@ -31,6 +31,7 @@
 
 #include "bw_biohaar.h"
 #include "bw_codec.h"
+#include "bw_config.h"
 #include "bw_crc32.h"
 #include "bw_error.h"
 #include "bw_geodesic.h"
@@ -202,10 +203,16 @@ static bw_status_t encode_new(const bw_dims_t *d, const bw_params_t *p, const in
     return st;
 }
 
-/* Whether the core was built with prediction (a build for size, -Os,
- * leaves it out and refuses the basis). */
-static bool pred_built(void)
+/* The encoder features of the core under test (bw_config.h): this file is
+ * compiled with the core's switches. */
+static bool pred_built(void) { return BW_CFG_ENCODE_PRED; }
+static bool fill_half_built(void) { return BW_CFG_BUDGET_FILL_HALF; }
+
+/* The switch tells what the encoder offers: prediction is coded exactly
+ * when the core was built with it, else refused as an invalid argument. */
+static void encoder_offers_prediction_exactly_when_built_with_it(void **state)
 {
+    (void)state;
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 1, 8);
     int32_t x[8] = {1, 2, 3, 4, 5, 6, 7, 8};
     bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_PRED);
@@ -213,15 +220,8 @@ static bool pred_built(void)
     size_t len;
     bw_status_t st = encode_new(&d, &p, x, true, &out, &len);
     free(out);
-    if (st != BW_OK && st != BW_ERR_ARG)
-        fail_msg("prediction probe: %s", bw_strerror(st));
-    return st == BW_OK;
+    assert_int_equal(st, pred_built() ? BW_OK : BW_ERR_ARG);
 }
-
-/* The core built for size (-Os, BW_SMALL) also leaves out the byte
- * budget's rounding beyond 1/8 of a step: the prediction probe tells that
- * build. */
-static bool built_for_size(void) { return !pred_built(); }
 
 /* Decodes into a new array sized from the header (*samples: free it). */
 static bw_status_t decode_new(const uint8_t *payload, size_t len, int32_t **samples,
@@ -1770,7 +1770,7 @@ static void byte_budget_fills_between_rounding_offsets(void **state)
 static void byte_budget_fills_the_gap_below_the_exact_coding(void **state)
 {
     (void)state;
-    if (built_for_size())
+    if (!fill_half_built())
         skip();
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 8, 512);
     size_t n = bw_dims_samples(&d);
@@ -3185,7 +3185,7 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     static const struct {
@@ -3247,13 +3247,72 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
     print_message("%u encodings checked\n", runs);
 }
 
+/* Prediction payloads made by a core with the prediction encoder
+ * (BW_CFG_ENCODE_PRED) from pred_fixture_input: 3 spectra of 24 bands within
+ * a bound of 2 (range coder), and exactly with Rice strips. */
+static const uint8_t pred_fixture_e2[] = {
+    0x42, 0x57, 0x06, 0x34, 0x00, 0x00, 0x00, 0x03, 0x18, 0x02, 0xd2, 0x58, 0x42, 0x0f,
+    0x71, 0x72, 0xbd, 0xe8, 0xa5, 0x36, 0x2e, 0x16, 0x1a, 0x87, 0xdb, 0xd8, 0x36, 0xbc,
+    0x2f, 0x19, 0xce, 0x11, 0xe8, 0x61, 0xac, 0x1d, 0x20, 0x5b, 0xcb, 0x13, 0xa1, 0x55,
+    0x6d, 0x6d, 0xf1, 0x43, 0xa5, 0xdc, 0xe4, 0xb2, 0xde, 0x1a, 0xa7, 0x4d, 0xcf, 0x35,
+    0x7c, 0x20, 0x29, 0x38, 0x14, 0xa9, 0x37, 0xec, 0x28, 0x6c, 0x23, 0x06, 0x86,
+};
+static const uint8_t pred_fixture_rice[] = {
+    0x42, 0x57, 0x06, 0x30, 0x00, 0x04, 0x00, 0x03, 0x18, 0x00, 0x00, 0x50, 0x00, 0x00,
+    0x00, 0x00, 0xbb, 0x85, 0x3a, 0x79, 0x52, 0x99, 0x5d, 0x22, 0x10, 0x08, 0x24, 0xaa,
+    0xcd, 0x1d, 0x93, 0xc4, 0x63, 0x95, 0x89, 0xac, 0xe6, 0x37, 0x16, 0xa8, 0x5c, 0x63,
+    0x70, 0xb8, 0x5d, 0x3a, 0x65, 0x1a, 0x97, 0x5b, 0x25, 0x91, 0xc0, 0x5c, 0x23, 0x09,
+    0xb9, 0xa1, 0xa3, 0x71, 0x92, 0x79, 0x60, 0x84, 0xaa, 0xeb, 0x64, 0xad, 0x03, 0xa2,
+    0xaf, 0x04, 0x1f, 0x59, 0x36, 0x86, 0x5e, 0x47, 0x2d, 0x44, 0x8a, 0x91, 0xcc, 0x07,
+    0x04, 0x74, 0x38, 0x1e, 0x31, 0x51, 0x3b,
+};
+#define PRED_FIXTURE_SPECTRA 3u
+#define PRED_FIXTURE_BANDS 24u
+
+static void pred_fixture_input(int32_t *x)
+{
+    for (int s = 0; s < (int)PRED_FIXTURE_SPECTRA; s++)
+        for (int k = 0; k < (int)PRED_FIXTURE_BANDS; k++)
+            x[s * (int)PRED_FIXTURE_BANDS + k] =
+                3000 + 41 * k - 17 * s + (k * k * 7 + s * 11) % 23 - (k % 5) * 9;
+}
+
+/* Every core decodes prediction payloads, also one whose encoder leaves
+ * prediction out (the device's, BW_CFG_ENCODE_PRED 0): to the samples the
+ * predictor's formulas give, within the bound. */
+static void every_decoder_decodes_prediction_payloads(void **state)
+{
+    (void)state;
+    enum { N = PRED_FIXTURE_SPECTRA * PRED_FIXTURE_BANDS };
+    int32_t x[N], r[N], q[N];
+    pred_fixture_input(x);
+    const struct {
+        const uint8_t *p;
+        size_t len;
+        uint32_t E;
+    } fx[] = {{pred_fixture_e2, sizeof pred_fixture_e2, 2u},
+              {pred_fixture_rice, sizeof pred_fixture_rice, 0u}};
+    for (size_t c = 0; c < ARRAY_LEN(fx); c++) {
+        int32_t *y;
+        bw_header_t h;
+        assert_int_equal(decode_new(fx[c].p, fx[c].len, &y, &h), BW_OK);
+        assert_int_equal(h.basis, BW_BASIS_PRED);
+        assert_int_equal(h.max_error, fx[c].E);
+        ref_predict(x, PRED_FIXTURE_SPECTRA, PRED_FIXTURE_BANDS, fx[c].E, r, q);
+        assert_int_equal(first_mismatch(r, y, N), N);
+        for (size_t i = 0; i < N; i++)
+            assert_true(labs((long)y[i] - x[i]) <= (long)fx[c].E);
+        free(y);
+    }
+}
+
 /* On the field spectra within a bound, prediction beats every transform
  * basis, and the automatic basis finds it. */
 static void prediction_beats_the_transforms_on_field_spectra_within_a_bound(void **state)
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     bw_dims_t d;
@@ -3291,7 +3350,7 @@ static void prediction_is_refused_where_it_does_not_apply(void **state)
 {
     (void)state;
     if (!pred_built()) {
-        print_message("prediction is not in this build of the core (-Os)\n");
+        print_message("this core's encoder leaves prediction out (BW_CFG_ENCODE_PRED 0)\n");
         skip();
     }
     /* the encoder: other shapes, modes and the stream order */
@@ -3420,7 +3479,9 @@ int main(void)
         cmocka_unit_test(payloads_of_fixed_inputs_match_the_golden_checksums),
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),
         cmocka_unit_test(streaming_encoder_refuses_what_it_cannot_do),
+        cmocka_unit_test(encoder_offers_prediction_exactly_when_built_with_it),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
+        cmocka_unit_test(every_decoder_decodes_prediction_payloads),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),
         cmocka_unit_test(prediction_is_refused_where_it_does_not_apply),
     };

@@ -17,7 +17,8 @@
  *   PHASE   the transforms alone on the same data (basis the encoder chose)
  *   PROF    a PC-sampling profile of one call (lossless encode, decode,
  *           ratio-8 encode), followed by "P ADDRESS COUNT" lines
- *   STACK   stack high-water marks of bw_encode / bw_decode (painted stack)
+ *   STACK   stack high-water marks of bw_encode_ctx / bw_decode_ctx (painted
+ *           stack; the coder's state is the static ctx below)
  *   MEM     the arena layout
  *   END     status
  * Instruction counts are totals for the whole buffer; the host divides.
@@ -44,6 +45,7 @@ static uint8_t arena[ARENA_BYTES] __attribute__((aligned(8)));
 extern uint32_t _sstack, _estack;
 
 static const bw_hal_t *hal;
+static bw_ctx_t ctx; /* the coder's state, off the stack as on a device */
 static unsigned failures;
 
 static uint64_t now(void) { return bw_hal_counter(hal); }
@@ -189,7 +191,8 @@ static int set_load(set_t *s, const char *path)
     if (s->out_cap > bw_payload_bound(s->n))
         s->out_cap = bw_payload_bound(s->n);
     s->raw = (uint16_t *)(void *)s->verify;
-    printf("MEM arena=%lu x=%lu work=%lu verify=%lu out_cap=%lu\n", (unsigned long)ARENA_BYTES,
+    printf("MEM arena=%lu ctx=%lu x=%lu work=%lu verify=%lu out_cap=%lu\n",
+           (unsigned long)ARENA_BYTES, (unsigned long)sizeof ctx,
            (unsigned long)(s->n * 4u), (unsigned long)(s->wb * 4u), (unsigned long)(s->wb * 4u),
            (unsigned long)s->out_cap);
 
@@ -282,7 +285,7 @@ static __attribute__((noinline)) uint64_t timed_encode(set_t *s, const bw_params
     stack_paint();
     uint32_t sp = stack_pointer();
     uint64_t t0 = now();
-    *st = bw_encode(&s->d, p, s->x, s->work, verify, s->out, s->out_cap, len);
+    *st = bw_encode_ctx(&ctx, &s->d, p, s->x, s->work, verify, s->out, s->out_cap, len);
     uint64_t t1 = now();
     *stack = sp - stack_low();
     return t1 - t0;
@@ -294,7 +297,7 @@ static __attribute__((noinline)) uint64_t timed_decode(set_t *s, size_t len, bw_
     stack_paint();
     uint32_t sp = stack_pointer();
     uint64_t t0 = now();
-    *st = bw_decode(s->out, len, s->verify, s->wb, s->verify, s->wb, h);
+    *st = bw_decode_ctx(&ctx, s->out, len, s->verify, s->wb, s->verify, s->wb, h);
     uint64_t t1 = now();
     *stack = sp - stack_low();
     return t1 - t0;
@@ -529,12 +532,12 @@ static void phases(set_t *s)
     pz.step_q8 = UINT32_MAX;
     size_t lz = 0;
     t0 = now();
-    bw_status_t stz = bw_encode(d, &pz, s->x, s->work, NULL, s->out, s->out_cap, &lz);
+    bw_status_t stz = bw_encode_ctx(&ctx, d, &pz, s->x, s->work, NULL, s->out, s->out_cap, &lz);
     t1 = now();
     if (stz == BW_OK) {
         printf("PHASE name=encode_all_zero bytes=%lu instr=%llu\n", (unsigned long)lz, t1 - t0);
         t0 = now();
-        stz = bw_decode(s->out, lz, s->verify, s->wb, s->verify, s->wb, NULL);
+        stz = bw_decode_ctx(&ctx, s->out, lz, s->verify, s->wb, s->verify, s->wb, NULL);
         t1 = now();
         if (stz == BW_OK)
             printf("PHASE name=decode_all_zero bytes=%lu instr=%llu\n", (unsigned long)lz,
@@ -548,7 +551,7 @@ static void phases(set_t *s)
     /* the payload CRC of the lossless payload, as the encoder computes it */
     bw_params_t p = params_of(&modes[0], s, (uint8_t)lossless_basis);
     size_t len = 0;
-    if (bw_encode(d, &p, s->x, s->work, NULL, s->out, s->out_cap, &len) == BW_OK) {
+    if (bw_encode_ctx(&ctx, d, &p, s->x, s->work, NULL, s->out, s->out_cap, &len) == BW_OK) {
         t0 = now();
         sink = bw_crc32(s->out, len - BW_TRAILER_SIZE);
         t1 = now();
@@ -634,17 +637,17 @@ static void profile(set_t *s)
     bw_params_t p = params_of(&modes[0], s, (uint8_t)lossless_basis);
     size_t len = 0;
     prof_start();
-    bw_status_t st = bw_encode(&s->d, &p, s->x, s->work, NULL, s->out, s->out_cap, &len);
+    bw_status_t st = bw_encode_ctx(&ctx, &s->d, &p, s->x, s->work, NULL, s->out, s->out_cap, &len);
     prof_stop("encode_lossless");
     if (st == BW_OK) {
         prof_start();
-        st = bw_decode(s->out, len, s->verify, s->wb, s->verify, s->wb, NULL);
+        st = bw_decode_ctx(&ctx, s->out, len, s->verify, s->wb, s->verify, s->wb, NULL);
         prof_stop("decode_lossless");
     }
     bw_params_t pb = params_of(&modes[4], s, (uint8_t)transform_basis());
     if (st == BW_OK) {
         prof_start();
-        st = bw_encode(&s->d, &pb, s->x, s->work, NULL, s->out, s->out_cap, &len);
+        st = bw_encode_ctx(&ctx, &s->d, &pb, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop("encode_ratio8");
     }
     /* the Rice coder, 5/3: lossless and max-error 4 */
@@ -652,7 +655,7 @@ static void profile(set_t *s)
         bw_params_t pr = params_of(&modes[i ? 2 : 0], s, BW_BASIS_53);
         pr.flags = BW_FLAG_RICE;
         prof_start();
-        st = bw_encode(&s->d, &pr, s->x, s->work, NULL, s->out, s->out_cap, &len);
+        st = bw_encode_ctx(&ctx, &s->d, &pr, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop(i ? "encode_rice_maxerr4" : "encode_rice_lossless");
     }
     if (st != BW_OK) {

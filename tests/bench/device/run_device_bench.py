@@ -359,9 +359,13 @@ def core_linked_size(mapfile):
 
 
 def callgraph(objdir):
-    """Nodes (function -> own frame bytes) and edges from GCC's .ci files."""
+    """Nodes (function -> own frame bytes) and edges from GCC's .ci files of the
+    core's current sources (not those a removed or renamed source left behind)."""
     frame, edges, local = {}, collections.defaultdict(set), {}
     for ci in sorted(glob.glob(os.path.join(objdir, "*.ci"))):
+        src = os.path.join(ROOT, "firmware", "codec", os.path.basename(ci)[:-3] + ".c")
+        if not os.path.exists(src):
+            continue
         with open(ci) as f:
             for l in f:
                 m = re.match(r'node: \{ title: "([^"]+)" label: "([^"]*)"', l)
@@ -598,8 +602,8 @@ def main():
     stacks = {}
     for opt in ("O2", "Os"):
         frame, g = callgraph(os.path.join(OUT, "obj-" + opt))
-        stacks[opt] = {r: deepest(frame, g, r) for r in ("bw_encode", "bw_decode")}
-        stacks[opt]["device"] = deepest(frame, g, "bw_encode", skip=("verify_payload",))
+        stacks[opt] = {r: deepest(frame, g, r) for r in ("bw_encode_ctx", "bw_decode_ctx")}
+        stacks[opt]["device"] = deepest(frame, g, "bw_encode_ctx", skip=("verify_payload",))
 
     L = []
     A = L.append
@@ -841,12 +845,12 @@ def main():
     A("")
     A("| entry | static -O2 | chain -O2 | static -Os | measured -O2 (max) |")
     A("|---|---:|---|---:|---:|")
-    meas = {"bw_encode": max((parsed[d.key]["stack"] or {}).get("encode", 0) for d in sets),
-            "bw_decode": max((parsed[d.key]["stack"] or {}).get("decode", 0) for d in sets)}
+    meas = {"bw_encode_ctx": max((parsed[d.key]["stack"] or {}).get("encode", 0) for d in sets),
+            "bw_decode_ctx": max((parsed[d.key]["stack"] or {}).get("decode", 0) for d in sets)}
     meas_v = max((parsed[d.key]["stack"] or {}).get("encode_verify", 0) for d in sets)
-    rows = (("bw_encode without verify (the device path)", "device", meas["bw_encode"]),
-            ("bw_encode with verify", "bw_encode", meas_v),
-            ("bw_decode", "bw_decode", meas["bw_decode"]))
+    rows = (("bw_encode_ctx without verify (the device path)", "device", meas["bw_encode_ctx"]),
+            ("bw_encode_ctx with verify", "bw_encode_ctx", meas_v),
+            ("bw_decode_ctx", "bw_decode_ctx", meas["bw_decode_ctx"]))
     for label, key, mv in rows:
         s2, ss = stacks["O2"][key], stacks["Os"][key]
         A("| %s | %s | %s | %s | %d |" % (
@@ -857,13 +861,22 @@ def main():
         fr, _ = callgraph(os.path.join(OUT, "obj-" + opt))
         frames[opt] = {short(k): v for k, v in fr.items()}
     A("")
-    A("Largest frames: encode_pass %s (-O2) / %s (-Os) bytes and decode_checked %s / %s "
-      "bytes; each holds the range coder's probability models (`models_t` in bw_codec.c) as "
-      "a local." % (frames["O2"].get("encode_pass"), frames["Os"].get("encode_pass"),
-                    frames["O2"].get("decode_checked"), frames["Os"].get("decode_checked")))
+    stack_ctx = ("bw_encode", "bw_decode", "bw_decode_unchecked")  # a bw_ctx_t on their stack
+    big = {opt: max(((k, v) for k, v in frames[opt].items() if k not in stack_ctx),
+                    key=lambda kv: kv[1]) for opt in ("O2", "Os")}
+    A("Largest frames: %s %s bytes (-O2), %s %s bytes (-Os). The range coder's probability "
+      "models (`bw_models_t`, in the strip coder's state) are in the caller's `bw_ctx_t` "
+      "(sizeof %s bytes on this core), not on the stack; `bw_encode`, `bw_decode` and "
+      "`bw_decode_unchecked`, the calls without `_ctx`, keep one on theirs (%s, %s and %s "
+      "bytes at -O2)." % (big["O2"][0], big["O2"][1], big["Os"][0], big["Os"][1],
+                          (parsed[sets[0].key]["mem"] or {}).get("ctx", "?"),
+                          *(frames["O2"].get(k, "?") for k in stack_ctx)))
     A("")
+    with open(os.path.join(ROOT, "linker", "stm32l476.ld")) as f:
+        m = re.search(r"^STACK_SIZE\s*=\s*(0x[0-9a-fA-F]+|\d+)\s*;", f.read(), re.M)
     A("The board's stack region is %s bytes (linker/mps2-an386.ld); linker/stm32l476.ld "
-      "reserves 8192." % ((parsed[sets[0].key]["stack"] or {}).get("stack_region", "?")))
+      "reserves %s." % ((parsed[sets[0].key]["stack"] or {}).get("stack_region", "?"),
+                         int(m.group(1), 0) if m else "?"))
     A("")
 
     # data sets and commands

@@ -1,0 +1,97 @@
+/*
+ * brdfwave codec core: build switches.
+ *
+ * Each switch is 0 or 1 and may be set on the compiler's command line
+ * (-DBW_CFG_...=0). The defaults do not depend on the optimisation level:
+ * -O2 and -Os builds with the same switches write the same bytes.
+ *
+ * Encoder features: they change which payload an encoder writes.
+ *
+ *   switch                    default  what
+ *   BW_CFG_ENCODE_PRED        1        bw_encode offers prediction (BW_BASIS_PRED):
+ *                                      as a basis of its own, and among those
+ *                                      BW_BASIS_AUTO tries on sets of spectra
+ *                                      coded exactly or within a bound
+ *   BW_CFG_BUDGET_FILL_HALF   1        the byte budget's last search: where a
+ *                                      rounding offset of 1/8 of a step still
+ *                                      leaves the budget short, offsets up to 1/2
+ *
+ * The decoder has no switch: every build decodes every payload the format
+ * allows, prediction included, whatever its encoder leaves out.
+ *
+ * Code forms: the same bytes, more flash for fewer instructions. Each
+ * defaults to BW_CFG_SPEED (default 1), so one switch picks the small forms.
+ *
+ *   switch                    what the fast form does
+ *   BW_CFG_FAST_LOADS         the load checks the sample range with one OR a
+ *                             sample and runs the first one or two Haar levels
+ *                             as it loads
+ *   BW_CFG_FAST_QUANT         the quantiser's rounding offsets without a choice
+ *                             per element
+ *   BW_CFG_FAST_SPECTRAL      Haar and 5/3 levels in one pass over the samples
+ *   BW_CFG_FAST_RICE          the Rice writer held in registers, whole strips
+ *                             with a fixed count, the coarse-to-fine order as
+ *                             loops
+ *   BW_CFG_FAST_STRIPS        the range coder's strip code built once for each
+ *                             direction (else one copy codes and decodes)
+ *   BW_CFG_CRC_SLICE4         CRC-32 four bytes a step (4 KiB of tables, else
+ *                             a 64-byte nibble table)
+ *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline,
+ *                             the Bio-Haar levels built once per direction
+ *
+ * Builds in this repository and their bytes:
+ *   the host library and CLI, the emulated board's firmware (make TARGET=qemu,
+ *   -O2), the device benchmark's image: the defaults;
+ *   the MCU build (make TARGET=mcu, -Os with link-time optimisation), the
+ *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
+ *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
+ *   BW_CFG_ENCODE_PRED=0 and BW_CFG_BUDGET_FILL_HALF=0, which keep encoder,
+ *   decoder and streaming encoder within 16 KiB of flash.
+ *
+ * Two builds write byte-identical payloads for the same input and options
+ * exactly when their encoder features match; the code forms never matter.
+ * A build without BW_CFG_ENCODE_PRED differs only where BW_BASIS_AUTO would
+ * have chosen prediction (sets of spectra, LOSSLESS or MAX_ERROR) and refuses
+ * BW_BASIS_PRED; one without BW_CFG_BUDGET_FILL_HALF only in BYTES payloads
+ * whose search reaches that last step. A host that must reproduce a device's
+ * payload byte for byte builds its library with the device's encoder features
+ * (make EXTRA_CFLAGS="-DBW_CFG_ENCODE_PRED=0 -DBW_CFG_BUDGET_FILL_HALF=0"), or
+ * asks the device for options that use neither (an explicit transform basis,
+ * a mode other than BYTES). Every payload decodes alike in every build.
+ */
+#ifndef BW_CONFIG_H
+#define BW_CONFIG_H
+
+#ifndef BW_CFG_ENCODE_PRED
+#define BW_CFG_ENCODE_PRED 1
+#endif
+#ifndef BW_CFG_BUDGET_FILL_HALF
+#define BW_CFG_BUDGET_FILL_HALF 1
+#endif
+
+#ifndef BW_CFG_SPEED
+#define BW_CFG_SPEED 1
+#endif
+#ifndef BW_CFG_FAST_LOADS
+#define BW_CFG_FAST_LOADS BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_QUANT
+#define BW_CFG_FAST_QUANT BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_SPECTRAL
+#define BW_CFG_FAST_SPECTRAL BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_RICE
+#define BW_CFG_FAST_RICE BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_STRIPS
+#define BW_CFG_FAST_STRIPS BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_CRC_SLICE4
+#define BW_CFG_CRC_SLICE4 BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_UNROLL
+#define BW_CFG_UNROLL BW_CFG_SPEED
+#endif
+
+#endif

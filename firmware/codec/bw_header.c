@@ -1,0 +1,142 @@
+/*
+ * The payload header (docs/FORMAT.md, Header): written from a plan, read
+ * and validated field by field, and the CRC-32 trailer checked.
+ */
+#include <string.h>
+
+#include "bw_crc32.h"
+#include "bw_internal.h"
+#include "bw_le.h"
+
+#define SCALE_ONE_BITS 0x3F800000u /* 1.0f: the default scale, not stored */
+#define H_SCALE 0x40u              /* byte 3: a scale field follows          */
+#define H_OFFSET 0x80u             /* byte 3: an offset field follows        */
+
+/* Reads a LEB128 value of at most 32 bits at q, before end, in its shortest
+ * form only (every encoding is then unique); returns the next byte, or NULL. */
+static const uint8_t *get_varint(const uint8_t *q, const uint8_t *end, uint32_t *v)
+{
+    uint32_t x = 0;
+    for (unsigned sh = 0; q < end && sh < 35u; sh += 7u) {
+        uint32_t b = *q++;
+        if (sh == 28u && b > 0x0Fu)
+            return NULL; /* beyond 32 bits */
+        x |= (b & 0x7Fu) << sh;
+        if (!(b & 0x80u)) {
+            *v = x;
+            return sh && !b ? NULL : q; /* NULL: not the shortest form */
+        }
+    }
+    return NULL;
+}
+
+/* The header's numbers: n_in, bands, the mode's parameter (E, or the step
+ * above 1), then the scale and offset bits, stored when they differ from
+ * 1.0f and 0. */
+enum { HV_N_IN, HV_BANDS, HV_PARAM, HV_SCALE, HV_OFFSET, HV_COUNT };
+
+size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode)
+{
+    uint8_t tmp[BW_HEADER_MAX], *h = out ? out : tmp;
+    uint32_t v[HV_COUNT] = {pl->dims.n_in, pl->dims.bands,
+                            mode == BW_MODE_MAX_ERROR ? pa->max_error
+                                                      : pl->step_q8 - BW_STEP_ONE_Q8,
+                            pa->scale_bits, pa->offset_bits};
+    uint32_t b3 = pl->dims.shape | mode << 2 | pl->basis << 4;
+    size_t n = BW_HEADER_FIXED;
+    for (unsigned k = 0; k < HV_COUNT; k++) {
+        if (k < HV_SCALE) {
+            if (k != HV_PARAM || mode != BW_MODE_LOSSLESS)
+                for (uint32_t x = v[k];; x >>= 7) {
+                    h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
+                    if (x <= 0x7Fu)
+                        break;
+                }
+        } else if (v[k] != (k == HV_SCALE ? SCALE_ONE_BITS : 0u)) {
+            b3 |= H_SCALE << (k - HV_SCALE);
+            bw_put_u32(h + n, v[k]);
+            n += 4u;
+        }
+    }
+    h[0] = BW_MAGIC0;
+    h[1] = BW_MAGIC1;
+    h[2] = BW_VERSION;
+    h[3] = (uint8_t)b3;
+    h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
+    h[5] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
+    h[6] = (uint8_t)pl->spec_levels;
+    return n;
+}
+
+bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
+{
+    if (!p || !h)
+        return BW_ERR_ARG;
+    memset(h, 0, sizeof *h);
+    /* a wrong magic or version, or too short for a header, comes first;
+     * then the CRC; then the fields the CRC vouches for */
+    bw_status_t st = bw_header_parse_fields(p, len, h);
+    if (st == BW_ERR_MAGIC || st == BW_ERR_VERSION || st == BW_ERR_TRUNCATED)
+        return st;
+    h->crc = bw_get_u32(p + len - BW_TRAILER_SIZE);
+    if (bw_crc32(p, len - BW_TRAILER_SIZE) != h->crc)
+        return BW_ERR_CRC;
+    return st;
+}
+
+bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
+{
+    if (len >= 2u && (p[0] != BW_MAGIC0 || p[1] != BW_MAGIC1))
+        return BW_ERR_MAGIC;
+    if (len >= 3u && p[2] != BW_VERSION)
+        return BW_ERR_VERSION;
+    if (len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
+        return BW_ERR_TRUNCATED;
+    const uint8_t *q = p + BW_HEADER_FIXED, *end = p + len - BW_TRAILER_SIZE;
+    bw_dims_t *d = &h->dims;
+    h->version = p[2];
+    d->shape = p[3] & 3u;
+    h->mode = (uint8_t)(p[3] >> 2 & 3u);
+    h->basis = (uint8_t)(p[3] >> 4 & 3u);
+    d->level_out = p[4] & 15u;
+    d->level_in = p[4] >> 4;
+    h->flags = p[5];
+    h->spectral_levels = p[6];
+    uint32_t v[HV_COUNT] = {0u, 0u, 0u, SCALE_ONE_BITS, 0u};
+    for (unsigned k = 0; k < HV_COUNT; k++) {
+        if (k < HV_SCALE) {
+            if (k != HV_PARAM || h->mode != BW_MODE_LOSSLESS)
+                q = get_varint(q, end, &v[k]);
+        } else if (p[3] & (H_SCALE << (k - HV_SCALE))) {
+            /* stored only when it is not the default */
+            uint32_t w = end - q >= 4 ? bw_get_u32(q) : v[k];
+            q = w == v[k] ? NULL : q + 4;
+            v[k] = w;
+        }
+        if (!q)
+            return BW_ERR_HEADER;
+    }
+    d->n_in = v[HV_N_IN];
+    d->bands = v[HV_BANDS];
+    uint32_t e = v[HV_PARAM];
+    bool me = h->mode == BW_MODE_MAX_ERROR;
+    h->max_error = me ? e : 0u;
+    h->prequant = bw_prequant(h->mode, e);
+    h->step_q8 = BW_STEP_ONE_Q8 + (me ? 0u : e);
+    h->scale_bits = v[HV_SCALE];
+    h->offset_bits = v[HV_OFFSET];
+    h->header_len = (uint32_t)(q - p);
+    h->body_len = (uint32_t)(end - q);
+    h->payload_len = (uint32_t)len;
+    d->n_out = d->shape == BW_SHAPE_SPECTRA ? 1u
+               : d->level_out <= BW_MAX_LEVEL ? bw_tri_count(d->level_out)
+                                              : 0u;
+    /* the step above 1 must not wrap; then the rules every payload follows,
+     * and the spectral depth its basis implies */
+    if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) ||
+        bw_params_check(d, h->mode, h->basis, h->flags, me ? e : h->step_q8, BW_FOR_PAYLOAD) !=
+            BW_OK ||
+        h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands))
+        return BW_ERR_HEADER;
+    return BW_OK;
+}

@@ -1,0 +1,250 @@
+/*
+ * brdfwave codec core: what the core's modules share and callers do not see.
+ *
+ * The plan of one encode or decode (bw_plan_t, made by bw_plan_make from the
+ * dims, the basis, the mode and the flags), the helpers every module reads it
+ * with, and each module's functions for the others. The modules and their
+ * jobs are listed in bw_codec.h.
+ */
+#ifndef BW_INTERNAL_H
+#define BW_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "bw_biohaar.h"
+#include "bw_codec.h"
+#include "bw_config.h"
+#include "bw_fixed.h"
+#include "bw_spectral.h"
+
+#define BW_VERSION 6u
+#define BW_MAGIC0 'B'
+#define BW_MAGIC1 'W'
+#define BW_STEP_ONE_Q8 256u   /* a step of 1.0 (Q24.8): coefficients are kept exactly */
+#define BW_VEC_THRESH_Q8 256u /* default vector threshold: one step (Q8)             */
+
+/* ---- the plan (bw_plan.c) ------------------------------------------------ */
+
+typedef struct {
+    bw_dims_t dims;
+    size_t n;
+    unsigned basis;
+    unsigned spec_levels;
+    uint32_t prequant;      /* max-error prequantiser 2E + 1, else 1            */
+    uint32_t step_q8;       /* base quantiser step, unsigned Q24.8               */
+    uint32_t vec_thresh_q8; /* vector threshold in steps, Q8                     */
+    uint32_t round_q8;      /* encoder: rounding offset of the quantiser, Q8     */
+    uint32_t round_cut;     /* encoder: coefficient k of the v-th vector quantised
+                             * takes round_q8 + 1 where k V + v < round_cut (V vectors) */
+    bool mirror;            /* BW_FLAG_MIRROR */
+    bool recip;             /* BW_FLAG_RECIPROCAL */
+    bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
+    int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
+    int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
+    int32_t *tmp;           /* [bands] lifting scratch                           */
+} bw_plan_t;
+
+/* The prequantiser of a mode: 2E + 1 for MAX_ERROR, else 1. */
+static inline uint32_t bw_prequant(unsigned mode, uint32_t max_error)
+{
+    return mode == BW_MODE_MAX_ERROR ? 2u * max_error + 1u : 1u;
+}
+
+/* The spectral decomposition depth of a basis: none for prediction. */
+static inline unsigned bw_plan_spec_levels(unsigned basis, uint32_t bands)
+{
+    return basis == BW_BASIS_PRED ? 0u : bw_spec_levels(bands);
+}
+
+/* The one plan constructor (encoder, decoder, streaming encoder). mode and
+ * param: MAX_ERROR and E, STEP or BYTES and the step (Q24.8), LOSSLESS and
+ * anything; vec_thresh_q8 0 for the default; tables holds 2 * bands int32
+ * for the spectral tables (spec_cls, spec_gain), tmp bands int32 of lifting
+ * scratch (it may be tables: the scratch is used only while transforming,
+ * the tables only while quantising and coding). */
+void bw_plan_make(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, unsigned mode,
+                  uint32_t param, unsigned flags, uint32_t vec_thresh_q8, int32_t *tables,
+                  int32_t *tmp);
+/* Fills the spectral tables (the class and the gain of each band). */
+void bw_plan_tables(const bw_plan_t *pl);
+
+static inline uint32_t bw_tri_count(unsigned level) { return 4u << (2u * level); }
+static inline bool bw_has_out(const bw_dims_t *d) { return d->shape != BW_SHAPE_SPECTRA; }
+static inline bool bw_has_in(const bw_dims_t *d) { return d->shape == BW_SHAPE_BRDF_FULL; }
+
+/* Coarse-to-fine incoming index -> in-place position. */
+static inline uint32_t bw_in_pos(const bw_plan_t *pl, uint32_t i)
+{
+    return bw_has_in(&pl->dims) ? bw_biohaar_pos(i, pl->dims.level_in) : i;
+}
+/* Its inverse gain, Q16. */
+static inline uint32_t bw_in_gain_q16(const bw_plan_t *pl, uint32_t i)
+{
+    return bw_has_in(&pl->dims)
+               ? bw_biohaar_inv_gain_q16(pl->dims.level_in, bw_biohaar_coef_level(i))
+               : 65536u;
+}
+/* Context class of an outgoing coefficient from its parent level j (-1 for
+ * a scaling coefficient): 0 finest details, 1 next, 2 coarser. */
+static inline unsigned bw_level_cls(const bw_plan_t *pl, int j)
+{
+    if (!bw_has_out(&pl->dims))
+        return 2u;
+    int fine = (int)pl->dims.level_out - 1;
+    return j == fine ? 0u : (j == fine - 1 ? 1u : 2u);
+}
+
+/* spec_cls[k] packs the context class of spectral coefficient k (bits 0-1)
+ * and 1 + the index of its spectral parent (above; 0: none). */
+#define BW_SPEC_CLS(v) ((unsigned)(v) & 3u)
+#define BW_SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
+
+/* The parent of band k of vector v (sc = spec_cls[k]): band k of the parent
+ * vector pv (coarse-to-fine order), else the spectral parent in v; NULL for
+ * none. */
+static inline const int32_t *bw_parent_of(const int32_t *pv, const int32_t *v, int32_t sc,
+                                          uint32_t k)
+{
+    int32_t sp = BW_SPEC_PAR(sc);
+    return pv ? pv + k : sp >= 0 ? v + sp : NULL;
+}
+
+/* ---- parameters (bw_params.c) -------------------------------------------- */
+
+/* Who asks bw_params_check: the rules are the format's; the encoders offer
+ * less (bw_encode: BW_BASIS_AUTO, and prediction only with
+ * BW_CFG_ENCODE_PRED; the streaming encoder: no full BRDF, no BYTES, no
+ * prediction, no symmetry flags). */
+enum { BW_FOR_ENCODE, BW_FOR_STREAM, BW_FOR_PAYLOAD };
+
+/* Whether shape, mode, basis, flags and the mode's parameter (MAX_ERROR: E;
+ * STEP: the step, Q24.8) go together: BW_OK, else the status the encoders
+ * return (the header parser turns any into BW_ERR_HEADER). */
+bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, unsigned flags,
+                            uint32_t param, unsigned use);
+
+/* Where prediction applies: sets of spectra, LOSSLESS or MAX_ERROR, not in
+ * stream order. */
+bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags);
+
+/* ---- loads (bw_load.c) ----------------------------------------------------
+ * Both check every sample against +-BW_SAMPLE_MAX and return BW_ERR_RANGE,
+ * after loading all, when one lies outside. */
+
+/* n samples into out, each prequantised: floor((x + E) / q) for q = 2E + 1
+ * (1: none). */
+bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t prequant);
+/* The encoder's load of a plan into out; for the Haar basis without a
+ * symmetry step (BW_CFG_FAST_LOADS) the first one or two spectral levels in
+ * the same pass, their number in *done. */
+bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsigned *done);
+
+/* ---- transforms (bw_transform.c), symmetry (bw_symmetry.c), prediction
+ * (bw_predict.c) ------------------------------------------------------------ */
+
+/* done: the first spectral levels already applied (bw_load). */
+void bw_transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done);
+void bw_transform_inv(const bw_plan_t *pl, int32_t *x);
+/* The mirror and reciprocity steps of the plan's flags; forward, BW_ERR_RANGE
+ * if a difference leaves +-BW_SAMPLE_MAX. */
+bw_status_t bw_symmetry(const bw_plan_t *pl, int32_t *x, bool forward);
+/* Prediction instead of the prequantiser and the transforms, in place:
+ * forward, range-checked samples -> coded errors (rows: 2 * bands int32 for
+ * the decoded spectra); back, coded errors -> decoded samples (rows unused). */
+void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
+
+/* ---- quantiser (bw_quant.c) ---------------------------------------------- */
+
+/* Every coefficient of the plan, forward (thresholds, then the dead-zone
+ * quantiser with the plan's rounding offsets) or back. */
+void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);
+/* One outgoing vector of parent level j (-1: scaling) forward, as
+ * bw_quantise does where there is no incoming transform (the streaming
+ * encoder's shapes; no rounding offsets). */
+void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
+
+/* ---- coding order (bw_order.c) ------------------------------------------- */
+
+/* The outgoing coefficients in coarse-to-fine order (the order of
+ * bw_biohaar_pos) without a division per step: the next one is child m of
+ * parent p at level j (j = -1: the scaling coefficient of base p). */
+typedef struct {
+    int j;
+    uint32_t p, m;
+} bw_walk_t;
+
+void bw_walk_init(bw_walk_t *w);
+/* The in-place position of the current coefficient of a level-L hemisphere
+ * and its parent level (-1: scaling); steps to the next. */
+uint32_t bw_walk_next(bw_walk_t *w, unsigned L, int *level);
+
+/* The outgoing vectors a streaming encoder completes with one leaf: at most
+ * 3 details per level and a scaling vector. */
+#define BW_STREAM_QUEUE (3u * BW_MAX_LEVEL + 1u)
+
+typedef struct {
+    uint32_t pos[BW_STREAM_QUEUE];
+    int8_t level[BW_STREAM_QUEUE];
+    unsigned n;
+} bw_stream_queue_t;
+
+/* Walks the coefficients in coding order: incoming (coarse to fine), then
+ * outgoing, then spectral (Mallat order as stored). The outgoing order is
+ * coarse to fine, or with the plan's `stream` the order in which a
+ * streaming encoder completes them (post-order, docs/FORMAT.md). */
+typedef struct {
+    const bw_plan_t *pl;
+    int32_t *x;
+    uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
+    int32_t *vec;
+    const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
+    const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
+    unsigned cls_dir;
+    uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
+    unsigned qi;
+    bw_stream_queue_t q;
+    bw_walk_t w; /* coarse-to-fine order */
+} bw_iter_t;
+
+void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x);
+/* Moves to the next vector in coding order. */
+void bw_iter_next_vec(bw_iter_t *it);
+
+/* The next coefficient, its class and where its contexts come from: the
+ * parent (directional, else spectral) and the same band of the previous
+ * vector (NULL: none). */
+static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t **par,
+                                    const int32_t **prv)
+{
+    uint32_t k = it->k;
+    int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
+    *par = bw_parent_of(it->par, it->vec, sc, k);
+    *prv = it->prev ? it->prev + k : NULL;
+    *cls = (uint8_t)(BW_SPEC_CLS(sc) * 3u + it->cls_dir);
+    if (++it->k == it->pl->dims.bands)
+        bw_iter_next_vec(it);
+    return p;
+}
+
+/* ---- header (bw_header.c) ------------------------------------------------- */
+
+/* Writes the header of the plan at out (NULL: only counts); returns its
+ * length (at most BW_HEADER_MAX). */
+size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode);
+
+/* ---- encoder (bw_encode.c) and its byte-budget search (bw_budget.c) ------- */
+
+/* One encode at the plan's settings: load, transform, quantise, code; the
+ * header records `mode`. out NULL: only counts (*len the payload size). */
+bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
+                           const int32_t *samples, int32_t *work, bw_ctx_t *ctx, uint8_t *out,
+                           size_t cap, size_t *len);
+/* BYTES: the payload of at most min(byte_budget, cap) bytes with the finest
+ * quantiser the plan's basis reaches; BW_ERR_BUDGET if none fits. */
+bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                             int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
+                             size_t *len);
+
+#endif

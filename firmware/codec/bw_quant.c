@@ -1,0 +1,265 @@
+/*
+ * The quantiser (docs/FORMAT.md, Quantisation): thresholds per space, then a
+ * dead-zone quantiser per element with a step per subband, scaled so that a
+ * step gives about the same squared error in the sample domain whatever the
+ * subband; the reconstruction at 3/8 of the interval.
+ *
+ * Formats (bw_fixed.h):
+ *
+ *   value                          type       format     range
+ *   step_q8, the plan's base step  uq24_8_t   Q24.8      256 (1.0) .. 2^32 - 1
+ *   g_in, g_out, the Bio-Haar      uq16_t     Q16.16     at most 75674 (1.155)
+ *     inverse gains of a subband
+ *   g_spec, the spectral one       uq16_t     Q16.16     at most 92682 (1.414)
+ *   st_q8, an element's step       uq56_8_t   Q56.8      below 2^33
+ *   round_q8, the rounding offset  uint32_t   Q8 of a    0 .. 128
+ *                                             step
+ *   off_q8 = st_q8 round_q8 / 256  uq56_8_t   Q56.8      below st_q8 / 2
+ *   coefficients c, indices q      int32_t    integers
+ *   vec_thresh_q8                  uint32_t   Q8 steps   default 256 (one step)
+ *
+ * Scaling and overflow: st_q8 is step_q8 times the three gains, each product
+ * truncated after the multiplication (>> 16): below 2^33 x 2^17 = 2^50
+ * before a shift and below 2^32 x 1.155^2 x 1.414 < 2^33 after the last, so
+ * the products are formed in 64 bits. The quantiser forms 256 |c| + off_q8
+ * (below 2^39 + 2^32) and divides by st_q8 > 256: |q| < 2^31. Every
+ * coefficient of valid input and every step of 2^24 or less leave both
+ * operands below 2^32, one 32-bit division (div_q8_off). The
+ * reconstruction (8 |q| + 3) st_q8 / 2^11 of what an encoder writes stays
+ * below 8 x 256 |c| + 3 st_q8 < 2^43 and saturates to INT32_MAX; a payload
+ * no encoder writes may wrap the 64-bit product (unsigned, so defined): it
+ * decodes to wrong values, never to undefined behaviour. The energy of a
+ * vector sums squares of indices saturated to 2^24 and itself saturates at
+ * 2^62.
+ */
+#include <string.h>
+
+#include "bw_internal.h"
+
+/* Step of one element, Q56.8, from the base step and the inverse gains of
+ * its three spaces (each Q16). */
+static uq56_8_t elem_step(uq24_8_t step_q8, uq16_t g_in_q16, uq16_t g_out_q16, uq16_t g_spec_q16)
+{
+    uq56_8_t s = ((uint64_t)step_q8 * g_in_q16) >> 16;
+    s = (s * g_out_q16) >> 16;
+    s = (s * g_spec_q16) >> 16;
+    return s;
+}
+
+/* floor((256 a + off_q8) / st_q8): a 32-bit division (one instruction on
+ * Cortex-M4) when the operands fit, which they do for every coefficient of
+ * valid input. */
+BW_NOINLINE_SMALL static uint64_t div_q8_off(uint32_t a, uq56_8_t st_q8, uq56_8_t off_q8)
+{
+    uint64_t num = ((uint64_t)a << 8) + off_q8;
+    if (num <= UINT32_MAX && st_q8 <= UINT32_MAX)
+        return (uint32_t)num / (uint32_t)st_q8;
+    /* a coefficient beyond 2^24 or a step beyond 2^24: long division
+     * (rare, and it keeps the 64-bit division helper out of the image) */
+    uint64_t q = 0, r = 0;
+    for (int bit = 40; bit >= 0; bit--) {
+        r = (r << 1) | ((num >> bit) & 1u);
+        if (r >= st_q8) {
+            r -= st_q8;
+            q |= (uint64_t)1 << bit;
+        }
+    }
+    return q;
+}
+
+/* floor(256 a / st_q8) */
+static inline uint64_t div_q8(uint32_t a, uq56_8_t st_q8) { return div_q8_off(a, st_q8, 0u); }
+
+/* The spectral subbands of a vector, Mallat order: subband 0 the
+ * approximation, then the details from coarse to fine; band i holds the
+ * elements [lo[i], lo[i + 1]). */
+typedef struct {
+    unsigned count;
+    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
+    uq16_t gain_q16[BW_SPEC_MAX_LEVELS + 1u]; /* inverse gain */
+} spec_bands_t;
+
+static void spec_bands(const bw_plan_t *pl, spec_bands_t *sb)
+{
+    uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
+    unsigned L = pl->spec_levels;
+    len[0] = pl->dims.bands;
+    for (unsigned l = 1; l <= L; l++)
+        len[l] = (len[l - 1u] + 1u) / 2u;
+    sb->count = L + 1u;
+    sb->lo[0] = 0;
+    for (unsigned i = 0; i <= L; i++) {
+        sb->lo[i + 1u] = len[L - i];
+        sb->gain_q16[i] = (uq16_t)pl->spec_gain[len[L - i] - 1u];
+    }
+}
+
+/* The threshold on a vector's energy in steps (vec_energy): the square of
+ * vec_thresh_q8 / 256, at least 1. */
+static uint64_t vec_thr(const bw_plan_t *pl)
+{
+    uint64_t t = ((uint64_t)pl->vec_thresh_q8 * pl->vec_thresh_q8) >> 16;
+    return t ? t : 1u;
+}
+
+/* Per subband, the step of a vector whose incoming x outgoing gain is gio. */
+static void vec_steps(const bw_plan_t *pl, const spec_bands_t *sb, uq16_t gio_q16,
+                      uq56_8_t *st_q8)
+{
+    for (unsigned i = 0; i < sb->count; i++)
+        st_q8[i] = elem_step(pl->step_q8, gio_q16, 65536u, sb->gain_q16[i]);
+}
+
+/* Energy of a vector in steps: the sum of floor(|c| / step)^2 (the squares
+ * of the indices the dead-zone quantiser gives), saturating; it stops once
+ * the sum reaches limit (the callers only compare it with a threshold), so
+ * for most vectors after a few elements. */
+static uint64_t vec_energy(const spec_bands_t *sb, const uq56_8_t *st_q8, const int32_t *x,
+                           uint64_t limit)
+{
+    uint64_t e = 0;
+    if (limit == 0u)
+        return 0;
+    for (unsigned i = 0; i < sb->count; i++) {
+        uq56_8_t st = st_q8[i] ? st_q8[i] : 1u;
+        for (uint32_t k = sb->lo[i]; k < sb->lo[i + 1u]; k++) {
+            uint64_t r = div_q8(bw_abs32(x[k]), st);
+            if (r > (1u << 24))
+                r = 1u << 24;
+            e += r * r;
+            if (e > ((uint64_t)1 << 62))
+                return (uint64_t)1 << 62;
+            if (e >= limit)
+                return e;
+        }
+    }
+    return e;
+}
+
+/* floor(|c| / step + round / 256) with the sign of c; off_q8 = st_q8 *
+ * round / 256 (0: the dead-zone quantiser, floor(|c| / step)). */
+static inline int32_t quant(int32_t c, uq56_8_t st_q8, uq56_8_t off_q8)
+{
+    if (st_q8 <= BW_STEP_ONE_Q8)
+        return c;
+    uint32_t q = (uint32_t)div_q8_off(bw_abs32(c), st_q8, off_q8);
+    return c < 0 ? -(int32_t)q : (int32_t)q;
+}
+
+/* Reconstruction at 3/8 of the interval: the centroid of a Laplacian-like
+ * band is below the midpoint. */
+static inline int32_t dequant(int32_t q, uq56_8_t st_q8)
+{
+    if (st_q8 <= BW_STEP_ONE_Q8 || q == 0)
+        return q;
+    uint64_t m = (((uint64_t)bw_abs32(q) * 8u + 3u) * st_q8) >> 11;
+    if (m > INT32_MAX)
+        m = INT32_MAX;
+    return q < 0 ? -(int32_t)m : (int32_t)m;
+}
+
+/* Quantises (forward, rounding offset round_q8, and round_q8 + 1 for the
+ * coefficients below kc) or reconstructs one vector with its subband steps. */
+static void vec_quant(const spec_bands_t *sb, const uq56_8_t *st_q8, int32_t *v, bool forward,
+                      uint32_t round_q8, uint32_t kc)
+{
+    for (unsigned i = 0; i < sb->count; i++) {
+        uq56_8_t st = st_q8[i];
+        if (st <= BW_STEP_ONE_Q8)
+            continue;
+        uint32_t k = sb->lo[i], end = sb->lo[i + 1u];
+        if (forward) {
+#if !BW_CFG_FAST_QUANT
+            /* the offset of each coefficient computed in place: less code */
+            for (; k < end; k++)
+                v[k] = quant(v[k], st, (st * (round_q8 + (k < kc))) >> 8);
+#else
+            /* the coefficients below kc, then the rest: no choice per element */
+            uint32_t cut = kc < k ? k : kc < end ? kc : end;
+            uq56_8_t off1_q8 = (st * (round_q8 + 1u)) >> 8, off_q8 = (st * round_q8) >> 8;
+            for (; k < cut; k++)
+                v[k] = quant(v[k], st, off1_q8);
+            for (; k < end; k++)
+                v[k] = quant(v[k], st, off_q8);
+#endif
+        } else {
+            for (; k < end; k++)
+                v[k] = dequant(v[k], st);
+        }
+    }
+}
+
+/* The step of every vector, walking the outgoing hemisphere as the coder
+ * does; the subband steps are recomputed only when the vector's gain
+ * changes (once per level). */
+void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    unsigned L = d->level_out;
+    uint64_t thr = vec_thr(pl);
+    spec_bands_t sb;
+    uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
+    uq16_t steps_gio_q16 = 0; /* no vector has gain 0: the first one computes */
+    size_t vecs = (size_t)d->n_in * d->n_out;
+    spec_bands(pl, &sb);
+    for (uint32_t i = 0; i < d->n_in; i++) {
+        uq16_t gi_q16 = bw_in_gain_q16(pl, i);
+        int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+        for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
+            /* pass 0: the incoming space, drop a whole [outgoing][band] block
+             * whose energy stays below the threshold; pass 1: every vector */
+            uint64_t e = 0;
+            bw_walk_t w;
+            bw_walk_init(&w);
+            for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
+                uint32_t pos = 0;
+                uq16_t g_out_q16 = 65536u;
+                if (bw_has_out(d)) {
+                    int j;
+                    pos = bw_walk_next(&w, L, &j);
+                    g_out_q16 = bw_biohaar_inv_gain_q16(L, j);
+                }
+                uq16_t gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+                if (gio_q16 != steps_gio_q16) {
+                    vec_steps(pl, &sb, gio_q16, steps_q8);
+                    steps_gio_q16 = gio_q16;
+                }
+                int32_t *v = blk + (size_t)pos * b;
+                if (!pass) {
+                    e += vec_energy(&sb, steps_q8, v, thr - e);
+                } else if (forward && b > 1u && vec_energy(&sb, steps_q8, v, thr) < thr) {
+                    /* outgoing space: drop the spectral vector */
+                    memset(v, 0, (size_t)b * sizeof *v);
+                } else {
+                    /* the bands k with k vecs + vi < round_cut (< b vecs) */
+                    size_t vi = (size_t)i * d->n_out + o;
+                    vec_quant(&sb, steps_q8, v, forward, pl->round_q8,
+                              (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
+                }
+            }
+            if (!pass && e < thr) {
+                memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
+                break;
+            }
+        }
+    }
+}
+
+void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j)
+{
+    if (pl->step_q8 <= BW_STEP_ONE_Q8)
+        return;
+    uint32_t b = pl->dims.bands;
+    uq16_t gio_q16 = bw_has_out(&pl->dims) ? bw_biohaar_inv_gain_q16(pl->dims.level_out, j)
+                                           : 65536u;
+    uint64_t thr = vec_thr(pl);
+    spec_bands_t sb;
+    uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
+    spec_bands(pl, &sb);
+    vec_steps(pl, &sb, gio_q16, steps_q8);
+    if (b > 1u && vec_energy(&sb, steps_q8, v, thr) < thr)
+        memset(v, 0, (size_t)b * sizeof *v);
+    else
+        vec_quant(&sb, steps_q8, v, true, 0u, 0u);
+}

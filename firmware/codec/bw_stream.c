@@ -1,0 +1,147 @@
+/*
+ * The streaming encoder: spectra as they arrive, each transformed on
+ * arrival, the Bio-Haar lifting run up the triangle tree as soon as four
+ * siblings are complete, and every completed vector quantised and coded at
+ * once, in stream order (docs/FORMAT.md, Body). The payload is bw_encode's
+ * with BW_FLAG_STREAM_ORDER.
+ *
+ * The caller's memory (BW_STREAM_MEM_BOUND int32): the spectral tables
+ * (2 * bands), the lifting scratch (bands), then 4 pending vectors per level
+ * (4 * (level + 1) * bands).
+ */
+#include <string.h>
+
+#include "bw_crc32.h"
+#include "bw_geodesic.h"
+#include "bw_internal.h"
+#include "bw_le.h"
+#include "bw_strip_coder.h"
+
+static void stream_plan(const bw_stream_t *s, bw_plan_t *pl)
+{
+    const bw_params_t *pa = &s->params;
+    size_t b = s->dims.bands;
+    bw_plan_make(pl, &s->dims, pa->basis, pa->mode,
+                 pa->mode == BW_MODE_MAX_ERROR ? pa->max_error : pa->step_q8, pa->flags,
+                 pa->vec_thresh_q8, s->mem, s->mem + 2u * b);
+}
+
+static int32_t *pend_slot(const bw_stream_t *s, unsigned level, unsigned slot)
+{
+    return s->mem + (3u + (size_t)level * 4u + slot) * s->dims.bands;
+}
+
+bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_params_t *pa,
+                           int32_t *mem, size_t mem_len, uint8_t *out, size_t cap)
+{
+    if (!s || !dims || !pa || !mem || !out)
+        return BW_ERR_ARG;
+    memset(s, 0, sizeof *s);
+    s->err = BW_ERR_ARG;
+    bw_status_t st = bw_params_check(dims, pa->mode, pa->basis, pa->flags,
+                                     pa->mode == BW_MODE_MAX_ERROR ? pa->max_error : pa->step_q8,
+                                     BW_FOR_STREAM);
+    if (st != BW_OK)
+        return st;
+    if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
+        return BW_ERR_WORK;
+    s->dims = *dims;
+    s->params = *pa;
+    s->params.flags |= BW_FLAG_STREAM_ORDER;
+    s->mem = mem;
+    bw_plan_t pl;
+    stream_plan(s, &pl);
+    bw_plan_tables(&pl);
+    size_t hl = bw_header_write(NULL, &pl, &s->params, s->params.mode);
+    if (cap < hl + BW_TRAILER_SIZE)
+        return BW_ERR_OUTPUT_FULL;
+    s->out = out;
+    s->cap = cap;
+    bw_strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE,
+                      (pa->flags & BW_FLAG_RICE) != 0u);
+    s->err = BW_OK;
+    return BW_OK;
+}
+
+/* Quantises (as bw_quantise does) and codes one completed vector whose
+ * parent level is j (-1: scaling); stream order has no directional parent
+ * and no previous vector. */
+static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
+{
+    bw_quant_vector(pl, v, j);
+    bw_strip_put_vector(&s->se, v, s->dims.bands, pl->spec_cls, bw_level_cls(pl, j), NULL, NULL);
+}
+
+bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
+{
+    if (!s || !spectrum)
+        return BW_ERR_ARG;
+    if (s->err != BW_OK)
+        return s->err;
+    const bw_dims_t *d = &s->dims;
+    if (s->pushed >= (size_t)d->n_in * d->n_out)
+        return s->err = BW_ERR_ARG; /* more spectra than the shape holds */
+    uint32_t b = d->bands;
+    unsigned L = d->level_out;
+    bw_plan_t pl;
+    stream_plan(s, &pl);
+    unsigned lv = bw_has_out(d) ? L : 0u;
+    int32_t *v = pend_slot(s, lv, s->pend_n[lv]);
+    bw_status_t st = bw_load_samples(v, spectrum, b, pl.prequant);
+    if (st != BW_OK)
+        return s->err = st;
+    if (pl.spec_levels)
+        bw_spec_fwd(v, b, pl.basis, pl.spec_levels, pl.tmp);
+    s->pushed++;
+    if (!bw_has_out(d)) {
+        stream_emit(s, &pl, v, -1);
+        return BW_OK;
+    }
+    /* up the tree while four siblings are complete */
+    s->pend_n[L]++;
+    uint32_t t = s->leaf;
+    for (unsigned j = L; j > 0u && s->pend_n[j] == 4u; j--) {
+        unsigned k = L - j + 1u; /* the parent is t >> 2k at level j - 1 */
+        uint32_t p = t >> (2u * k);
+        uint32_t per_base = 1u << (2u * (j - 1u));
+        uint16_t w[3];
+        bw_geo_weights(j - 1u, p & (per_base - 1u), w);
+        bw_biohaar_lift4(pend_slot(s, j, 0), pend_slot(s, j, 1), pend_slot(s, j, 2),
+                         pend_slot(s, j, 3), w, b);
+        for (unsigned m = 1; m <= 3u; m++)
+            stream_emit(s, &pl, pend_slot(s, j, m), (int)j - 1);
+        /* the parent's scaling vector moves up a level */
+        memcpy(pend_slot(s, j - 1u, s->pend_n[j - 1u]), pend_slot(s, j, 0), (size_t)b * sizeof *v);
+        s->pend_n[j - 1u]++;
+        s->pend_n[j] = 0;
+    }
+    if (s->pend_n[0] == 1u) { /* a base triangle is complete */
+        stream_emit(s, &pl, pend_slot(s, 0, 0), -1);
+        s->pend_n[0] = 0;
+    }
+    if (++s->leaf == d->n_out)
+        s->leaf = 0;
+    return BW_OK;
+}
+
+bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
+{
+    if (!s || !len)
+        return BW_ERR_ARG;
+    *len = 0;
+    if (s->err != BW_OK)
+        return s->err;
+    if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
+        return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
+    size_t body = bw_strip_enc_finish(&s->se);
+    bw_plan_t pl;
+    stream_plan(s, &pl);
+    /* the header's room was kept at init */
+    size_t hl = bw_header_write(s->out, &pl, &s->params, s->params.mode);
+    if (bw_strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
+        return s->err = BW_ERR_OUTPUT_FULL;
+    bw_put_u32(s->out + hl + body, bw_crc32(s->out, hl + body));
+    *len = hl + body + BW_TRAILER_SIZE;
+    s->err = BW_ERR_ARG; /* finished: no more pushes */
+    return BW_OK;
+}

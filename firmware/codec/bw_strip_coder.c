@@ -1,0 +1,350 @@
+/*
+ * The strip coder, encoder and decoder side by side (docs/FORMAT.md, Body
+ * and Body with RICE): each strip of 32 coefficients as a presence flag,
+ * then per element a valid bit and, for a non-zero value, its bit length
+ * (a 5-bit tree), the bit below the leading one, the rest as direct bits
+ * and the sign, each with its context; or, with BW_FLAG_RICE, the strip as
+ * bw_rice.c codes it.
+ */
+#include <string.h>
+
+#include "bw_strip_coder.h"
+
+#define NB_CTX BW_CODER_NB_CTX
+
+/* Contexts of a coefficient from the bit lengths of its neighbours
+ * (NO_CTX: no such neighbour): its parent pe, the previous coefficient in
+ * the strip and the one above it (the same band of the previous vector
+ * when there is one, else the same place in the previous strip). */
+#define NO_CTX 0xFFu
+
+static inline unsigned ctx_len(const int32_t *p) { return p ? bw_bitlen(bw_abs32(*p)) : NO_CTX; }
+/* sign context of a value: 0 none or zero, 1 positive, 2 negative */
+static inline unsigned sign_ctx(const int32_t *p) { return p && *p ? 1u + (*p < 0) : 0u; }
+/* the sign model of a value is left + this, left the sign context of the
+ * previous value of the strip (0 for the first) */
+static inline unsigned sign_ctx_up(const int32_t *par, const int32_t *prv)
+{
+    return 3u * (sign_ctx(par) + 3u * sign_ctx(prv));
+}
+
+void bw_models_init(bw_models_t *m)
+{
+    bw_prob_t *p = (bw_prob_t *)m;
+    for (size_t i = 0; i < sizeof *m / sizeof *p; i++)
+        p[i] = BW_PROB_INIT;
+}
+
+/* significance: the bit above, and whether the parent is zero, small or not */
+static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
+{
+    return above_bit + (pe == 0u || pe == NO_CTX ? 0u : pe <= 2u ? 2u : 4u);
+}
+
+/* magnitude: the bit lengths of the left and above neighbours, and of the
+ * parent when there is one */
+static inline unsigned mag_ctx(unsigned left, unsigned above, unsigned pe)
+{
+    unsigned c = pe == NO_CTX ? (left + above + 1u) >> 1 : (left + above + 2u * pe + 2u) >> 2;
+    return c < NB_CTX ? c : NB_CTX - 1u;
+}
+
+/* ---- encoder --------------------------------------------------------------- */
+
+void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
+{
+    se->rice = rice;
+    if (rice) {
+        bw_rice_enc_init(&se->re, out, cap);
+    } else {
+        bw_rc_enc_init(&se->rc, out, cap);
+        bw_models_init(&se->m);
+    }
+    se->cnt = 0;
+    memset(&se->st, 0, sizeof se->st);
+}
+
+/* The strip code both ways, once per direction (BW_CFG_FAST_STRIPS) or one
+ * copy for both. */
+#if BW_CFG_FAST_STRIPS
+#define STRIP_INLINE BW_ALWAYS_INLINE
+#else
+#define STRIP_INLINE BW_NOINLINE
+#endif
+
+/* One model bit: coded (dec NULL), or decoded (enc NULL) and returned. */
+static STRIP_INLINE unsigned rc_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
+                                    unsigned bit)
+{
+    if (dec)
+        return bw_rc_dec_bit(dec, p);
+    bw_rc_enc_bit(enc, p, bit);
+    return bit;
+}
+
+/*
+ * The range coder's side of a strip of cnt elements, both ways: the encoder
+ * (rcd NULL) codes the values v with the contexts put with them (pe, pv,
+ * ps); the decoder (rce NULL) decodes into v and *dst[b] and finds the
+ * contexts from par[b] and prv[b] as it goes (a parent or the vector above
+ * may lie earlier in the same strip). cls: the elements' classes; s: what
+ * the previous strip left. false: a corrupt strip.
+ */
+static STRIP_INLINE bool rc_strip(bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                  bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
+                                  const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
+                                  int32_t *const *dst, const int32_t *const *par,
+                                  const int32_t *const *prv)
+{
+    bool dec = rcd != NULL;
+    uint32_t mask = 0;
+    if (!dec)
+        for (unsigned b = 0; b < cnt; b++)
+            if (v[b])
+                mask |= 1u << b;
+    if (!rc_bit(rce, rcd, &m->present[cls[0]][s->prev_mask != 0], mask != 0)) {
+        if (dec)
+            for (unsigned b = 0; b < cnt; b++)
+                *dst[b] = 0;
+        s->prev_mask = 0;
+        memset(s->e_above, 0, sizeof s->e_above);
+        s->e_left = 0;
+        return true;
+    }
+    unsigned prev_bit = 0;
+    for (unsigned b = 0; b < cnt; b++) {
+        unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
+        unsigned vc = valid_ctx((s->prev_mask >> b) & 1u, pe_b);
+        unsigned bit = rc_bit(rce, rcd, &m->valid[cls[b]][prev_bit][vc], (mask >> b) & 1u);
+        mask |= (uint32_t)bit << b;
+        prev_bit = bit;
+        if (!bit) {
+            if (dec)
+                *dst[b] = v[b] = 0;
+            s->e_above[b] = 0;
+            s->e_left = 0;
+            continue;
+        }
+        uint32_t a = dec ? 1u : bw_abs32(v[b]);
+        unsigned e = dec ? 0u : bw_bitlen(a); /* 1..32 */
+        unsigned pv_b = dec ? ctx_len(prv[b]) : pv[b];
+        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
+        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(s->e_left, above, pe_b)];
+        unsigned node = 1, sym = e - 1u;
+        for (int sh = 4; sh >= 0; sh--)
+            node = node * 2u + rc_bit(rce, rcd, &tree[node], (sym >> sh) & 1u);
+        if (dec) {
+            e = node - 32u + 1u;
+            if (e > 31u)
+                return false;
+        }
+        if (e >= 2u) {
+            unsigned mb = rc_bit(rce, rcd, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
+            if (dec)
+                a = (a << 1) | mb;
+            if (e >= 3u) {
+                if (dec)
+                    a = (a << (e - 2u)) | bw_rc_dec_direct(rcd, e - 2u);
+                else
+                    bw_rc_enc_direct(rce, a, e - 2u);
+            }
+        }
+        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + (dec ? sign_ctx_up(par[b], prv[b]) : ps[b]);
+        unsigned neg = rc_bit(rce, rcd, &m->sign[sc], !dec && v[b] < 0);
+        if (dec)
+            *dst[b] = v[b] = neg ? -(int32_t)a : (int32_t)a;
+        s->e_above[b] = (uint8_t)e;
+        s->e_left = e;
+    }
+    if (dec && !mask)
+        return false; /* a present strip holds at least one value */
+    s->prev_mask = mask;
+    return true;
+}
+
+void bw_strip_enc_code(bw_strip_enc_t *se)
+{
+    unsigned cnt = se->cnt;
+    se->cnt = 0;
+    if (se->rice)
+        bw_rice_enc_strip(&se->re, se->v, cnt);
+    else
+        rc_strip(&se->m, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
+                 NULL, NULL, NULL);
+}
+
+size_t bw_strip_enc_finish(bw_strip_enc_t *se)
+{
+    if (se->cnt)
+        bw_strip_enc_code(se);
+    return se->rice ? bw_rice_enc_finish(&se->re) : bw_rc_enc_finish(&se->rc);
+}
+
+bool bw_strip_enc_overflow(const bw_strip_enc_t *se)
+{
+    return se->rice ? se->re.w.overflow : se->rc.overflow;
+}
+
+/* par, prv: the parent and the same band in the previous vector (NULL:
+ * none); their bit lengths and signs are the contexts */
+static inline void strip_put(bw_strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
+                             const int32_t *prv)
+{
+    se->v[se->cnt] = v;
+    se->cls[se->cnt] = (uint8_t)cls;
+    se->pe[se->cnt] = (uint8_t)ctx_len(par);
+    se->ps[se->cnt] = (uint8_t)sign_ctx_up(par, prv);
+    se->pv[se->cnt] = (uint8_t)ctx_len(prv);
+    if (++se->cnt == BW_STRIP)
+        bw_strip_enc_code(se);
+}
+
+/* Rice: the values in coding order, whole strips straight from a vector. */
+static void rice_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b)
+{
+    uint32_t k = 0;
+    if (se->cnt == 0u)
+        for (; k + BW_STRIP <= b; k += BW_STRIP)
+            bw_rice_enc_strip(&se->re, v + k, BW_STRIP);
+    for (; k < b; k++) {
+        se->v[se->cnt] = v[k];
+        if (++se->cnt == BW_STRIP)
+            bw_strip_enc_code(se);
+    }
+}
+
+static inline void rice_push(bw_strip_enc_t *se, const int32_t *v, uint32_t b)
+{
+    if (b == 1u) { /* one value per direction */
+        se->v[se->cnt] = *v;
+        if (++se->cnt == BW_STRIP)
+            bw_strip_enc_code(se);
+    } else {
+        rice_vector(se, v, b);
+    }
+}
+
+static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
+                              const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                              const int32_t *prev)
+{
+    if (se->rice) {
+        rice_vector(se, v, b);
+        return;
+    }
+    for (uint32_t k = 0; k < b; k++) {
+        int32_t sc = spec_cls[k];
+        strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
+                  prev ? prev + k : NULL);
+    }
+}
+
+void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
+                         const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                         const int32_t *prev)
+{
+    put_vector(se, v, b, spec_cls, cls_dir, par, prev);
+}
+
+void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    if (BW_CFG_FAST_RICE && se->rice && !pl->stream) {
+        /* the coarse-to-fine order of bw_walk_next as loops (Rice strips
+         * need no context class): the 4 scaling coefficients, then per
+         * level j the children 1..3 of every parent */
+        unsigned L = d->level_out;
+        for (uint32_t i = 0; i < d->n_in; i++) {
+            const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+            if (!bw_has_out(d)) {
+                for (uint32_t o = 0; o < d->n_out; o++)
+                    rice_push(se, blk, b);
+                continue;
+            }
+            for (uint32_t p = 0; p < 4u; p++)
+                rice_push(se, blk + ((size_t)p << (2u * L)) * b, b);
+            for (unsigned j = 0; j < L; j++) {
+                unsigned sh = 2u * (L - j - 1u);
+                size_t step = ((size_t)1 << sh) * b;
+                const int32_t *c = blk;
+                for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                    rice_push(se, c + step, b);
+                    rice_push(se, c + 2u * step, b);
+                    rice_push(se, c + 3u * step, b);
+                }
+            }
+        }
+        return;
+    }
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    size_t vectors = (size_t)d->n_in * d->n_out;
+    for (size_t n = 0; n < vectors; n++) {
+        const int32_t *v = it.vec;
+        if (se->rice) {
+            rice_vector(se, v, b);
+        } else {
+            unsigned cd = it.cls_dir;
+            for (uint32_t k = 0; k < b; k++) {
+                int32_t sc = pl->spec_cls[k];
+                strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
+                          it.prev ? it.prev + k : NULL);
+            }
+        }
+        bw_iter_next_vec(&it);
+    }
+}
+
+/* ---- decoder --------------------------------------------------------------- */
+
+static bw_status_t decode_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len)
+{
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    bw_rice_dec_t rd;
+    bw_rice_dec_init(&rd, body, len);
+    int32_t v[BW_STRIP];
+    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
+        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+        if (!bw_rice_dec_strip(&rd, v, cnt))
+            return BW_ERR_CORRUPT;
+        for (unsigned b = 0; b < cnt; b++) {
+            uint8_t cls;
+            const int32_t *par, *prv;
+            *bw_iter_next(&it, &cls, &par, &prv) = v[b];
+        }
+    }
+    return BW_OK;
+}
+
+static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, bw_models_t *m)
+{
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    bw_strip_state_t st;
+    memset(&st, 0, sizeof st);
+    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
+        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+        int32_t *dst[BW_STRIP], v[BW_STRIP];
+        const int32_t *par[BW_STRIP], *prv[BW_STRIP];
+        uint8_t cls[BW_STRIP];
+        for (unsigned b = 0; b < cnt; b++)
+            dst[b] = bw_iter_next(&it, &cls[b], &par[b], &prv[b]);
+        if (!rc_strip(m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv))
+            return BW_ERR_CORRUPT;
+    }
+    /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
+    return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
+}
+
+bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,
+                           bool rice, bw_models_t *m)
+{
+    if (rice)
+        return decode_rice(pl, x, body, len);
+    bw_models_init(m);
+    bw_rc_dec_t rc;
+    bw_rc_dec_init(&rc, body, len);
+    return decode_rc(pl, x, &rc, m);
+}
