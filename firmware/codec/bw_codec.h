@@ -128,6 +128,15 @@ typedef struct {
     uint32_t scale_bits;
     uint32_t offset_bits;
     uint8_t flags;         /* BW_FLAG_*, recorded for the host            */
+    /* Extension records written after the header (docs/FORMAT.md,
+     * Extensions): ext_len bytes of records, each type, varint length, data,
+     * made by the caller (the host's metadata, a device's fixed block) and
+     * checked by the encoder (BW_ERR_ARG if malformed). None when ext_len is
+     * 0. A payload with records is version 7; one without stays version 6,
+     * which every decoder since that version reads. The payload grows by
+     * ext_len + BW_EXT_OVERHEAD at most: add that to BW_PAYLOAD_BOUND. */
+    const uint8_t *ext;
+    uint32_t ext_len;
 } bw_params_t;
 
 /* Header flags.
@@ -167,6 +176,9 @@ typedef struct {
  *   within +-BW_SAMPLE_MAX, else BW_ERR_RANGE. */
 #define BW_FLAG_RECIPROCAL 0x20u
 #define BW_FLAGS_KNOWN 0x3Fu
+/* EXT (set by the encoder when params.ext_len > 0, version 7): extension
+ *   records follow the header's fields. */
+#define BW_FLAG_EXT 0x40u
 
 /* ---- sizes -------------------------------------------------------------- */
 
@@ -262,7 +274,30 @@ typedef struct {
     uint32_t header_len;
     uint32_t body_len;
     uint32_t crc;
+    /* the extension records (version 7): their offset in the payload and
+     * their length, 0 and 0 when there are none (bw_ext_next walks them) */
+    uint32_t ext_off;
+    uint32_t ext_len;
 } bw_header_t;
+
+/* ---- extension records ------------------------------------------------- */
+
+/* A record's type says whether a decoder may skip it: types 0x80 and above
+ * are ancillary (information a decoder need not understand); types below
+ * 0x80 are critical (they change what the samples mean or how they decode),
+ * and a decoder refuses a payload with a critical type it does not know
+ * (BW_ERR_EXTENSION). */
+#define BW_EXT_ANCILLARY 0x80u
+#define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
+#define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
+#define BW_EXT_MAX (1u << 20)  /* bytes of records at most */
+#define BW_EXT_OVERHEAD 3u     /* the records' length field, as a varint */
+
+/* Walks the records of area[len] (a header's ext_off / ext_len): the record
+ * at *pos, its type, data and length; *pos moves to the next. false at the
+ * end or on a malformed record. */
+bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
+                 const uint8_t **data, uint32_t *data_len);
 
 /* Parses and validates the header and the CRC of payload[len]. */
 bw_status_t bw_header_read(const uint8_t *payload, size_t len, bw_header_t *hdr);

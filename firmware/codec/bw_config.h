@@ -19,6 +19,13 @@
  * The decoder has no switch: every build decodes every payload the format
  * allows, prediction included, whatever its encoder leaves out.
  *
+ * Text:
+ *
+ *   BW_CFG_STATUS_TEXT        1        bw_strerror gives each status's sentence;
+ *                                      0: "status" for every one (a device sends
+ *                                      the numbers, LINK.md ERROR, and the host
+ *                                      turns them into text: 0.6 KiB of flash)
+ *
  * Code forms: the same bytes, more flash for fewer instructions. Each
  * defaults to BW_CFG_SPEED (default 1), so one switch picks the small forms.
  *
@@ -45,8 +52,8 @@
  *   the MCU build (make TARGET=mcu, -Os with link-time optimisation), the
  *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
  *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
- *   BW_CFG_ENCODE_PRED=0 and BW_CFG_BUDGET_FILL_HALF=0, which keep encoder,
- *   decoder and streaming encoder within 16 KiB of flash.
+ *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0 and BW_CFG_STATUS_TEXT=0,
+ *   which keep encoder, decoder and streaming encoder within 16 KiB of flash.
  *
  * Two builds write byte-identical payloads for the same input and options
  * exactly when their encoder features match; the code forms never matter.
@@ -67,6 +74,10 @@
 #endif
 #ifndef BW_CFG_BUDGET_FILL_HALF
 #define BW_CFG_BUDGET_FILL_HALF 1
+#endif
+
+#ifndef BW_CFG_STATUS_TEXT
+#define BW_CFG_STATUS_TEXT 1
 #endif
 
 #ifndef BW_CFG_SPEED

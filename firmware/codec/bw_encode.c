@@ -113,6 +113,8 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
                                      BW_FOR_ENCODE);
     if (st != BW_OK)
         return st;
+    if (!bw_ext_valid(pa->ext, pa->ext_len))
+        return BW_ERR_ARG;
     bool pred = BW_CFG_ENCODE_PRED && bw_pred_applies(dims, pa->mode, pa->flags);
 
     bw_plan_t pl;

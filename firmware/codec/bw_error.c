@@ -1,7 +1,10 @@
 #include "bw_error.h"
 
+#include "bw_config.h"
+
 const char *bw_strerror(int status)
 {
+#if BW_CFG_STATUS_TEXT
     switch (status) {
 #define BW_X_CASE(name, value, msg) \
     case value:                     \
@@ -11,4 +14,8 @@ const char *bw_strerror(int status)
     default:
         return "unknown status";
     }
+#else
+    (void)status;
+    return "status";
+#endif
 }

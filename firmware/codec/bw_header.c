@@ -30,6 +30,17 @@ static const uint8_t *get_varint(const uint8_t *q, const uint8_t *end, uint32_t 
     return NULL;
 }
 
+/* Writes v as a LEB128 varint at q; returns its length. */
+static size_t put_varint(uint8_t *q, uint32_t v)
+{
+    size_t n = 0;
+    for (;; v >>= 7) {
+        q[n++] = (uint8_t)(v | (v > 0x7Fu ? 0x80u : 0u));
+        if (v <= 0x7Fu)
+            return n;
+    }
+}
+
 /* The header's numbers: n_in, bands, the mode's parameter (E, or the step
  * above 1), then the scale and offset bits, stored when they differ from
  * 1.0f and 0. */
@@ -47,11 +58,7 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     for (unsigned k = 0; k < HV_COUNT; k++) {
         if (k < HV_SCALE) {
             if (k != HV_PARAM || mode != BW_MODE_LOSSLESS)
-                for (uint32_t x = v[k];; x >>= 7) {
-                    h[n++] = (uint8_t)(x | (x > 0x7Fu ? 0x80u : 0u));
-                    if (x <= 0x7Fu)
-                        break;
-                }
+                n += put_varint(h + n, v[k]);
         } else if (v[k] != (k == HV_SCALE ? SCALE_ONE_BITS : 0u)) {
             b3 |= H_SCALE << (k - HV_SCALE);
             bw_put_u32(h + n, v[k]);
@@ -60,12 +67,62 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     }
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
-    h[2] = BW_VERSION;
+    h[2] = pa->ext_len ? BW_VERSION_EXT : BW_VERSION;
     h[3] = (uint8_t)b3;
     h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
-    h[5] = (uint8_t)(pa->flags & BW_FLAGS_KNOWN);
+    h[5] = (uint8_t)((pa->flags & BW_FLAGS_KNOWN) | (pa->ext_len ? BW_FLAG_EXT : 0u));
     h[6] = (uint8_t)pl->spec_levels;
+    if (pa->ext_len) {
+        /* the records' length, then the records (bw_ext_valid checked them) */
+        uint8_t len_field[5];
+        size_t k = put_varint(len_field, pa->ext_len);
+        if (out) {
+            memcpy(out + n, len_field, k);
+            memcpy(out + n + k, pa->ext, pa->ext_len);
+        }
+        n += k + pa->ext_len;
+    }
     return n;
+}
+
+bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
+                 const uint8_t **data, uint32_t *data_len)
+{
+    if (!area || *pos >= len)
+        return false;
+    const uint8_t *q = area + *pos, *end = area + len;
+    uint32_t l;
+    *type = *q++;
+    q = get_varint(q, end, &l);
+    if (!q || l > (size_t)(end - q))
+        return false;
+    *data = q;
+    *data_len = l;
+    *pos = (size_t)(q + l - area);
+    return true;
+}
+
+/* BW_OK, BW_ERR_HEADER for a malformed record, BW_ERR_EXTENSION for a
+ * critical type this decoder does not know (none is defined yet) */
+static bw_status_t ext_scan(const uint8_t *area, size_t len)
+{
+    size_t pos = 0;
+    uint8_t type;
+    const uint8_t *d;
+    uint32_t dl;
+    bw_status_t st = BW_OK;
+    while (pos < len) {
+        if (!bw_ext_next(area, len, &pos, &type, &d, &dl))
+            return BW_ERR_HEADER;
+        if (type < BW_EXT_ANCILLARY)
+            st = BW_ERR_EXTENSION;
+    }
+    return st;
+}
+
+bool bw_ext_valid(const uint8_t *area, size_t len)
+{
+    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len) == BW_OK;
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -88,7 +145,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
 {
     if (len >= 2u && (p[0] != BW_MAGIC0 || p[1] != BW_MAGIC1))
         return BW_ERR_MAGIC;
-    if (len >= 3u && p[2] != BW_VERSION)
+    if (len >= 3u && p[2] != BW_VERSION && p[2] != BW_VERSION_EXT)
         return BW_ERR_VERSION;
     if (len < BW_HEADER_FIXED + BW_TRAILER_SIZE)
         return BW_ERR_TRUNCATED;
@@ -125,6 +182,21 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     h->step_q8 = BW_STEP_ONE_Q8 + (me ? 0u : e);
     h->scale_bits = v[HV_SCALE];
     h->offset_bits = v[HV_OFFSET];
+    /* version 7 exactly when there are records: one encoding per header */
+    if ((h->version == BW_VERSION_EXT) != ((h->flags & BW_FLAG_EXT) != 0u))
+        return BW_ERR_HEADER;
+    if (h->flags & BW_FLAG_EXT) {
+        uint32_t el;
+        q = get_varint(q, end, &el);
+        if (!q || el == 0u || el > BW_EXT_MAX || el > (size_t)(end - q))
+            return BW_ERR_HEADER;
+        h->ext_off = (uint32_t)(q - p);
+        h->ext_len = el;
+        bw_status_t est = ext_scan(q, el);
+        if (est != BW_OK)
+            return est;
+        q += el;
+    }
     h->header_len = (uint32_t)(q - p);
     h->body_len = (uint32_t)(end - q);
     h->payload_len = (uint32_t)len;
@@ -134,7 +206,8 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     /* the step above 1 must not wrap; then the rules every payload follows,
      * and the spectral depth its basis implies */
     if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) ||
-        bw_params_check(d, h->mode, h->basis, h->flags, me ? e : h->step_q8, BW_FOR_PAYLOAD) !=
+        bw_params_check(d, h->mode, h->basis, h->flags & ~BW_FLAG_EXT, me ? e : h->step_q8,
+                        BW_FOR_PAYLOAD) !=
             BW_OK ||
         h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands))
         return BW_ERR_HEADER;

@@ -19,7 +19,8 @@
 #include "bw_fixed.h"
 #include "bw_spectral.h"
 
-#define BW_VERSION 6u
+#define BW_VERSION 6u     /* payloads without extension records */
+#define BW_VERSION_EXT 7u /* with them (BW_FLAG_EXT)             */
 #define BW_MAGIC0 'B'
 #define BW_MAGIC1 'W'
 #define BW_STEP_ONE_Q8 256u   /* a step of 1.0 (Q24.8): coefficients are kept exactly */
@@ -233,6 +234,9 @@ static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t *
 /* Writes the header of the plan at out (NULL: only counts); returns its
  * length (at most BW_HEADER_MAX). */
 size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode);
+/* Extension records well formed, of known critical types only, at most
+ * BW_EXT_MAX bytes. */
+bool bw_ext_valid(const uint8_t *area, size_t len);
 
 /* ---- encoder (bw_encode.c) and its byte-budget search (bw_budget.c) ------- */
 

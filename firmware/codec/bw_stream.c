@@ -43,6 +43,8 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
                                      BW_FOR_STREAM);
     if (st != BW_OK)
         return st;
+    if (!bw_ext_valid(pa->ext, pa->ext_len))
+        return BW_ERR_ARG; /* the records are read again at bw_stream_finish */
     if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
         return BW_ERR_WORK;
     s->dims = *dims;

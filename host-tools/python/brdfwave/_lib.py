@@ -24,7 +24,8 @@ class Header(ctypes.Structure):
                 ("step_q8", ctypes.c_uint32), ("max_error", ctypes.c_uint32),
                 ("scale_bits", ctypes.c_uint32), ("offset_bits", ctypes.c_uint32),
                 ("payload_len", ctypes.c_uint32), ("header_len", ctypes.c_uint32),
-                ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32)]
+                ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32),
+                ("ext_off", ctypes.c_uint32), ("ext_len", ctypes.c_uint32)]
 
 
 class Shape(ctypes.Structure):

@@ -1,0 +1,210 @@
+/* Extension records after the header (docs/FORMAT.md, Extensions): written
+ * by the batch and the streaming encoder alike, covered by the CRC, walked
+ * by readers; a payload with records is version 7, one without stays 6;
+ * malformed records and unknown critical types are refused. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "bw_codec.h"
+#include "bw_crc32.h"
+#include "bw_le.h"
+
+#define N_IN 6u
+#define BANDS 40u
+#define N (N_IN * BANDS)
+
+static int32_t samples[N], work[BW_WORK_BOUND(N, BANDS)], ver[BW_WORK_BOUND(N, BANDS)];
+static uint8_t out[BW_PAYLOAD_BOUND(N) + 64 + BW_EXT_OVERHEAD];
+
+/* two ancillary records: 0x81 "abc", 0x9F with 200 bytes (a 2-byte length) */
+static uint8_t ext[5 + 3 + 200];
+static size_t ext_len;
+
+static void setup_data(void)
+{
+    for (size_t i = 0; i < N; i++)
+        samples[i] = (int32_t)(1000 + (i % BANDS) * 7 + (i / BANDS) * 3 + (i * 2654435761u >> 28));
+    size_t k = 0;
+    ext[k++] = BW_EXT_METADATA;
+    ext[k++] = 3;
+    memcpy(ext + k, "abc", 3);
+    k += 3;
+    ext[k++] = 0x9F;
+    ext[k++] = 200 | 0x80;
+    ext[k++] = 1;
+    for (unsigned i = 0; i < 200; i++)
+        ext[k++] = (uint8_t)i;
+    ext_len = k;
+}
+
+static bw_params_t params(unsigned mode)
+{
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.mode = (uint8_t)mode;
+    p.basis = BW_BASIS_53;
+    p.max_error = 2;
+    p.scale_bits = 0x3F800000u;
+    return p;
+}
+
+static size_t encode(const bw_params_t *p, bw_status_t want)
+{
+    bw_dims_t d;
+    assert_int_equal(bw_dims_make(&d, BW_SHAPE_SPECTRA, 0, 0, N_IN, BANDS), BW_OK);
+    size_t len = 0;
+    assert_int_equal(bw_encode(&d, p, samples, work, ver, out, sizeof out, &len), want);
+    return len;
+}
+
+static void records_travel_with_the_payload_and_make_it_version_7(void **state)
+{
+    (void)state;
+    setup_data();
+    bw_params_t p = params(BW_MODE_LOSSLESS);
+    size_t plain = encode(&p, BW_OK);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(out, plain, &h), BW_OK);
+    assert_int_equal(h.version, 6);
+    assert_int_equal(h.ext_len, 0);
+    p.ext = ext;
+    p.ext_len = (uint32_t)ext_len;
+    size_t len = encode(&p, BW_OK);
+    /* the records and their 2-byte length are all the payload grows by */
+    assert_int_equal(len, plain + ext_len + 2u);
+    assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+    assert_int_equal(h.version, 7);
+    assert_true(h.flags & BW_FLAG_EXT);
+    assert_int_equal(h.ext_len, ext_len);
+    assert_memory_equal(out + h.ext_off, ext, ext_len);
+    size_t pos = 0;
+    uint8_t type;
+    const uint8_t *d;
+    uint32_t dl;
+    assert_true(bw_ext_next(out + h.ext_off, h.ext_len, &pos, &type, &d, &dl));
+    assert_int_equal(type, BW_EXT_METADATA);
+    assert_int_equal(dl, 3);
+    assert_memory_equal(d, "abc", 3);
+    assert_true(bw_ext_next(out + h.ext_off, h.ext_len, &pos, &type, &d, &dl));
+    assert_int_equal(type, 0x9F);
+    assert_int_equal(dl, 200);
+    assert_false(bw_ext_next(out + h.ext_off, h.ext_len, &pos, &type, &d, &dl));
+    /* the samples are the same as without the records */
+    bw_header_t hd;
+    assert_int_equal(bw_decode(out, len, ver, N, work, sizeof work / sizeof *work, &hd), BW_OK);
+    assert_memory_equal(ver, samples, sizeof samples);
+    /* a byte budget counts the records */
+    p.mode = BW_MODE_BYTES;
+    p.byte_budget = (uint32_t)(plain * 3 / 4 + ext_len);
+    len = encode(&p, BW_OK);
+    assert_true(len <= p.byte_budget);
+    assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+    assert_int_equal(h.ext_len, ext_len);
+}
+
+static void the_streaming_encoder_writes_the_same_records(void **state)
+{
+    (void)state;
+    setup_data();
+    bw_params_t p = params(BW_MODE_MAX_ERROR);
+    p.flags = BW_FLAG_STREAM_ORDER;
+    p.ext = ext;
+    p.ext_len = (uint32_t)ext_len;
+    size_t len = encode(&p, BW_OK);
+    static uint8_t batch[sizeof out], streamed[sizeof out];
+    memcpy(batch, out, len);
+    bw_dims_t d;
+    assert_int_equal(bw_dims_make(&d, BW_SHAPE_SPECTRA, 0, 0, N_IN, BANDS), BW_OK);
+    static bw_stream_t s;
+    static int32_t mem[BW_STREAM_MEM_BOUND(0, BANDS)];
+    assert_int_equal(bw_stream_init(&s, &d, &p, mem, sizeof mem / sizeof *mem, streamed,
+                                    sizeof streamed),
+                     BW_OK);
+    for (unsigned i = 0; i < N_IN; i++)
+        assert_int_equal(bw_stream_push(&s, samples + i * BANDS), BW_OK);
+    size_t slen = 0;
+    assert_int_equal(bw_stream_finish(&s, &slen), BW_OK);
+    assert_int_equal(slen, len);
+    assert_memory_equal(streamed, batch, len);
+}
+
+static void malformed_records_are_refused_by_the_encoder(void **state)
+{
+    (void)state;
+    setup_data();
+    bw_params_t p = params(BW_MODE_LOSSLESS);
+    uint8_t bad[8] = {0x81, 5, 'a', 'b'}; /* claims 5 bytes, holds 2 */
+    p.ext = bad;
+    p.ext_len = 4;
+    encode(&p, BW_ERR_ARG);
+    uint8_t crit[3] = {0x05, 1, 0}; /* a critical type no decoder knows */
+    p.ext = crit;
+    p.ext_len = 3;
+    encode(&p, BW_ERR_ARG);
+    p.ext = NULL; /* a length without records */
+    encode(&p, BW_ERR_ARG);
+}
+
+/* rewrites the payload's CRC after an edit */
+static void recrc(uint8_t *p, size_t len)
+{
+    bw_put_u32(p + len - 4, bw_crc32(p, len - 4));
+}
+
+static void decoders_refuse_unknown_critical_records_and_inconsistent_versions(void **state)
+{
+    (void)state;
+    setup_data();
+    bw_params_t p = params(BW_MODE_LOSSLESS);
+    uint8_t rec[3] = {0x81, 1, 0x42};
+    p.ext = rec;
+    p.ext_len = 3;
+    size_t len = encode(&p, BW_OK);
+    bw_header_t h;
+    assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+    size_t at = h.ext_off;
+    static uint8_t edit[sizeof out];
+
+    memcpy(edit, out, len);
+    edit[at] = 0x05; /* the record becomes critical and unknown */
+    recrc(edit, len);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
+    assert_int_equal(bw_decode(edit, len, ver, N, work, sizeof work / sizeof *work, NULL),
+                     BW_ERR_EXTENSION);
+
+    memcpy(edit, out, len);
+    edit[at + 1] = 9; /* a record longer than the area */
+    recrc(edit, len);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
+
+    memcpy(edit, out, len);
+    edit[2] = 6; /* records in a version-6 header */
+    recrc(edit, len);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
+
+    size_t plain = encode(&(bw_params_t){.mode = BW_MODE_LOSSLESS, .basis = BW_BASIS_53}, BW_OK);
+    memcpy(edit, out, plain);
+    edit[2] = 7; /* version 7 without records */
+    recrc(edit, plain);
+    assert_int_equal(bw_header_read(edit, plain, &h), BW_ERR_HEADER);
+    edit[2] = 8; /* a version no decoder knows yet */
+    recrc(edit, plain);
+    assert_int_equal(bw_header_read(edit, plain, &h), BW_ERR_VERSION);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(records_travel_with_the_payload_and_make_it_version_7),
+        cmocka_unit_test(the_streaming_encoder_writes_the_same_records),
+        cmocka_unit_test(malformed_records_are_refused_by_the_encoder),
+        cmocka_unit_test(decoders_refuse_unknown_critical_records_and_inconsistent_versions),
+    };
+    return cmocka_run_group_tests_name("ext", tests, NULL, NULL);
+}
