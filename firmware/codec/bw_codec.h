@@ -175,7 +175,11 @@ typedef struct {
  *   BW_SHAPE_BRDF_FULL with level_in == level_out; the differences must stay
  *   within +-BW_SAMPLE_MAX, else BW_ERR_RANGE. */
 #define BW_FLAG_RECIPROCAL 0x20u
-#define BW_FLAGS_KNOWN 0x3Fu
+/* MS: the body is coded with the multi-symbol range coder: an element's
+ *   bit length as one adaptive symbol in place of the valid bit and the
+ *   5-bit tree (fewer instructions per sample; not with RICE). Version 7. */
+#define BW_FLAG_MS 0x80u
+#define BW_FLAGS_KNOWN 0xBFu
 /* EXT (set by the encoder when params.ext_len > 0, version 7): extension
  *   records follow the header's fields. */
 #define BW_FLAG_EXT 0x40u

@@ -15,13 +15,32 @@
 #define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
 #define BW_CODER_NB_CTX 8u
 
-/* The range coder's adaptive models, 7,302 bytes. */
+/* the strip coders: the binary range coder, Rice strips (BW_FLAG_RICE), the
+ * multi-symbol range coder (BW_FLAG_MS) */
+enum { BW_CODER_RANGE = 0, BW_CODER_RICE = 1, BW_CODER_MS = 2 };
+
+/* The binary range coder's adaptive models, 7,302 bytes. */
 typedef struct {
     bw_prob_t present[BW_CODER_CLASSES][2];
     bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* [previous bit][above bit + 2 parent] */
     bw_prob_t mag[BW_CODER_CLASSES][BW_CODER_NB_CTX][32];
     bw_prob_t mant[BW_CODER_CLASSES][32];
     bw_prob_t sign[27]; /* [left + 3 parent + 9 above], each 0 none/zero, 1 +, 2 - */
+} bw_rc_models_t;
+
+/* The multi-symbol coder's models (BW_FLAG_MS): per class and neighbourhood
+ * the frequencies of an element's bit length (0: zero; BW_MS_ESC: that or
+ * more), the bit below the leading one, the signs. */
+typedef struct {
+    bw_prob_t present[BW_CODER_CLASSES][2];
+    bw_prob_t valid[BW_CODER_CLASSES][2][6]; /* as the binary coder's */
+    bw_ms_model_t e[BW_CODER_CLASSES][BW_CODER_NB_CTX]; /* e - 1 of a non-zero element */
+    bw_prob_t sign[27];
+} bw_ms_models_t;
+
+typedef union {
+    bw_rc_models_t rc;
+    bw_ms_models_t ms;
 } bw_models_t;
 
 /* What a strip leaves for the next one's contexts. */
@@ -33,7 +52,7 @@ typedef struct {
 
 /* The strip encoder, fed one coefficient at a time. */
 typedef struct {
-    bool rice; /* the Rice strip coder (BW_FLAG_RICE) instead of rc + m */
+    unsigned coder; /* BW_CODER_RANGE, _RICE (re) or _MS (rc + m) */
     bw_rice_enc_t re;
     bw_rc_enc_t rc;
     bw_models_t m;
@@ -43,6 +62,7 @@ typedef struct {
     uint8_t pv[32]; /* the previous vector (0xFF: none)                   */
     uint8_t ps[32]; /* their signs' part of the sign model (sign_ctx_up)    */
     unsigned cnt;
+    uint32_t mask; /* the non-zero values among those put (bit b: v[b]) */
     bw_strip_state_t st;
 } bw_strip_enc_t;
 

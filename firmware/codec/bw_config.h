@@ -16,8 +16,17 @@
  *                                      rounding offset of 1/8 of a step still
  *                                      leaves the budget short, offsets up to 1/2
  *
- * The decoder has no switch: every build decodes every payload the format
- * allows, prediction included, whatever its encoder leaves out.
+ * Coders:
+ *
+ *   BW_CFG_CODER_MS           1        the multi-symbol range coder (flag MS,
+ *                                      format 7) both ways; 0 leaves it out of
+ *                                      encoder and decoder (1.5 KiB of flash):
+ *                                      such a build refuses an MS request or
+ *                                      payload with BW_ERR_NOT_BUILT
+ *
+ * Apart from that the decoder has no switch: every build decodes every
+ * payload the format allows, prediction included, whatever its encoder
+ * leaves out.
  *
  * Text:
  *
@@ -39,8 +48,9 @@
  *   BW_CFG_FAST_RICE          the Rice writer held in registers, whole strips
  *                             with a fixed count, the coarse-to-fine order as
  *                             loops
- *   BW_CFG_FAST_STRIPS        the range coder's strip code built once for each
- *                             direction (else one copy codes and decodes)
+ *   BW_CFG_FAST_STRIPS        the range coders' strip code built once for each
+ *                             direction (else one copy codes and decodes), the
+ *                             coarse-to-fine order as loops
  *   BW_CFG_CRC_SLICE4         CRC-32 four bytes a step (4 KiB of tables, else
  *                             a 64-byte nibble table)
  *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline,
@@ -52,8 +62,9 @@
  *   the MCU build (make TARGET=mcu, -Os with link-time optimisation), the
  *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
  *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
- *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0 and BW_CFG_STATUS_TEXT=0,
- *   which keep encoder, decoder and streaming encoder within 16 KiB of flash.
+ *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0, BW_CFG_STATUS_TEXT=0 and
+ *   BW_CFG_CODER_MS=0, which keep encoder, decoder and streaming encoder
+ *   within 16 KiB of flash.
  *
  * Two builds write byte-identical payloads for the same input and options
  * exactly when their encoder features match; the code forms never matter.
@@ -78,6 +89,10 @@
 
 #ifndef BW_CFG_STATUS_TEXT
 #define BW_CFG_STATUS_TEXT 1
+#endif
+
+#ifndef BW_CFG_CODER_MS
+#define BW_CFG_CODER_MS 1
 #endif
 
 #ifndef BW_CFG_SPEED

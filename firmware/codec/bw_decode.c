@@ -23,7 +23,7 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, const bw_head
                  work + n, work + n);
     bw_plan_tables(&pl);
     bw_status_t st = bw_decode_body(&pl, work, p + h->header_len, h->body_len,
-                                    (h->flags & BW_FLAG_RICE) != 0u, &ctx->models);
+                                    bw_coder_of(h->flags), &ctx->models);
     if (st != BW_OK)
         return st;
     if (pl.basis == BW_BASIS_PRED) {

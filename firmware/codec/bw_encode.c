@@ -34,7 +34,7 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
             return BW_ERR_OUTPUT_FULL;
         body_cap = cap - hl - BW_TRAILER_SIZE;
     }
-    bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, (pa->flags & BW_FLAG_RICE) != 0u);
+    bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, bw_coder_of(pa->flags));
     bw_code_body(pl, work, se);
     size_t body = bw_strip_enc_finish(se);
     *len = hl + body + BW_TRAILER_SIZE;

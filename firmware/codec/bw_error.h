@@ -24,7 +24,8 @@ extern "C" {
     X(BW_ERR_VERIFY, -13, "encoder self-check failed (guarantee not met)")         \
     X(BW_ERR_MISMATCH, -14, "operands have different sizes")                        \
     X(BW_ERR_TRAILING, -15, "payload length does not match its header")                    \
-    X(BW_ERR_EXTENSION, -16, "payload needs an extension this decoder does not know")
+    X(BW_ERR_EXTENSION, -16, "payload needs an extension this decoder does not know") \
+    X(BW_ERR_NOT_BUILT, -17, "this build leaves out the coder the payload or request needs")
 
 typedef enum {
 #define BW_X_ENUM(name, value, msg) name = value,

@@ -67,7 +67,7 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     }
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
-    h[2] = pa->ext_len ? BW_VERSION_EXT : BW_VERSION;
+    h[2] = pa->ext_len || (pa->flags & BW_FLAG_MS) ? BW_VERSION_EXT : BW_VERSION;
     h[3] = (uint8_t)b3;
     h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
     h[5] = (uint8_t)((pa->flags & BW_FLAGS_KNOWN) | (pa->ext_len ? BW_FLAG_EXT : 0u));
@@ -182,8 +182,9 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     h->step_q8 = BW_STEP_ONE_Q8 + (me ? 0u : e);
     h->scale_bits = v[HV_SCALE];
     h->offset_bits = v[HV_OFFSET];
-    /* version 7 exactly when there are records: one encoding per header */
-    if ((h->version == BW_VERSION_EXT) != ((h->flags & BW_FLAG_EXT) != 0u))
+    /* version 7 exactly when it is needed (records, or the multi-symbol
+     * coder): one encoding per header */
+    if ((h->version == BW_VERSION_EXT) != ((h->flags & (BW_FLAG_EXT | BW_FLAG_MS)) != 0u))
         return BW_ERR_HEADER;
     if (h->flags & BW_FLAG_EXT) {
         uint32_t el;
@@ -205,11 +206,10 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
                                               : 0u;
     /* the step above 1 must not wrap; then the rules every payload follows,
      * and the spectral depth its basis implies */
-    if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) ||
-        bw_params_check(d, h->mode, h->basis, h->flags & ~BW_FLAG_EXT, me ? e : h->step_q8,
-                        BW_FOR_PAYLOAD) !=
-            BW_OK ||
+    bw_status_t pc = bw_params_check(d, h->mode, h->basis, h->flags & ~BW_FLAG_EXT,
+                                     me ? e : h->step_q8, BW_FOR_PAYLOAD);
+    if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) || (pc != BW_OK && pc != BW_ERR_NOT_BUILT) ||
         h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands))
         return BW_ERR_HEADER;
-    return BW_OK;
+    return pc; /* a valid header, or one this build cannot decode */
 }

@@ -4,12 +4,24 @@ void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap)
 {
     e->low = 0;
     e->range = 0xFFFFFFFFu;
-    e->cache = 0xFF; /* no byte yet: see bw_rc_enc_shift_low */
-    e->cache_size = 0;
     e->out = out;
     e->cap = cap;
     e->pos = 0;
     e->overflow = false;
+}
+
+/* A carry out of low: one more in the bytes already written, through the
+ * 0xFF bytes before it. The code value stays below 1, so the carry never
+ * passes the first byte. */
+static void carry(bw_rc_enc_t *e)
+{
+    e->low &= 0xFFFFFFFFu;
+    if (!e->out)
+        return;
+    for (size_t i = e->pos; i-- > 0;) {
+        if (i < e->cap && ++e->out[i] != 0u)
+            return;
+    }
 }
 
 static inline void put(bw_rc_enc_t *e, uint8_t b)
@@ -23,36 +35,25 @@ static inline void put(bw_rc_enc_t *e, uint8_t b)
     e->pos++;
 }
 
-/* Emits the top byte of low once no carry can reach it any more; a run of
- * 0xFF bytes is held back (cache_size) until the carry is known. The code
- * value stays below 1 (no carry out of the first byte), so the first byte
- * is not preceded by one: cache_size starts at 0, and a first byte of 0xFF
- * held back is the initial cache. */
+/* Writes the top byte of low (a carry first goes into the bytes before). */
 void bw_rc_enc_shift_low(bw_rc_enc_t *e)
 {
-    if ((uint32_t)e->low < 0xFF000000u || (e->low >> 32) != 0) {
-        uint8_t carry = (uint8_t)(e->low >> 32);
-        uint8_t temp = e->cache;
-        for (; e->cache_size != 0; e->cache_size--) {
-            put(e, (uint8_t)(temp + carry));
-            temp = 0xFF;
-        }
-        e->cache = (uint8_t)(e->low >> 24);
-    }
-    e->cache_size++;
+    if (e->low >> 32)
+        carry(e);
+    put(e, (uint8_t)(e->low >> 24));
     e->low = (e->low & 0x00FFFFFFu) << 8;
 }
 
 /* Ends the code at the value in [low, low + range) with the most zero bits
- * (range >= 2^24: a multiple of 2^24), which leaves one byte to write
- * after those held back, none when it and they are a single 0 (the decoder
- * reads zeros past its input). */
+ * (range >= 2^24: a multiple of 2^24); its top byte is the last one, left
+ * out when it is 0 (the decoder reads zeros past its input). */
 size_t bw_rc_enc_finish(bw_rc_enc_t *e)
 {
     e->low = (e->low + 0xFFFFFFu) & ~(uint64_t)0xFFFFFFu;
-    bw_rc_enc_shift_low(e);
-    if (e->cache != 0u || e->cache_size > 1u)
-        bw_rc_enc_shift_low(e);
+    if (e->low >> 32)
+        carry(e);
+    if ((uint8_t)(e->low >> 24) != 0u)
+        put(e, (uint8_t)(e->low >> 24));
     return e->pos;
 }
 
@@ -65,4 +66,36 @@ void bw_rc_dec_init(bw_rc_dec_t *d, const uint8_t *in, size_t len)
     d->pos = 0;
     for (int i = 0; i < 4; i++)
         d->code = (d->code << 8) | bw_rc_dec_byte(d);
+}
+
+void bw_ms_model_init(bw_ms_model_t *m)
+{
+    /* a start that expects small bit lengths */
+    for (unsigned i = 0; i < BW_MS_SYMS; i++)
+        m->f[i] = (uint16_t)(i < 4u ? 8u >> i : 1u);
+    m->seen = 0;
+    m->cum[BW_MS_SYMS] = 0; /* no total yet: nothing to halve */
+    bw_ms_model_refresh(m);
+}
+
+void bw_ms_model_refresh(bw_ms_model_t *m)
+{
+    /* the total the counts reach (each symbol since the last refresh added
+     * BW_MS_INC): past BW_MS_TOTAL, halve them on the way */
+    unsigned t = 0, since = m->seen ? (unsigned)(m->seen <= BW_MS_WARM1 ? 1u
+                                                 : m->seen <= BW_MS_WARM1 + BW_MS_WARM2 ? 4u
+                                                                                      : BW_MS_REFRESH)
+                                    : 0u;
+    unsigned sh = m->cum[BW_MS_SYMS] + since * BW_MS_INC > BW_MS_TOTAL ? 1u : 0u;
+    for (unsigned i = 0; i < BW_MS_SYMS; i++) {
+        unsigned f = (m->f[i] + sh) >> sh;
+        m->f[i] = (uint16_t)f;
+        m->cum[i] = (uint16_t)t;
+        t += f;
+    }
+    m->cum[BW_MS_SYMS] = (uint16_t)t;
+    /* after every symbol while the model learns, then less often */
+    m->left = m->seen < BW_MS_WARM1 ? 1u : m->seen < BW_MS_WARM1 + BW_MS_WARM2 ? 4u : BW_MS_REFRESH;
+    if (m->seen < 255u)
+        m->seen++;
 }

@@ -44,10 +44,8 @@ static inline void bw_prob_update(bw_prob_t *p, unsigned bit)
 }
 
 typedef struct {
-    uint64_t low;
+    uint64_t low; /* bit 32: a carry not yet added to the bytes written */
     uint32_t range;
-    uint8_t cache;
-    uint64_t cache_size;
     uint8_t *out; /* NULL: count only */
     size_t cap;
     size_t pos;
@@ -141,6 +139,157 @@ static inline uint32_t bw_rc_dec_direct(bw_rc_dec_t *d, unsigned nbits)
             d->code = (d->code << 8) | bw_rc_dec_byte(d);
         }
     }
+    return v;
+}
+
+
+/* The multi-symbol coder's binary models adapt at one fixed rate: 2^-5 of
+ * the error after every bit (no count to keep). */
+#ifndef BW_MS_SHIFT
+#define BW_MS_SHIFT 5u
+#endif
+static inline void bw_ms_prob_update(bw_prob_t *p, unsigned bit)
+{
+    uint32_t pr = *p;
+    if (!bit)
+        pr += ((1u << BW_PROB_BITS) - pr) >> BW_MS_SHIFT;
+    else
+        pr -= pr >> BW_MS_SHIFT;
+    *p = (bw_prob_t)pr;
+}
+
+static inline void bw_rc_enc_msbit(bw_rc_enc_t *e, bw_prob_t *p, unsigned bit)
+{
+    uint32_t bound = (e->range >> BW_PROB_BITS) * *p;
+    if (!bit) {
+        e->range = bound;
+    } else {
+        e->low += bound;
+        e->range -= bound;
+    }
+    bw_ms_prob_update(p, bit);
+    while (e->range < BW_RC_TOP) {
+        e->range <<= 8;
+        bw_rc_enc_shift_low(e);
+    }
+}
+
+static inline unsigned bw_rc_dec_msbit(bw_rc_dec_t *d, bw_prob_t *p)
+{
+    uint32_t bound = (d->range >> BW_PROB_BITS) * *p;
+    unsigned bit;
+    if (d->code < bound) {
+        d->range = bound;
+        bit = 0;
+    } else {
+        d->code -= bound;
+        d->range -= bound;
+        bit = 1;
+    }
+    bw_ms_prob_update(p, bit);
+    while (d->range < BW_RC_TOP) {
+        d->range <<= 8;
+        d->code = (d->code << 8) | bw_rc_dec_byte(d);
+    }
+    return bit;
+}
+
+/* ---- multi-symbol coding (BW_FLAG_MS) -------------------------------------
+ * A model codes one of BW_MS_SYMS symbols with the cumulative frequencies
+ * cum[] (cum[0] = 0, cum[BW_MS_SYMS] the total): symbol s takes
+ * range / total times cum[s + 1] - cum[s], one division, two reads and one
+ * multiplication. The model counts the symbols it codes (f[], BW_MS_INC
+ * each) and sets cum[] from the counts after every BW_MS_REFRESH symbols,
+ * halving them first when their total would pass BW_MS_TOTAL (rounding
+ * up: none reaches 0). */
+#define BW_MS_SYMS 16u
+#ifndef BW_MS_INC
+#define BW_MS_INC 24u
+#endif
+#ifndef BW_MS_TOTAL
+#define BW_MS_TOTAL 8192u
+#endif
+#ifndef BW_MS_REFRESH
+#define BW_MS_REFRESH 16u
+#endif
+#ifndef BW_MS_WARM1
+#define BW_MS_WARM1 32u
+#endif
+#ifndef BW_MS_WARM2
+#define BW_MS_WARM2 32u
+#endif
+
+typedef struct {
+    uint16_t cum[BW_MS_SYMS + 1u];
+    uint16_t f[BW_MS_SYMS];
+    uint8_t left; /* symbols until the next refresh */
+    uint8_t seen; /* refreshes so far, saturating */
+} bw_ms_model_t;
+
+void bw_ms_model_init(bw_ms_model_t *m);
+void bw_ms_model_refresh(bw_ms_model_t *m);
+
+static inline void bw_ms_update(bw_ms_model_t *m, unsigned s)
+{
+    m->f[s] = (uint16_t)(m->f[s] + BW_MS_INC);
+    if (--m->left == 0u)
+        bw_ms_model_refresh(m);
+}
+
+static inline void bw_rc_enc_renorm(bw_rc_enc_t *e)
+{
+    while (e->range < BW_RC_TOP) {
+        e->range <<= 8;
+        bw_rc_enc_shift_low(e);
+    }
+}
+
+static inline void bw_rc_enc_sym(bw_rc_enc_t *e, bw_ms_model_t *m, unsigned s)
+{
+    uint32_t r = e->range / m->cum[BW_MS_SYMS];
+    e->low += (uint64_t)r * m->cum[s];
+    e->range = r * (uint32_t)(m->cum[s + 1u] - m->cum[s]);
+    bw_ms_update(m, s);
+    bw_rc_enc_renorm(e);
+}
+
+static inline void bw_rc_dec_renorm(bw_rc_dec_t *d)
+{
+    while (d->range < BW_RC_TOP) {
+        d->range <<= 8;
+        d->code = (d->code << 8) | bw_rc_dec_byte(d);
+    }
+}
+
+static inline unsigned bw_rc_dec_sym(bw_rc_dec_t *d, bw_ms_model_t *m)
+{
+    uint32_t r = d->range / m->cum[BW_MS_SYMS], v = d->code / r;
+    unsigned s = 0;
+    while (s < BW_MS_SYMS - 1u && m->cum[s + 1u] <= v)
+        s++;
+    d->code -= r * m->cum[s];
+    d->range = r * (uint32_t)(m->cum[s + 1u] - m->cum[s]);
+    bw_ms_update(m, s);
+    bw_rc_dec_renorm(d);
+    return s;
+}
+
+/* n <= 16 bits at once, each of probability 1/2 */
+static inline void bw_rc_enc_bits(bw_rc_enc_t *e, uint32_t value, unsigned n)
+{
+    e->range >>= n;
+    e->low += (uint64_t)e->range * (value & ((1u << n) - 1u));
+    bw_rc_enc_renorm(e);
+}
+
+static inline uint32_t bw_rc_dec_bits(bw_rc_dec_t *d, unsigned n)
+{
+    d->range >>= n;
+    uint32_t v = d->code / d->range;
+    if (v >> n)
+        v = (1u << n) - 1u; /* only a corrupt code gets here */
+    d->code -= v * d->range;
+    bw_rc_dec_renorm(d);
     return v;
 }
 

@@ -60,7 +60,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->out = out;
     s->cap = cap;
     bw_strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE,
-                      (pa->flags & BW_FLAG_RICE) != 0u);
+                      bw_coder_of(pa->flags));
     s->err = BW_OK;
     return BW_OK;
 }

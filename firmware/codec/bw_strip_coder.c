@@ -28,10 +28,25 @@ static inline unsigned sign_ctx_up(const int32_t *par, const int32_t *prv)
     return 3u * (sign_ctx(par) + 3u * sign_ctx(prv));
 }
 
-void bw_models_init(bw_models_t *m)
+void bw_models_init(bw_models_t *m, unsigned coder)
 {
-    bw_prob_t *p = (bw_prob_t *)m;
-    for (size_t i = 0; i < sizeof *m / sizeof *p; i++)
+    if (BW_CFG_CODER_MS && coder == BW_CODER_MS) {
+        bw_ms_models_t *ms = &m->ms;
+        bw_prob_t *p = &ms->present[0][0];
+        for (size_t i = 0; i < sizeof ms->present / sizeof *p; i++)
+            p[i] = BW_PROB_INIT;
+        p = &ms->valid[0][0][0];
+        for (size_t i = 0; i < sizeof ms->valid / sizeof *p; i++)
+            p[i] = BW_PROB_INIT;
+        for (size_t i = 0; i < sizeof ms->sign / sizeof *p; i++)
+            ms->sign[i] = BW_PROB_INIT;
+        for (unsigned c = 0; c < BW_CODER_CLASSES; c++)
+            for (unsigned k = 0; k < BW_CODER_NB_CTX; k++)
+                bw_ms_model_init(&ms->e[c][k]);
+        return;
+    }
+    bw_prob_t *p = (bw_prob_t *)&m->rc;
+    for (size_t i = 0; i < sizeof m->rc / sizeof *p; i++)
         p[i] = BW_PROB_INIT;
 }
 
@@ -51,16 +66,17 @@ static inline unsigned mag_ctx(unsigned left, unsigned above, unsigned pe)
 
 /* ---- encoder --------------------------------------------------------------- */
 
-void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, bool rice)
+void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, unsigned coder)
 {
-    se->rice = rice;
-    if (rice) {
+    se->coder = coder;
+    if (coder == BW_CODER_RICE) {
         bw_rice_enc_init(&se->re, out, cap);
     } else {
         bw_rc_enc_init(&se->rc, out, cap);
-        bw_models_init(&se->m);
+        bw_models_init(&se->m, coder);
     }
     se->cnt = 0;
+    se->mask = 0;
     memset(&se->st, 0, sizeof se->st);
 }
 
@@ -90,7 +106,7 @@ static STRIP_INLINE unsigned rc_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_
  * may lie earlier in the same strip). cls: the elements' classes; s: what
  * the previous strip left. false: a corrupt strip.
  */
-static STRIP_INLINE bool rc_strip(bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+static STRIP_INLINE bool rc_strip(bw_rc_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
                                   bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
                                   const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
                                   int32_t *const *dst, const int32_t *const *par,
@@ -162,27 +178,222 @@ static STRIP_INLINE bool rc_strip(bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t 
     return true;
 }
 
+#define MS_ESC (BW_MS_SYMS - 1u)
+
+/* One of the multi-symbol coder's binary models, either way (rc_bit's twin). */
+static STRIP_INLINE unsigned ms_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
+                                    unsigned bit)
+{
+    if (dec)
+        return bw_rc_dec_msbit(dec, p);
+    bw_rc_enc_msbit(enc, p, bit);
+    return bit;
+}
+
+/*
+ * The multi-symbol coder's side of a strip (BW_FLAG_MS), both ways as
+ * rc_strip: a presence flag, then per element its bit length e as one
+ * symbol (0 for zero; MS_ESC and 4 bits for e >= MS_ESC), for e >= 2 the
+ * bit below the leading one with a model and the rest as plain bits, and
+ * the sign with its context.
+ */
+static STRIP_INLINE bool ms_strip(bw_ms_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                  bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
+                                  const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
+                                  int32_t *const *dst, const int32_t *const *par,
+                                  const int32_t *const *prv)
+{
+    bool dec = rcd != NULL;
+    uint32_t mask = 0;
+    if (!dec)
+        for (unsigned b = 0; b < cnt; b++)
+            if (v[b])
+                mask |= 1u << b;
+    if (!ms_bit(rce, rcd, &m->present[cls[0]][s->prev_mask != 0], mask != 0)) {
+        if (dec)
+            for (unsigned b = 0; b < cnt; b++)
+                *dst[b] = 0;
+        s->prev_mask = 0;
+        memset(s->e_above, 0, sizeof s->e_above);
+        s->e_left = 0;
+        return true;
+    }
+    unsigned prev_bit = 0;
+    for (unsigned b = 0; b < cnt; b++) {
+        unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
+        unsigned vc = valid_ctx((s->prev_mask >> b) & 1u, pe_b);
+        unsigned bit = ms_bit(rce, rcd, &m->valid[cls[b]][prev_bit][vc], (mask >> b) & 1u);
+        mask |= (uint32_t)bit << b;
+        prev_bit = bit;
+        if (!bit) {
+            if (dec)
+                *dst[b] = v[b] = 0;
+            s->e_above[b] = 0;
+            s->e_left = 0;
+            continue;
+        }
+        unsigned pv_b = dec ? ctx_len(prv[b]) : pv[b];
+        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
+        bw_ms_model_t *em = &m->e[cls[b]][mag_ctx(s->e_left, above, pe_b)];
+        uint32_t a = dec ? 1u : bw_abs32(v[b]);
+        unsigned e;
+        if (dec) {
+            e = 1u + bw_rc_dec_sym(rcd, em);
+            if (e == MS_ESC + 1u)
+                e += bw_rc_dec_bits(rcd, 5);
+        } else {
+            e = bw_bitlen(a);
+            if (e - 1u >= MS_ESC) {
+                bw_rc_enc_sym(rce, em, MS_ESC);
+                bw_rc_enc_bits(rce, e - 1u - MS_ESC, 5);
+            } else {
+                bw_rc_enc_sym(rce, em, e - 1u);
+            }
+        }
+        s->e_above[b] = (uint8_t)e;
+        s->e_left = e;
+        if (e > 31u)
+            return false;
+        for (unsigned n = e - 1u; n;) { /* the bits below the leading one, plain */
+            unsigned k = n > 16u ? n - 16u : n; /* the top bits first */
+            n -= k;
+            if (dec)
+                a = (a << k) | bw_rc_dec_bits(rcd, k);
+            else
+                bw_rc_enc_bits(rce, a >> n, k);
+        }
+        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + (dec ? sign_ctx_up(par[b], prv[b]) : ps[b]);
+        unsigned neg = ms_bit(rce, rcd, &m->sign[sc], !dec && v[b] < 0);
+        if (dec)
+            *dst[b] = v[b] = neg ? -(int32_t)a : (int32_t)a;
+    }
+    if (dec && !mask)
+        return false; /* a present strip holds at least one value */
+    s->prev_mask = mask;
+    return true;
+}
+
+#if BW_CFG_FAST_STRIPS
+/* The multi-symbol coder's encoder alone, with the coder's range and low in
+ * locals for the whole strip: the same code as ms_strip (which the decoder
+ * runs), in fewer instructions. */
+#define MS_RENORM()                                                                              \
+    while (range < BW_RC_TOP) {                                                                  \
+        rc->low = low;                                                                           \
+        rc->range = range << 8;                                                                  \
+        bw_rc_enc_shift_low(rc);                                                                 \
+        low = rc->low;                                                                           \
+        range = rc->range;                                                                       \
+    }
+#define MS_BIT(prob, bit)                                                                        \
+    do {                                                                                         \
+        bw_prob_t *p_ = (prob);                                                                  \
+        uint32_t bound_ = (range >> BW_PROB_BITS) * *p_;                                         \
+        if (!(bit)) {                                                                            \
+            range = bound_;                                                                      \
+        } else {                                                                                 \
+            low += bound_;                                                                       \
+            range -= bound_;                                                                     \
+        }                                                                                        \
+        bw_ms_prob_update(p_, (bit));                                                            \
+        MS_RENORM();                                                                             \
+    } while (0)
+
+static void ms_strip_enc(bw_strip_enc_t *se)
+{
+    bw_ms_models_t *m = &se->m.ms;
+    bw_rc_enc_t *rc = &se->rc;
+    bw_strip_state_t *s = &se->st;
+    unsigned cnt = se->cnt;
+    const int32_t *v = se->v;
+    const uint8_t *cls = se->cls;
+    uint64_t low = rc->low;
+    uint32_t range = rc->range, mask = se->mask;
+    MS_BIT(&m->present[cls[0]][s->prev_mask != 0], mask != 0);
+    if (!mask) {
+        s->prev_mask = 0;
+        memset(s->e_above, 0, sizeof s->e_above);
+        s->e_left = 0;
+        rc->low = low;
+        rc->range = range;
+        return;
+    }
+    unsigned prev_bit = 0, e_left = s->e_left;
+    uint32_t above_mask = s->prev_mask;
+    for (unsigned b = 0; b < cnt; b++) {
+        unsigned c = cls[b], pe_b = se->pe[b], bit = (mask >> b) & 1u;
+        MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe_b)], bit);
+        prev_bit = bit;
+        if (!bit) {
+            s->e_above[b] = 0;
+            e_left = 0;
+            continue;
+        }
+        int32_t x = v[b];
+        uint32_t a = bw_abs32(x);
+        unsigned e = bw_bitlen(a), pv_b = se->pv[b];
+        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
+        bw_ms_model_t *em = &m->e[c][mag_ctx(e_left, above, pe_b)];
+        unsigned sym = e - 1u < MS_ESC ? e - 1u : MS_ESC;
+        uint32_t r = range / em->cum[BW_MS_SYMS];
+        low += (uint64_t)r * em->cum[sym];
+        range = r * (uint32_t)(em->cum[sym + 1u] - em->cum[sym]);
+        bw_ms_update(em, sym);
+        MS_RENORM();
+        if (sym == MS_ESC) {
+            range >>= 5;
+            low += (uint64_t)range * (e - 1u - MS_ESC);
+            MS_RENORM();
+        }
+        for (unsigned n = e - 1u; n;) {
+            unsigned k = n > 16u ? n - 16u : n;
+            n -= k;
+            range >>= k;
+            low += (uint64_t)range * ((a >> n) & ((1u << k) - 1u));
+            MS_RENORM();
+        }
+        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b];
+        MS_BIT(&m->sign[sc], x < 0);
+        s->e_above[b] = (uint8_t)e;
+        e_left = e;
+    }
+    s->e_left = e_left;
+    s->prev_mask = mask;
+    rc->low = low;
+    rc->range = range;
+}
+#endif
+
 void bw_strip_enc_code(bw_strip_enc_t *se)
 {
     unsigned cnt = se->cnt;
-    se->cnt = 0;
-    if (se->rice)
+    if (se->coder == BW_CODER_RICE) {
         bw_rice_enc_strip(&se->re, se->v, cnt);
-    else
-        rc_strip(&se->m, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
+    } else if (BW_CFG_CODER_MS && se->coder == BW_CODER_MS) {
+#if BW_CFG_FAST_STRIPS
+        ms_strip_enc(se);
+#else
+        ms_strip(&se->m.ms, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
                  NULL, NULL, NULL);
+#endif
+    } else {
+        rc_strip(&se->m.rc, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
+                 NULL, NULL, NULL);
+    }
+    se->cnt = 0;
+    se->mask = 0;
 }
 
 size_t bw_strip_enc_finish(bw_strip_enc_t *se)
 {
     if (se->cnt)
         bw_strip_enc_code(se);
-    return se->rice ? bw_rice_enc_finish(&se->re) : bw_rc_enc_finish(&se->rc);
+    return se->coder == BW_CODER_RICE ? bw_rice_enc_finish(&se->re) : bw_rc_enc_finish(&se->rc);
 }
 
 bool bw_strip_enc_overflow(const bw_strip_enc_t *se)
 {
-    return se->rice ? se->re.w.overflow : se->rc.overflow;
+    return se->coder == BW_CODER_RICE ? se->re.w.overflow : se->rc.overflow;
 }
 
 /* par, prv: the parent and the same band in the previous vector (NULL:
@@ -190,6 +401,7 @@ bool bw_strip_enc_overflow(const bw_strip_enc_t *se)
 static inline void strip_put(bw_strip_enc_t *se, int32_t v, unsigned cls, const int32_t *par,
                              const int32_t *prv)
 {
+    se->mask |= (uint32_t)(v != 0) << se->cnt;
     se->v[se->cnt] = v;
     se->cls[se->cnt] = (uint8_t)cls;
     se->pe[se->cnt] = (uint8_t)ctx_len(par);
@@ -228,7 +440,7 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
                               const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
                               const int32_t *prev)
 {
-    if (se->rice) {
+    if (se->coder == BW_CODER_RICE) {
         rice_vector(se, v, b);
         return;
     }
@@ -250,7 +462,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
-    if (BW_CFG_FAST_RICE && se->rice && !pl->stream) {
+    if (BW_CFG_FAST_RICE && se->coder == BW_CODER_RICE && !pl->stream) {
         /* the coarse-to-fine order of bw_walk_next as loops (Rice strips
          * need no context class): the 4 scaling coefficients, then per
          * level j the children 1..3 of every parent */
@@ -277,12 +489,84 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
         }
         return;
     }
+    if (BW_CFG_FAST_STRIPS && !pl->stream) {
+        /* the coarse-to-fine order as loops: per incoming block the 4
+         * scaling vectors, then per level j the children 1..3 of every
+         * parent c, whose vector is their directional parent; the previous
+         * vector in this order is the one above (with more than one band) */
+        unsigned L = d->level_out;
+        const int32_t *prev = NULL, *sc = pl->spec_cls;
+        bool above = b > 1u;
+        for (uint32_t i = 0; i < d->n_in; i++) {
+            const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+            if (!bw_has_out(d)) {
+                for (uint32_t o = 0; o < d->n_out; o++) {
+                    put_vector(se, blk, b, sc, 2u, NULL, above ? prev : NULL);
+                    prev = blk;
+                }
+                continue;
+            }
+            unsigned cd = bw_level_cls(pl, -1);
+            for (uint32_t p = 0; p < 4u; p++) {
+                const int32_t *v = blk + ((size_t)p << (2u * L)) * b;
+                put_vector(se, v, b, sc, cd, NULL, above ? prev : NULL);
+                prev = v;
+            }
+            for (unsigned j = 0; j < L; j++) {
+                size_t step = ((size_t)1 << (2u * (L - j - 1u))) * b;
+                const int32_t *c = blk;
+                cd = bw_level_cls(pl, (int)j);
+                if (b == 1u && se->coder != BW_CODER_RICE) {
+                    /* one band: three values share their parent's contexts;
+                     * the strip's count and mask in locals (the byte stores
+                     * below would make the compiler reload them) */
+                    uint8_t cls = (uint8_t)(BW_SPEC_CLS(sc[0]) * 3u + cd);
+                    unsigned n = se->cnt;
+                    uint32_t mask = se->mask;
+                    int32_t *sv = se->v;
+                    uint8_t *scls = se->cls, *spe = se->pe, *sps = se->ps, *spv = se->pv;
+                    for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                        int32_t q = *c;
+                        uint8_t pe = (uint8_t)bw_bitlen(bw_abs32(q));
+                        uint8_t ps = (uint8_t)(q ? 3u + 3u * (q < 0) : 0u);
+                        for (unsigned m = 1; m <= 3u; m++) {
+                            int32_t val = c[m * step];
+                            mask |= (uint32_t)(val != 0) << n;
+                            sv[n] = val;
+                            scls[n] = cls;
+                            spe[n] = pe;
+                            sps[n] = ps;
+                            spv[n] = (uint8_t)NO_CTX;
+                            if (++n == BW_STRIP) {
+                                se->cnt = n;
+                                se->mask = mask;
+                                bw_strip_enc_code(se);
+                                n = 0;
+                                mask = 0;
+                            }
+                        }
+                    }
+                    se->cnt = n;
+                    se->mask = mask;
+                    continue;
+                }
+                for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                    for (unsigned m = 1; m <= 3u; m++) {
+                        const int32_t *v = c + m * step;
+                        put_vector(se, v, b, sc, cd, c, above ? prev : NULL);
+                        prev = v;
+                    }
+                }
+            }
+        }
+        return;
+    }
     bw_iter_t it;
     bw_iter_init(&it, pl, x);
     size_t vectors = (size_t)d->n_in * d->n_out;
     for (size_t n = 0; n < vectors; n++) {
         const int32_t *v = it.vec;
-        if (se->rice) {
+        if (se->coder == BW_CODER_RICE) {
             rice_vector(se, v, b);
         } else {
             unsigned cd = it.cls_dir;
@@ -318,7 +602,8 @@ static bw_status_t decode_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *b
     return BW_OK;
 }
 
-static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, bw_models_t *m)
+static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, bw_models_t *m,
+                             unsigned coder)
 {
     bw_iter_t it;
     bw_iter_init(&it, pl, x);
@@ -331,7 +616,10 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
         uint8_t cls[BW_STRIP];
         for (unsigned b = 0; b < cnt; b++)
             dst[b] = bw_iter_next(&it, &cls[b], &par[b], &prv[b]);
-        if (!rc_strip(m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv))
+        bool ok = BW_CFG_CODER_MS && coder == BW_CODER_MS
+                      ? ms_strip(&m->ms, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv)
+                      : rc_strip(&m->rc, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv);
+        if (!ok)
             return BW_ERR_CORRUPT;
     }
     /* a whole code is read to 3 or 4 bytes past its end: more, a cut body */
@@ -339,12 +627,12 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
 }
 
 bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,
-                           bool rice, bw_models_t *m)
+                           unsigned coder, bw_models_t *m)
 {
-    if (rice)
+    if (coder == BW_CODER_RICE)
         return decode_rice(pl, x, body, len);
-    bw_models_init(m);
+    bw_models_init(m, coder);
     bw_rc_dec_t rc;
     bw_rc_dec_init(&rc, body, len);
-    return decode_rc(pl, x, &rc, m);
+    return decode_rc(pl, x, &rc, m, coder);
 }

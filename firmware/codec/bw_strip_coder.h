@@ -16,10 +16,15 @@
 #include "bw_coder.h"
 #include "bw_internal.h"
 
-void bw_models_init(bw_models_t *m);
+void bw_models_init(bw_models_t *m, unsigned coder);
 
-/* out NULL: only counts; rice: Rice strips instead of the range coder. */
-void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, bool rice);
+/* out NULL: only counts; coder: BW_CODER_RANGE, _RICE or _MS. */
+void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, unsigned coder);
+/* The coder a payload's or a request's flags name. */
+static inline unsigned bw_coder_of(unsigned flags)
+{
+    return flags & BW_FLAG_RICE ? BW_CODER_RICE : flags & BW_FLAG_MS ? BW_CODER_MS : BW_CODER_RANGE;
+}
 /* Codes the strip of the se->cnt coefficients put since the last one. */
 void bw_strip_enc_code(bw_strip_enc_t *se);
 /* Codes what is left; returns the body size. */
@@ -40,6 +45,6 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se);
 /* Decodes a body into the plan's coefficients x: Rice strips, or the range
  * coder with the models m (initialised here). */
 bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,
-                           bool rice, bw_models_t *m);
+                           unsigned coder, bw_models_t *m);
 
 #endif

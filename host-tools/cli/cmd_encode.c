@@ -16,7 +16,7 @@ static const char encode_help[] =
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
-    "                       [--coder range|rice]\n"
+    "                       [--coder range|ms|rice]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "\n"
     "Compresses a measurement. Raw input is little-endian, row-major\n"
@@ -48,9 +48,11 @@ static const char encode_help[] =
     "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
     "  --relative        with --bytes or --ratio, float input > 0: code log(value),\n"
     "                    so the budget buys relative rather than absolute accuracy\n"
-    "  --coder C         entropy coder: range (default, the smallest payload) or rice\n"
-    "                    (adaptive Rice strips: a few times fewer instructions per\n"
-    "                    sample on the device, a few percent more bytes)\n"
+    "  --coder C         entropy coder: range (default, the smallest payload); ms\n"
+    "                    (multi-symbol range coder, format 7: about a third fewer\n"
+    "                    instructions per sample on the device, about the same\n"
+    "                    bytes); or rice (adaptive Rice strips: a few times fewer\n"
+    "                    instructions, a few percent more bytes)\n"
     "  --symmetry S      directional data: mirror codes the half y < 0 of each\n"
     "                    hemisphere as differences from its mirror image (x, -y, z),\n"
     "                    for BRDFs symmetric about the incidence plane x-z;\n"
@@ -125,7 +127,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"stream", 0, CLI_FLAG, .dest = &stream},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
-         .what = "--coder must be range or rice"},
+         .what = "--coder must be range, rice or ms"},
         {"symmetry", 0, CLI_CALL, .dest = &symmetry, .parse = parse_symmetry, .seen = &has_symmetry,
          .what = "--symmetry must be auto, mirror, reciprocal, both or none"},
         {NULL}};

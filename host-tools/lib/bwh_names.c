@@ -19,7 +19,7 @@ static const char *const shapes[] = {"spectra", "reflectance", "brdf-iso", "brdf
 static const char *const modes[] = {"lossless", "max-error", "bytes", "step"};
 static const char *const bases[] = {"haar", "53", "97", "pred"};
 static const char *const symmetries[] = {"none", "mirror", "reciprocal", "both"};
-static const char *const coders[] = {"range", "rice"};
+static const char *const coders[] = {"range", "rice", "ms"};
 
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
 
@@ -51,10 +51,14 @@ int bwh_symmetry_from_name(const char *name)
     return k < 0 ? -1 : (int)(flags[k] | BWH_NO_MIRROR);
 }
 
-const char *bwh_coder_name(unsigned flags) { return coders[flags & BW_FLAG_RICE ? 1 : 0]; }
+const char *bwh_coder_name(unsigned flags)
+{
+    return coders[flags & BW_FLAG_RICE ? 1 : flags & BW_FLAG_MS ? 2 : 0];
+}
 
 int bwh_coder_from_name(const char *name)
 {
     int k = find(coders, COUNT(coders), name);
-    return k < 0 ? -1 : k ? (int)BW_FLAG_RICE : 0;
+    static const unsigned flag[] = {0u, BW_FLAG_RICE, BW_FLAG_MS};
+    return k < 0 ? -1 : (int)flag[k];
 }

@@ -36,7 +36,7 @@ static void require(int cond, const char *what, int st)
     }
 }
 
-static int known(int st) { return st <= BW_OK && st >= BW_ERR_TRAILING; }
+static int known(int st) { return st <= BW_OK && st >= BW_ERR_NOT_BUILT; }
 
 static int same_dims(const bw_dims_t *a, const bw_dims_t *b)
 {

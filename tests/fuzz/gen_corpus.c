@@ -44,7 +44,7 @@ typedef struct {
     uint32_t n_in, bands;
     uint8_t mode, basis;
     uint32_t param;
-    uint8_t flags; /* BW_FLAG_MIRROR */
+    uint8_t flags; /* BW_FLAG_MIRROR, BW_FLAG_RICE, BW_FLAG_MS */
 } seed_t;
 
 static const seed_t seeds[] = {
@@ -66,6 +66,10 @@ static const seed_t seeds[] = {
     {"full_l1l1x2_mirror_maxerr2_haar", 3, 1, 1, 0, 2, 1, 0, 2, BW_FLAG_MIRROR},
     {"spectra_3x40_lossless_pred", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, 0},
     {"spectra_2x33_maxerr5_pred", 0, 0, 0, 2, 33, 1, BW_BASIS_PRED, 5, 0},
+    {"refl_l1x12_maxerr2_53_rice", 1, 1, 0, 1, 12, 1, 1, 2, BW_FLAG_RICE},
+    {"refl_l1x12_lossless_97_ms", 1, 1, 0, 1, 12, 0, 2, 0, BW_FLAG_MS},
+    {"iso_3xl2x5_mirror_maxerr3_haar_ms", 2, 2, 0, 3, 5, 1, 0, 3, BW_FLAG_MIRROR | BW_FLAG_MS},
+    {"spectra_3x40_lossless_pred_ms", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, BW_FLAG_MS},
 };
 
 int main(int argc, char **argv)
@@ -135,8 +139,10 @@ int main(int argc, char **argv)
         in[2] = (uint8_t)bands_field;
         in[3] = (uint8_t)(bands_field >> 8);
         in[4] = (uint8_t)((sd->n_in ? sd->n_in - 1u : 0u) | (sd->flags & BW_FLAG_MIRROR ? 0x80u : 0u));
-        in[5] = (uint8_t)(sd->mode | (sd->basis == BW_BASIS_PRED ? 0x10u
-                                      : (sd->basis == 255 ? 3u : sd->basis) << 2));
+        in[5] = (uint8_t)(sd->mode |
+                          (sd->basis == BW_BASIS_PRED ? 0x10u
+                                                      : (sd->basis == 255 ? 3u : sd->basis) << 2) |
+                          (sd->flags & BW_FLAG_RICE ? 0x20u : sd->flags & BW_FLAG_MS ? 0x40u : 0u));
         in[6] = (uint8_t)param;
         in[7] = (uint8_t)(param >> 8);
         in[8] = (uint8_t)(s % 4u);

@@ -19,7 +19,7 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
     uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too;
-                     * BW_FLAG_RICE, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL */
+                     * BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL */
 } golden_case_t;
 
 static const golden_case_t golden_cases[] = {
@@ -79,6 +79,18 @@ static const golden_case_t golden_cases[] = {
      7, 0},
     {"spectra6x300_maxerr2_pred_rice", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR,
      BW_BASIS_PRED, 2, BW_FLAG_RICE},
+    {"refl3x81_lossless_53_ms", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_53, 0,
+     BW_FLAG_MS},
+    {"refl3x81_maxerr4_97_ms", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_97, 4,
+     BW_FLAG_MS},
+    {"iso16x4x1_stream_step4000_haar_ms", BW_SHAPE_BRDF_ISO, 4, 0, 16, 1, BW_MODE_STEP,
+     BW_BASIS_HAAR, 4000, BW_FLAG_STREAM_ORDER | BW_FLAG_MS},
+    {"full1x1x9_bytes600_97_mirror_ms", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97,
+     600, BW_FLAG_MIRROR | BW_FLAG_MS},
+    {"spectra8x1024_stream_maxerr2_53_ms", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_MAX_ERROR,
+     BW_BASIS_53, 2, BW_FLAG_STREAM_ORDER | BW_FLAG_MS},
+    {"spectra6x300_maxerr2_pred_ms", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR,
+     BW_BASIS_PRED, 2, BW_FLAG_MS},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

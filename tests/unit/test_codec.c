@@ -161,6 +161,12 @@ static size_t first_mismatch(const int32_t *a, const int32_t *b, size_t n)
     return n;
 }
 
+/* the flags of coder c: 0 the range coder, 1 Rice, 2 the multi-symbol coder */
+static unsigned coder_flag(unsigned c)
+{
+    return c == 1u ? BW_FLAG_RICE : c == 2u ? BW_FLAG_MS : 0u;
+}
+
 static bw_params_t params_of(unsigned mode, unsigned basis)
 {
     bw_params_t p;
@@ -2547,9 +2553,9 @@ static void mirror_keeps_every_guarantee_on_asymmetric_data(void **state)
         int32_t *x = xmalloc(bw_dims_samples(&d) * sizeof *x);
         fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9100u + s, 40);
         for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++)
-            for (unsigned rice = 0; rice < 2; rice++) {
+            for (unsigned rice = 0; rice < 2u + BW_CFG_CODER_MS; rice++) {
                 bw_params_t p = params_of(BW_MODE_LOSSLESS, basis);
-                p.flags = BW_FLAG_MIRROR | (rice ? BW_FLAG_RICE : 0u);
+                p.flags = BW_FLAG_MIRROR | coder_flag(rice);
                 check_guarantees_with(&d, x, p, 3, 700);
             }
         free(x);
@@ -2672,10 +2678,10 @@ static void reciprocity_keeps_every_guarantee_on_data_that_is_not_reciprocal(voi
     int32_t *x = xmalloc(bw_dims_samples(&d) * sizeof *x);
     fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9400u, 40);
     for (unsigned f = 0; f < 2; f++)
-        for (unsigned rice = 0; rice < 2; rice++) {
+        for (unsigned rice = 0; rice < 2u + BW_CFG_CODER_MS; rice++) {
             bw_params_t p = params_of(BW_MODE_LOSSLESS, f ? BW_BASIS_97 : BW_BASIS_HAAR);
             p.flags = (uint8_t)(BW_FLAG_RECIPROCAL | (f ? BW_FLAG_MIRROR : 0u) |
-                                (rice ? BW_FLAG_RICE : 0u));
+                                coder_flag(rice));
             check_guarantees_with(&d, x, p, 2, 900);
         }
     free(x);
@@ -2892,15 +2898,16 @@ static void encoder_refuses_bad_input(void **state)
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
     assert_int_equal(first_mismatch(x, ver, n), n);
     /* every known flag together but reciprocity (full BRDFs only; tested
-     * above): recorded, and the decode is still exact (on samples of half
-     * the range, so that the mirror's differences fit) */
+     * above) and the multi-symbol coder (one coder: RICE is among them):
+     * recorded, and the decode is still exact (on samples of half the range,
+     * so that the mirror's differences fit) */
     int32_t *half = xmalloc(n * sizeof *half);
     for (size_t i = 0; i < n; i++)
         half[i] = x[i] / 2;
-    q = p, q.flags = BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL;
+    q = p, q.flags = BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL & ~BW_FLAG_MS;
     assert_int_equal(bw_encode(&d, &q, half, work, NULL, out, cap, &len), BW_OK);
     assert_int_equal(bw_header_read(out, len, &h), BW_OK);
-    assert_int_equal(h.flags, BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL);
+    assert_int_equal(h.flags, BW_FLAGS_KNOWN & ~BW_FLAG_RECIPROCAL & ~BW_FLAG_MS);
     assert_int_equal(bw_decode(out, len, ver, n, work, wb, NULL), BW_OK);
     assert_int_equal(first_mismatch(half, ver, n), n);
     free(half);
@@ -2918,10 +2925,10 @@ static void status_codes_have_messages(void **state)
         assert_string_equal(bw_strerror(BW_ERR_CRC), "status");
         return;
     }
-    for (int st = 0; st >= BW_ERR_EXTENSION; st--)
+    for (int st = 0; st >= BW_ERR_NOT_BUILT; st--)
         assert_string_not_equal(bw_strerror(st), "unknown status");
     assert_string_equal(bw_strerror(1), "unknown status");
-    assert_string_equal(bw_strerror(BW_ERR_EXTENSION - 1), "unknown status");
+    assert_string_equal(bw_strerror(BW_ERR_NOT_BUILT - 1), "unknown status");
 }
 
 /* ---- golden payload checksums --------------------------------------------- */
@@ -2951,9 +2958,12 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
     uint32_t crc[GOLDEN_CASES];
     size_t len[GOLDEN_CASES];
     bool found[GOLDEN_CASES] = {false};
-    bool pred = pred_built(); /* else its cases are left out (counted as found) */
+    /* else the cases of prediction and of the multi-symbol coder are left
+     * out (counted as found) */
+    bool pred = pred_built();
     for (size_t i = 0; i < GOLDEN_CASES; i++) {
-        if (golden_cases[i].basis == BW_BASIS_PRED && !pred) {
+        if ((golden_cases[i].basis == BW_BASIS_PRED && !pred) ||
+            (!BW_CFG_CODER_MS && (golden_cases[i].flags & BW_FLAG_MS))) {
             found[i] = true;
             continue;
         }
@@ -2963,6 +2973,9 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
     if (env_on("BW_GOLDEN_UPDATE")) {
         if (!pred)
             fail_msg("this build leaves prediction out: update the golden file from another");
+        if (!BW_CFG_CODER_MS)
+            fail_msg("this build leaves the multi-symbol coder out: update the golden file from "
+                     "another");
         FILE *f = fopen(GOLDEN_PATH, "w");
         if (f == NULL)
             fail_msg("cannot write %s (run from the repository root)", GOLDEN_PATH);
@@ -3211,12 +3224,12 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
                 for (size_t i = 0; i < n; i++) /* extremes alternating */
                     x[i] = (i / 3u) % 2u ? SMAX : -SMAX;
             for (size_t bi = 0; bi < ARRAY_LEN(bounds); bi++)
-                for (unsigned rice = 0; rice < 2; rice++) {
+                for (unsigned rice = 0; rice < 2u + BW_CFG_CODER_MS; rice++) {
                     uint32_t E = bounds[bi];
                     bw_params_t p = params_of(E ? BW_MODE_MAX_ERROR : BW_MODE_LOSSLESS,
                                               BW_BASIS_PRED);
                     p.max_error = E;
-                    p.flags = rice ? BW_FLAG_RICE : 0u;
+                    p.flags = coder_flag(rice);
                     uint8_t *out;
                     size_t len;
                     bw_status_t st = encode_new(&d, &p, x, true, &out, &len);
@@ -3348,6 +3361,85 @@ static void prediction_beats_the_transforms_on_field_spectra_within_a_bound(void
         print_message("E %u: pred %zu, haar %zu, 5/3 %zu, 9/7 %zu bytes\n", bounds[bi],
                       len[BW_BASIS_PRED], len[0], len[1], len[2]);
     }
+}
+
+/* The multi-symbol coder (BW_FLAG_MS): every shape and mode decodes as the
+ * range coder's payload does, in version 7, at about the same size; a build
+ * without it refuses requests and payloads with BW_ERR_NOT_BUILT. */
+static void multi_symbol_coder_decodes_as_the_range_coder_at_about_its_size(void **state)
+{
+    (void)state;
+    static const shape_case_t cases[] = {
+        {BW_SHAPE_SPECTRA, 0, 0, 6, 300},      {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81},
+        {BW_SHAPE_BRDF_ISO, 3, 0, 8, 1},       {BW_SHAPE_BRDF_ISO, 2, 0, 3, 17},
+        {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},      {BW_SHAPE_REFLECTANCE, 4, 0, 1, 1},
+    };
+    static const unsigned modes[] = {BW_MODE_LOSSLESS, BW_MODE_MAX_ERROR, BW_MODE_STEP,
+                                     BW_MODE_BYTES};
+    size_t total_range = 0, total_ms = 0;
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        bw_dims_t d = dims_of(cases[c].shape, cases[c].level_out, cases[c].level_in,
+                              cases[c].n_in, cases[c].bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9900u + c, 60);
+        for (size_t m = 0; m < ARRAY_LEN(modes); m++)
+            for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
+                bw_params_t p = params_of(modes[m], basis);
+                p.max_error = 5;
+                p.step_q8 = 2048;
+                p.byte_budget = (uint32_t)(n / 2u + 64u);
+                uint8_t *a, *b;
+                size_t la, lb;
+                if (encode_new(&d, &p, x, true, &a, &la) != BW_OK)
+                    continue; /* not for this shape: the range coder's rules */
+                p.flags = BW_FLAG_MS;
+                bw_status_t st = encode_new(&d, &p, x, true, &b, &lb);
+                if (!BW_CFG_CODER_MS) {
+                    assert_int_equal(st, BW_ERR_NOT_BUILT);
+                    free(a);
+                    free(b);
+                    continue;
+                }
+                assert_int_equal(st, BW_OK);
+                int32_t *ya, *yb;
+                bw_header_t ha, hb;
+                assert_int_equal(decode_new(a, la, &ya, &ha), BW_OK);
+                assert_int_equal(decode_new(b, lb, &yb, &hb), BW_OK);
+                assert_int_equal(hb.version, 7);
+                assert_int_equal(hb.flags & (BW_FLAG_MS | BW_FLAG_RICE), BW_FLAG_MS);
+                if (modes[m] != BW_MODE_BYTES) {
+                    /* the same quantised coefficients: the same samples */
+                    size_t i = first_mismatch(ya, yb, n);
+                    if (i < n)
+                        fail_msg("case %zu mode %u basis %u: sample %zu decodes to %d, range "
+                                 "coder %d",
+                                 c, modes[m], basis, i, yb[i], ya[i]);
+                    total_range += la;
+                    total_ms += lb;
+                } else {
+                    assert_true(lb <= p.byte_budget);
+                }
+                free(ya);
+                free(yb);
+                free(a);
+                free(b);
+            }
+        free(x);
+    }
+    if (BW_CFG_CODER_MS) {
+        print_message("multi-symbol %zu bytes, range coder %zu\n", total_ms, total_range);
+        assert_true(total_ms * 100u <= total_range * 103u);
+    }
+    /* one coder per payload */
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 2, 64);
+    int32_t x[128] = {0};
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
+    p.flags = BW_FLAG_MS | BW_FLAG_RICE;
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_ERR_ARG);
+    free(out);
 }
 
 static void prediction_is_refused_where_it_does_not_apply(void **state)
@@ -3488,6 +3580,7 @@ int main(void)
         cmocka_unit_test(every_decoder_decodes_prediction_payloads),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),
         cmocka_unit_test(prediction_is_refused_where_it_does_not_apply),
+        cmocka_unit_test(multi_symbol_coder_decodes_as_the_range_coder_at_about_its_size),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }

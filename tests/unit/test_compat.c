@@ -13,12 +13,13 @@
 
 #include <cmocka.h>
 
+#include "bw_config.h"
 #include "bw_crc32.h"
 #include "bw_le.h"
 #include "bwhost.h"
 
 /* the versions with archived payloads, oldest first */
-static const unsigned versions[] = {6};
+static const unsigned versions[] = {6, 7};
 
 /* CRC-32 of n 32-bit words (int32 or float32) written little-endian */
 static uint32_t crc_of_words(const void *words, size_t n)
@@ -63,6 +64,13 @@ static void every_archived_payload_decodes_to_its_recorded_samples(void **state)
             bw_header_t h;
             int32_t *s;
             float *x;
+            if (!BW_CFG_CODER_MS && len > 5 && (p[5] & BW_FLAG_MS)) {
+                /* a build without the multi-symbol coder says so */
+                assert_int_equal(bw_header_read(p, len, &h), BW_ERR_NOT_BUILT);
+                free(p);
+                in_version++;
+                continue;
+            }
             if (bwh_decode(p, len, &h, &s, &x) != 0)
                 fail_msg("%s: %s", path, bwh_last_error());
             if (h.version != versions[v])

@@ -419,9 +419,15 @@ static const fast_mode_t fast_modes[] = {
     {"step8", BW_MODE_STEP, 0, 8},        {"step64", BW_MODE_STEP, 0, 64},
 };
 
+static const struct {
+    const char *name;
+    uint8_t flag;
+} fast_coders[] = {{"rice", BW_FLAG_RICE}, {"ms", BW_FLAG_MS}, {"range", 0}};
+
 static void run_fast(set_t *s)
 {
     unsigned levels = bw_spec_levels(s->d.bands);
+    for (size_t c = 0; c < sizeof fast_coders / sizeof *fast_coders; c++)
     for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
         if (!levels && basis != BW_BASIS_53)
             continue; /* no spectral axis: one row per mode */
@@ -433,7 +439,7 @@ static void run_fast(set_t *s)
             p.basis = (uint8_t)basis;
             p.max_error = m->max_error;
             p.step_q8 = m->step * 256u;
-            p.flags = BW_FLAG_RICE;
+            p.flags = fast_coders[c].flag;
             p.scale_bits = 0x3F800000u;
             size_t len = 0;
             bw_status_t st, st_d;
@@ -450,11 +456,11 @@ static void run_fast(set_t *s)
             max_stack(&stack_dec_max, stk);
             uint64_t sse = 0;
             uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;
-            int ok = st_d == BW_OK && (h.flags & BW_FLAG_RICE) &&
+            int ok = st_d == BW_OK && (h.flags & (BW_FLAG_RICE | BW_FLAG_MS)) == fast_coders[c].flag &&
                      bound_held(m->mode, m->max_error, worst);
-            printf("FAST coder=rice basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
+            printf("FAST coder=%s basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
                    " worst=%lu sse=%llu status=%s\n",
-                   basis, m->name, (unsigned long)s->n, (unsigned long)len, t_enc, t_dec,
+                   fast_coders[c].name, basis, m->name, (unsigned long)s->n, (unsigned long)len, t_enc, t_dec,
                    (unsigned long)worst, sse, ok ? "ok" : "FAIL");
             if (!ok)
                 failures++;
@@ -650,13 +656,15 @@ static void profile(set_t *s)
         st = bw_encode_ctx(&ctx, &s->d, &pb, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop("encode_ratio8");
     }
-    /* the Rice coder, 5/3: lossless and max-error 4 */
-    for (unsigned i = 0; i < 2u && st == BW_OK; i++) {
-        bw_params_t pr = params_of(&modes[i ? 2 : 0], s, BW_BASIS_53);
-        pr.flags = BW_FLAG_RICE;
+    /* the Rice and the multi-symbol coders, 5/3: lossless and max-error 4 */
+    static const char *const what[] = {"encode_rice_lossless", "encode_rice_maxerr4",
+                                       "encode_ms_lossless", "encode_ms_maxerr4"};
+    for (unsigned i = 0; i < 4u && st == BW_OK; i++) {
+        bw_params_t pr = params_of(&modes[i & 1u ? 2 : 0], s, BW_BASIS_53);
+        pr.flags = i < 2u ? BW_FLAG_RICE : BW_FLAG_MS;
         prof_start();
         st = bw_encode_ctx(&ctx, &s->d, &pr, s->x, s->work, NULL, s->out, s->out_cap, &len);
-        prof_stop(i ? "encode_rice_maxerr4" : "encode_rice_lossless");
+        prof_stop(what[i]);
     }
     if (st != BW_OK) {
         printf("ERROR what=profile status=%d\n", (int)st);
@@ -671,9 +679,10 @@ int main(void)
     hal = bw_board();
     char *argv[12];
     int argc = get_args(argv, 12);
-    if (argc != 8) {
+    /* a ninth argument "fast": the one-pass rows only (FAST) */
+    if (argc != 8 && !(argc == 9 && !strcmp(argv[8], "fast"))) {
         printf("ERROR what=usage argc=%d (bench_device NAME FILE SHAPE LEVEL_OUT LEVEL_IN N_IN "
-               "BANDS)\n",
+               "BANDS [fast])\n",
                argc);
         return 2;
     }
@@ -703,6 +712,24 @@ int main(void)
 
     for (size_t i = 0; i < s.n; i++)
         s.x[i] = s.raw[i];
+    if (argc == 9) {
+        run_fast(&s);
+        for (unsigned i = 0; i < 2u; i++) { /* where the one-pass coder spends them */
+            bw_params_t pm;
+            memset(&pm, 0, sizeof pm);
+            pm.mode = i ? BW_MODE_STEP : BW_MODE_LOSSLESS;
+            pm.step_q8 = 8u * 256u;
+            pm.basis = BW_BASIS_53;
+            pm.flags = BW_FLAG_MS;
+            pm.scale_bits = 0x3F800000u;
+            size_t len = 0;
+            prof_start();
+            bw_encode_ctx(&ctx, &s.d, &pm, s.x, s.work, NULL, s.out, s.out_cap, &len);
+            prof_stop(i ? "encode_ms_step8" : "encode_ms_lossless");
+        }
+        printf("END status=%s failures=%u\n", failures ? "FAIL" : "ok", failures);
+        return failures ? 1 : 0;
+    }
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
         run_mode(&s, &modes[m]);
     run_fast(&s);

@@ -479,6 +479,61 @@ LOSSY_TARGET = 40.0
 LOSSLESS_TARGET = 85.0
 
 
+def rice_rows(p):
+    return [d for d in p["fast"] if d.get("coder", "rice") == "rice"]
+
+
+MS_INSTR_TARGET = 120.0
+MS_BYTES_TARGET = 1.03
+
+
+def coders_section(A, sets, parsed):
+    """The three coders on the same one-pass encodes: bytes and instructions."""
+    A("## The coders side by side (measured)")
+    A("")
+    A("The same one-pass encodes (basis fixed, no search) with each strip coder: the binary "
+      "range coder (the default), the multi-symbol range coder (`BW_FLAG_MS`, `--coder ms`) "
+      "and Rice strips. *encode* and *decode* in instructions per sample, every stage "
+      "included; every row is decoded on the device and checked. Target: the device's coder "
+      "within %g %% of the range coder's bytes for the same basis and mode, at no more than "
+      "%g instructions per sample." % ((MS_BYTES_TARGET - 1) * 100, MS_INSTR_TARGET))
+    A("")
+    A("| data set | basis | mode | range bytes | ms bytes | ms / range | range encode | "
+      "ms encode | ms decode | rice bytes | rice encode |")
+    A("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    worst_ratio, worst_enc, rows_n = 0.0, 0.0, 0
+    for ds in sets:
+        by = {}
+        for d in parsed[ds.key]["fast"]:
+            by[(d.get("coder", "rice"), d["basis"], d["mode"])] = d
+        for (coder, basis, mode), r in by.items():
+            if coder != "range" or ("ms", basis, mode) not in by:
+                continue
+            m = by[("ms", basis, mode)]
+            ri = by.get(("rice", basis, mode))
+            n = int(r["samples"])
+            ratio = int(m["bytes"]) / int(r["bytes"])
+            worst_ratio = max(worst_ratio, ratio)
+            worst_enc = max(worst_enc, int(m["enc"]) / n)
+            rows_n += 1
+            A("| %s | %s | %s | %s | %s | %.4f | %.1f | %.1f | %.1f | %s | %s |" % (
+                ds.key, BASIS_NAMES.get(int(basis), basis) if ds.bands > 1 else "-", mode,
+                r["bytes"], m["bytes"], ratio, int(r["enc"]) / n, int(m["enc"]) / n,
+                int(m["dec"]) / n, ri["bytes"] if ri else "-",
+                "%.1f" % (int(ri["enc"]) / n) if ri else "-"))
+            if m["status"] != "ok":
+                failures.append("%s ms %s basis %s: guarantee failed" % (ds.key, mode, basis))
+    A("")
+    if rows_n:
+        A("Multi-symbol coder over %d rows: bytes at most %.4f x the range coder's (target "
+          "%.2f: %s); encode at most %.1f instructions per sample (target %g: %s)." % (
+              rows_n, worst_ratio, MS_BYTES_TARGET,
+              "met" if worst_ratio <= MS_BYTES_TARGET else "missed", worst_enc, MS_INSTR_TARGET,
+              "met" if worst_enc <= MS_INSTR_TARGET else "missed (%.2f x)" % (
+                  worst_enc / MS_INSTR_TARGET)))
+        A("")
+
+
 def fast_section(A, sets, parsed, peers):
     A("## The Rice coder on the device (measured)")
     A("")
@@ -493,7 +548,7 @@ def fast_section(A, sets, parsed, peers):
     A("|---|---|---|---:|---:|---:|---:|---:|")
     best = {}
     for ds in sets:
-        for d in parsed[ds.key]["fast"]:
+        for d in rice_rows(parsed[ds.key]):
             n = int(d["samples"])
             bits = 8.0 * int(d["bytes"]) / n
             enc = int(d["enc"]) / n
@@ -522,7 +577,7 @@ def fast_section(A, sets, parsed, peers):
     for ds in sets:
         pk = peers.get(ds.key, [])
         # lossless: the fastest lossless row that codes fewer bits than every peer
-        rows = [d for d in parsed[ds.key]["fast"] if d["mode"] == "lossless"]
+        rows = [d for d in rice_rows(parsed[ds.key]) if d["mode"] == "lossless"]
         peer_txt = "; ".join("%s %.3f b/s (%s)" % p for p in pk) or "not measured"
         if rows:
             cands = []
@@ -689,6 +744,7 @@ def main():
         except (OSError, ValueError) as e:
             log("  peers on %s: %s" % (ds.key, e))
     fast_section(A, sets, parsed, peers)
+    coders_section(A, sets, parsed)
 
     # floors
     A("## Floors (measured, same image and samples)")
