@@ -20,15 +20,17 @@ static int add_records(uint8_t **out, size_t *len, const bwh_guarantee_t *g, con
                        size_t rlen, const uint8_t *more, size_t mlen, const uint8_t *tail,
                        size_t tlen)
 {
-    size_t gl = bwh_guarantee_record(g, NULL);
-    uint8_t *all = malloc(rlen + mlen + gl);
+    /* lossless mode in the header says "exact" itself */
+    size_t gl = g->kind == BWH_GUARANTEE_EXACT ? 0 : bwh_guarantee_record(g, NULL);
+    uint8_t *all = malloc(rlen + mlen + gl + 1);
     if (!all)
         return bwh_fail("out of memory");
     if (rlen)
         memcpy(all, recs, rlen);
     if (mlen)
         memcpy(all + rlen, more, mlen);
-    bwh_guarantee_record(g, all + rlen + mlen);
+    if (gl)
+        bwh_guarantee_record(g, all + rlen + mlen);
     int rc = bwh_ext_add(out, len, all, rlen + mlen + gl, tail, tlen);
     free(all);
     return rc;
