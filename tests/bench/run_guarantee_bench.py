@@ -3,7 +3,8 @@
 
 Float lossless: brdfwave --lossless (every float32 bit kept) against ZFP's
 reversible mode (-R), on every float set of the rate-distortion benchmark;
-target: at most 0.9 x ZFP's bytes on each set, and bit-exact.
+target: at most 0.9 x ZFP's bytes on each set, and bit-exact. fpzip's
+lossless mode is reported beside it.
 
 Relative bound: brdfwave --max-rel-error R (|x' - x| <= R |x| on every
 sample) for R = 1e-2, 1e-3, 1e-4 on the field spectra, Spectralon and RGL
@@ -86,6 +87,27 @@ def zfp(raw, shape, flags, tag):
     return best
 
 
+def fpzip(raw, shape, tag):
+    """fpzip (lossless) on the array and its transpose: the smaller (bytes,
+    bit-exact) or None without fpzip."""
+    if not cb.have("fpzip"):
+        return None
+    h, w = shape
+    a = np.fromfile(raw, dtype="<f4").reshape(h, w)
+    best = None
+    for orient, arr, dims in (("rows", a, [str(w), str(h)]), ("cols", a.T.copy(), [str(h), str(w)])):
+        src, out = tmp("fpz_%s_%s.f32" % (tag, orient)), tmp("fpz_%s_%s.fpz" % (tag, orient))
+        arr.astype("<f4").tofile(src)
+        cb.run(["fpzip", "-q", "-2"] + dims + ["-i", src, "-o", out], "fpzip")
+        cb.run(["fpzip", "-q", "-d", "-2"] + dims + ["-i", out, "-o", out + ".f32"],
+               "fpzip decompress")
+        exact = open(out + ".f32", "rb").read() == open(src, "rb").read()
+        n = os.path.getsize(out)
+        if best is None or n < best[0]:
+            best = (n, exact, orient)
+    return best
+
+
 def bits(nbytes, n):
     return 8.0 * nbytes / n
 
@@ -127,13 +149,18 @@ def main():
         ratio = nb / z[0] if z else float("nan")
         ok = exact and z is not None and ratio <= TARGET_LOSSLESS
         met, missed = met + ok, missed + (not ok)
-        lossless.append((s, nb, z, ratio, ok, exact, zexact))
+        fz = fpzip(raw, s.f.shape, s.key)
+        lossless.append((s, nb, z, ratio, ok, exact, zexact, fz))
+        if fz:
+            rows.append([s.key, "lossless", "", "fpzip (%s)" % fz[2], fz[0], bits(fz[0], n), 0.0,
+                         fz[1], ""])
         rows.append([s.key, "lossless", "", "brdfwave", nb, bits(nb, n), 0.0, exact, cmd])
         if z:
             rows.append([s.key, "lossless", "", "zfp -R (%s)" % z[2], z[0], bits(z[0], n), 0.0,
                          zexact, ""])
-        log("%-22s lossless: %d B (%.3f b/s) vs zfp -R %s B: %.3f %s"
-            % (s.key, nb, bits(nb, n), z[0] if z else "-", ratio, "met" if ok else "MISSED"))
+        log("%-22s lossless: %d B (%.3f b/s) vs zfp -R %s B: %.3f %s; fpzip %s B"
+            % (s.key, nb, bits(nb, n), z[0] if z else "-", ratio, "met" if ok else "MISSED",
+               fz[0] if fz else "-"))
         if s.key not in REL_SETS:
             continue
         ax = np.abs(x.astype(np.float64))
@@ -206,14 +233,18 @@ def write_report(sets, lossless, relative, failures, met, missed, started, elaps
     L += ["## Float lossless: every bit, against ZFP reversible (-R)", "",
           "Target: bit-exact, and at most %.1f x ZFP -R's bytes (the better orientation)."
           % TARGET_LOSSLESS, "",
+          "fpzip (lossless) for comparison.", "",
           "| set | samples | brdfwave bytes | bits/sample | bit-exact | zfp -R bytes | bits/sample "
-          "| zfp exact | ratio | target |", "|---|---|---|---|---|---|---|---|---|---|"]
-    for s, nb, z, ratio, ok, exact, zexact in lossless:
+          "| zfp exact | ratio | target | fpzip bytes | bits/sample | ours / fpzip |",
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for s, nb, z, ratio, ok, exact, zexact, fz in lossless:
         n = s.f.size
-        L.append("| %s | %d | %d | %.3f | %s | %s | %s | %s | %.3f | %s |"
+        L.append("| %s | %d | %d | %.3f | %s | %s | %s | %s | %.3f | %s | %s | %s | %s |"
                  % (s.key, n, nb, bits(nb, n), "yes" if exact else "NO",
                     z[0] if z else "-", "%.3f" % bits(z[0], n) if z else "-",
-                    "yes" if zexact else "no", ratio, "met" if ok else "missed"))
+                    "yes" if zexact else "no", ratio, "met" if ok else "missed",
+                    fz[0] if fz else "-", "%.3f" % bits(fz[0], n) if fz else "-",
+                    "%.3f" % (nb / fz[0]) if fz else "-"))
     L += ["", "## Relative bound |x' - x| <= R |x|", "",
           "Against the same guarantee met by an absolute bound E = R x min |x| (the smallest "
           "non-zero value): brdfwave --max-error E and ZFP -a E. Target: at most %.1f x the "
