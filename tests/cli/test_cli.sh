@@ -358,6 +358,12 @@ expect_ok "max-error guarantee" "$BW" encode -i "$T/p.f32" -o "$T/pe.bwv" --band
     [ "$(key guarantee_max_error "$T/info")" = 0.0005 ] && ok || bad "absolute: $(grep guarantee "$T/info")"
 "$BW" info "$T/fsp_pred.bwv" >"$T/info" && [ "$(key guarantee_rule "$T/info")" = "|x' - x| <= 0.0002" ] && ok ||
     bad "sed absolute: $(grep guarantee "$T/info")"
+# on the device the core codes the samples, the host maps the floats: the same payload
+for m in "--lossless" "--max-rel-error 0.001" "--max-rel-error 0.01 --max-error 0.5"; do
+    "$BW" encode --device linux -i "$T/sg.f32" -o "$T/dev.bwv" --bands 33 $m >/dev/null 2>"$T/err" &&
+        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
+        ok || bad "device linux $m: $(cat "$T/err")"
+done
 # usage and refusals
 expect_status "rel-floor alone" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --rel-floor 0.1
 expect_status "max-rel-error with a budget" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --max-rel-error 0.01 --ratio 8
