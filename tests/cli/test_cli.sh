@@ -316,15 +316,17 @@ PY
 check_bound() { # NAME IN OUT.bwv R F E: every sample of the decode within the rule
     "$BW" decode -i "$3" -o "$T/bd.f32" || { bad "$1: decode"; return; }
     $PY - "$2" "$T/bd.f32" "$4" "$5" "$6" <<'PY' && ok || bad "$1: bound broken"
-import struct, sys
-x = open(sys.argv[1], 'rb').read(); y = open(sys.argv[2], 'rb').read()
-x = struct.unpack('<%df' % (len(x) // 4), x); y = struct.unpack('<%df' % (len(y) // 4), y)
+import sys
+import numpy as np
+x = np.fromfile(sys.argv[1], dtype='<f4').astype(np.float64)
+y = np.fromfile(sys.argv[2], dtype='<f4').astype(np.float64)
 R, F, E = (float(a) for a in sys.argv[3:6])
-for a, b in zip(x, y):
-    bound = max(R * abs(a), F)
-    if E > 0:
-        bound = min(E, bound)
-    assert abs(b - a) <= bound, (a, b, bound)
+bound = np.maximum(R * np.abs(x), F)
+if E > 0:
+    bound = np.minimum(E, bound)
+assert x.size == y.size and x.size > 0, (x.size, y.size)
+bad = np.flatnonzero(~(np.abs(y - x) <= bound))
+assert bad.size == 0, (bad.size, x[bad[0]], y[bad[0]], bound[bad[0]])
 PY
 }
 for R in 0.01 0.0001; do
@@ -358,6 +360,34 @@ expect_ok "max-error guarantee" "$BW" encode -i "$T/p.f32" -o "$T/pe.bwv" --band
     [ "$(key guarantee_max_error "$T/info")" = 0.0005 ] && ok || bad "absolute: $(grep guarantee "$T/info")"
 "$BW" info "$T/fsp_pred.bwv" >"$T/info" && [ "$(key guarantee_rule "$T/info")" = "|x' - x| <= 0.0002" ] && ok ||
     bad "sed absolute: $(grep guarantee "$T/info")"
+# the guarantees on real data: field spectra, an RGL BRDF, Spectralon, as float32
+"$BW" import-rgl -i tests/data/rgl/paper_white_rgb.bsdf -o "$T/rgl.f32" --level 4 --channel g >"$T/out" ||
+    bad "import-rgl"
+nrgl=$(sed -n 's/^incoming: \([0-9]*\).*/\1/p' "$T/out")
+$PY - tests/data/spectralon/BRF_normalization_factor.csv "$T/spl.f32" <<'PY'
+import struct, sys
+rows = [[float(v) for v in l.split(',')[1:]] for l in open(sys.argv[1]) if l.strip()][::10]
+open(sys.argv[2], 'wb').write(b''.join(struct.pack('<%df' % len(r), *r) for r in rows))
+PY
+minabs() { $PY -c "import sys, numpy as np; a = np.abs(np.fromfile(sys.argv[1], dtype='<f4').astype(np.float64)); print(repr(a[a > 0].min()))" "$1"; }
+for set in "fs.f32 --bands 1024" "rgl.f32 --bands 1 --level 4 --incoming $nrgl" "spl.f32 --bands 2151"; do
+    f=${set%% *}; lay=${set#* }
+    expect_ok "$f lossless" "$BW" encode -i "$T/$f" -o "$T/rl.bwv" $lay --lossless
+    "$BW" decode -i "$T/rl.bwv" -o "$T/rld.f32" && cmp -s "$T/$f" "$T/rld.f32" && ok || bad "$f: lossless not bit-exact"
+    mn=$(minabs "$T/$f")
+    for R in 0.01 0.001 0.0001; do
+        expect_ok "$f max-rel-error $R" "$BW" encode -i "$T/$f" -o "$T/rr.bwv" $lay --max-rel-error $R
+        check_bound "$f max-rel-error $R" "$T/$f" "$T/rr.bwv" $R 0 0
+        # the same guarantee through the absolute bound R x min |x| costs more
+        E=$($PY -c "print('%.9g' % ($R * $mn))")
+        if "$BW" encode -i "$T/$f" -o "$T/ra.bwv" $lay --max-error "$E" 2>/dev/null; then
+            [ "$(stat -c %s "$T/rr.bwv")" -le "$(stat -c %s "$T/ra.bwv")" ] && ok ||
+                bad "$f R=$R: relative $(stat -c %s "$T/rr.bwv") B, absolute at R x min $(stat -c %s "$T/ra.bwv") B"
+        fi
+    done
+    expect_ok "$f both bounds" "$BW" encode -i "$T/$f" -o "$T/rb.bwv" $lay --max-rel-error 0.001 --max-error 0.0003 --rel-floor 1e-5
+    check_bound "$f both bounds" "$T/$f" "$T/rb.bwv" 0.001 1e-5 0.0003
+done
 # on the device the core codes the samples, the host maps the floats: the same payload
 for m in "--lossless" "--max-rel-error 0.001" "--max-rel-error 0.01 --max-error 0.5"; do
     "$BW" encode --device linux -i "$T/sg.f32" -o "$T/dev.bwv" --bands 33 $m >/dev/null 2>"$T/err" &&
