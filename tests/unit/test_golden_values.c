@@ -1,0 +1,92 @@
+/* Archived payloads of float input keep decoding: every payload under
+ * tests/golden/v7_values/ (written by tests/golden/v7_values/make.py with
+ * the records 0x01, 0x02 and 0x82) decodes on the host to the samples and
+ * values its MANIFEST records (CRC-32 of the little-endian int32 samples and
+ * float32 values), says version 7, and reads back the guarantee it was made
+ * under. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "bw_crc32.h"
+#include "bw_le.h"
+#include "bwh_guarantee.h"
+#include "bwhost.h"
+
+#define DIR "tests/golden/v7_values"
+
+static uint32_t crc_of_words(const void *words, size_t n)
+{
+    uint8_t *b = malloc(n * 4 + 1);
+    assert_non_null(b);
+    for (size_t i = 0; i < n; i++) {
+        uint32_t w;
+        memcpy(&w, (const uint8_t *)words + 4 * i, 4);
+        bw_put_u32(b + 4 * i, w);
+    }
+    uint32_t c = bw_crc32(b, n * 4);
+    free(b);
+    return c;
+}
+
+static void every_archived_float_payload_decodes_to_its_values_and_guarantee(void **state)
+{
+    (void)state;
+    char path[512], line[512];
+    FILE *m = fopen(DIR "/MANIFEST", "r");
+    if (!m)
+        fail_msg(DIR "/MANIFEST: cannot open (run the tests from the repository root)");
+    unsigned checked = 0;
+    while (fgets(line, sizeof line, m)) {
+        char name[200], kind[32];
+        unsigned long n;
+        unsigned crc_s, crc_v;
+        if (line[0] == '#')
+            continue;
+        if (sscanf(line, "%199s %lu %x %x %31s", name, &n, &crc_s, &crc_v, kind) != 5)
+            fail_msg("MANIFEST: bad line: %s", line);
+        snprintf(path, sizeof path, DIR "/%s.bwv", name);
+        uint8_t *p;
+        size_t len;
+        if (bwh_read_file(path, &p, &len) != 0)
+            fail_msg("%s", bwh_last_error());
+        bw_header_t h;
+        int32_t *s;
+        float *x;
+        if (bwh_decode(p, len, &h, &s, &x) != 0)
+            fail_msg("%s: %s", path, bwh_last_error());
+        if (h.version != 7 || !h.ext_len)
+            fail_msg("%s: version %u with %u bytes of records", path, h.version, h.ext_len);
+        if (bw_dims_samples(&h.dims) != n)
+            fail_msg("%s: %zu samples, recorded %lu", path, bw_dims_samples(&h.dims), n);
+        if (crc_of_words(s, n) != crc_s || crc_of_words(x, n) != crc_v)
+            fail_msg("%s: decodes to other samples or values than recorded", path);
+        bwh_guarantee_t g;
+        if (bwh_guarantee_read(p, len, &g) != 0)
+            fail_msg("%s: %s", path, bwh_last_error());
+        if (strcmp(bwh_guarantee_name(g.kind), kind) != 0)
+            fail_msg("%s: guarantee %s, recorded %s", path, bwh_guarantee_name(g.kind), kind);
+        free(s);
+        free(x);
+        free(p);
+        checked++;
+    }
+    fclose(m);
+    if (checked < 8)
+        fail_msg(DIR " holds only %u payloads", checked);
+    print_message("%u archived float payloads decoded as recorded\n", checked);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_archived_float_payload_decodes_to_its_values_and_guarantee),
+    };
+    return cmocka_run_group_tests_name("golden values", tests, NULL, NULL);
+}
