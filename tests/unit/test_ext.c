@@ -217,7 +217,8 @@ static size_t with_records(uint8_t *dst, const uint8_t *src, size_t len, const u
     k += rlen;
     memcpy(dst + k, src + h.header_len, h.body_len);
     k += h.body_len;
-    memcpy(dst + k, tail, tlen);
+    if (tlen) /* no tail: tail may be NULL */
+        memcpy(dst + k, tail, tlen);
     k += tlen;
     recrc(dst, k + 4);
     return k + 4;

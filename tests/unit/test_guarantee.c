@@ -20,6 +20,7 @@
 
 #include <cmocka.h>
 
+#include "bw_config.h"
 #include "bwh_decode.h"
 #include "bwh_encode.h"
 #include "bwh_error.h"
@@ -210,6 +211,9 @@ static void every_basis_and_coder_on_odd_spectra_never_breaks_a_guarantee(void *
         assert_int_equal(dims_of(-1, -1, 0, bands[b], (size_t)bands[b] * (b % 2 ? 5 : 4), &d), 0);
         for (size_t k = 0; k < sizeof bases / sizeof bases[0]; k++)
             for (unsigned rice = 0; rice < 2; rice++) {
+                /* the device's build of the core encodes no prediction */
+                if (bases[k] == BW_BASIS_PRED && !BW_CFG_ENCODE_PRED)
+                    continue;
                 char shape[64];
                 snprintf(shape, sizeof shape, "%u spectra x %u bands", d.n_in, d.bands);
                 sweep(&d, bases[k], rice ? BW_FLAG_RICE : 0u, shape);
