@@ -1,6 +1,7 @@
 /* Float input under a per-sample guarantee (bwh_encode_bound.h). */
 #include "bwh_encode_bound.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -201,7 +202,8 @@ int bwh_encode_relative(const bw_dims_t *dims, const float *x, const bwh_encode_
         lm.t1 = lm.t2;
     /* positive values that need neither floor nor cap: the logarithm with
      * the header's scale and offset (BW_FLAG_LOG_VALUE), no record needed */
-    bool logv = !zeros && !neg && lm.t2 == 0 && (F == 0 || mn >= t1);
+    bool logv = !zeros && !neg && lm.t2 == 0 && (F == 0 || mn >= t1) &&
+                maxabs * (1.0 + R) <= (double)FLT_MAX; /* the header's exp() may not clamp */
     double lo = logv ? log(mn) : 0, hi = logv ? log(maxabs) : 0;
     float off = (float)(0.5 * (lo + hi));
     int32_t *q = malloc((n ? n : 1) * sizeof *q);
@@ -228,10 +230,11 @@ int bwh_encode_relative(const bw_dims_t *dims, const float *x, const bwh_encode_
         }
     }
     if (!fits) {
+        /* more orders of magnitude than the core's 2^25 steps hold at this
+         * bound: exact coding meets it (a floor would keep the grid, and
+         * the payload, small) */
         free(q);
-        return bwh_fail("the values span too many orders of magnitude for a relative bound of %g "
-                        "(give --rel-floor, or a larger bound)",
-                        R);
+        return bwh_encode_exact(dims, x, o, &g, out, out_len);
     }
     bwh_encode_opts_t io = *o;
     io.mode = ec ? BW_MODE_MAX_ERROR : BW_MODE_LOSSLESS;

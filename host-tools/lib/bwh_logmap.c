@@ -1,6 +1,7 @@
 /* The relative bound's map of values to samples (bwh_logmap.h). */
 #include "bwh_logmap.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -41,6 +42,10 @@ float bwh_logmap_value(const bwh_logmap_t *m, int32_t q)
         else
             mag = (double)m->t2 * (1.0 + (a - 1.0 - span));
     }
+    /* a value within the bound of one near the largest float32 may lie
+     * just above it: the largest float32 is nearer still */
+    if (!(mag <= (double)FLT_MAX))
+        mag = FLT_MAX;
     return (float)(q < 0 ? -mag : mag);
 }
 

@@ -34,8 +34,8 @@ typedef struct {
 
 /* y of a finite value x */
 double bwh_logmap_y(const bwh_logmap_t *m, double x);
-/* the value of sample q (float32; may be infinite for a sample no encoder
- * makes) */
+/* the value of sample q (float32; magnitudes above the largest float32
+ * give the largest float32) */
 float bwh_logmap_value(const bwh_logmap_t *m, int32_t q);
 
 /* Record 0x02 of m, whole, at out (NULL: only counts); returns its length. */
