@@ -190,7 +190,9 @@ def main():
                              float(np.max(err)), held, cmd])
             except cb.ToolError as e:
                 ent["abs"] = None
-                ent["abs_err"] = str(e).split("[")[0].strip()
+                # the CLI's own line, between "exit status N: " and the command
+                msg = str(e).rsplit(" [", 1)[0]
+                ent["abs_err"] = msg.split(": ", 2)[-1].replace("brdfwave encode: ", "")
             z = zfp(raw, s.f.shape, ["-a", "%.9g" % E], "%s_a" % s.key)
             if z:
                 err = np.abs(z[1].astype(np.float64) - x)
@@ -256,7 +258,8 @@ def write_report(sets, lossless, relative, failures, met, missed, started, elaps
     for s, e in relative:
         n = s.f.size
         o = e["ours"]
-        a = "%d" % e["abs"][0] if e.get("abs") else "refused (%s)" % e.get("abs_err", "")[:60]
+        a = "%d" % e["abs"][0] if e.get("abs") else \
+            "refused (%s)" % e.get("abs_err", "")[:90].replace("|", "\\|")
         z = "%d (%s)" % (e["zfp"][0], "yes" if e["zfp"][2] else "NO") if e.get("zfp") else "-"
         L.append("| %s | %g | %.3g | %d (%.3f) | %s | %.3g | %s | %s | %.3f | %s |"
                  % (s.key, e["R"], e["E"], o[0], bits(o[0], n), "yes" if o[1] else "NO", o[2],
