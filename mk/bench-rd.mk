@@ -10,3 +10,12 @@ bench-rd-deps:
 bench-rd: bench-rd-deps $(BW_CLI)
 	$(Q)$(MAKE) --no-print-directory $(BENCH_JPEGLS)
 	BW=$(BW_CLI) PEER_JPEGLS=$(BENCH_JPEGLS) $(BENCH_PYTHON) tests/bench/run_rd_bench.py
+
+# The per-sample guarantees of float input (lossless bit for bit, the
+# relative bound) against ZFP: build/bench/guarantee.md. Runs alone in
+# seconds; bench-rd runs it too.
+.PHONY: bench-guarantee
+bench-guarantee: bench-rd-deps $(BW_CLI)
+	BW=$(BW_CLI) $(BENCH_PYTHON) tests/bench/run_guarantee_bench.py
+
+bench-rd: bench-guarantee

@@ -12,7 +12,7 @@ check) pkgs="gcc make libc6-dev libcmocka-dev zlib1g-dev gcc-arm-none-eabi libne
              python3-numpy python3-pywt $hw" ;;
 hw)    pkgs="$hw" ;;
 run)   pkgs="gcc make libc6-dev zlib1g-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
-bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp libaec-tools xz-utils zstd
+bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp fpzip-utils libaec-tools xz-utils zstd
              python3 python3-numpy python3-matplotlib" ;;
 fuzz)  pkgs="clang libclang-rt-14-dev" ;;
 reproduce) pkgs="gcc make libc6-dev zlib1g-dev python3 python3-numpy python3-matplotlib" ;;

@@ -290,8 +290,17 @@ typedef struct {
  * are ancillary (information a decoder need not understand); types below
  * 0x80 are critical (they change what the samples mean or how they decode),
  * and a decoder refuses a payload with a critical type it does not know
- * (BW_ERR_EXTENSION). */
+ * (BW_ERR_EXTENSION). A payload with BW_EXT_FLOAT_EXACT ends in a tail of
+ * the host's between the body and the CRC: bw_header_t.body_len leaves it
+ * out, and it is payload_len - 4 - header_len - body_len bytes long. */
 #define BW_EXT_ANCILLARY 0x80u
+/* Critical types every decoder knows. The core decodes the samples as usual
+ * (for BW_EXT_FLOAT_EXACT without the tail it sets apart at the body's end);
+ * the host maps them to values (host-tools/lib, docs/FORMAT.md): a reader
+ * that turns samples into values itself must apply them. */
+#define BW_EXT_FLOAT_EXACT 0x01u /* float32 values bit for bit: bit planes, exceptions;
+                                  * its first field, a varint, is the tail's length */
+#define BW_EXT_LOG_MAP 0x02u     /* samples to values through a signed log-linear map */
 #define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
 #define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
 #define BW_EXT_MAX (1u << 20)  /* bytes of records at most */

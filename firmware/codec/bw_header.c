@@ -102,27 +102,30 @@ bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
     return true;
 }
 
-/* BW_OK, BW_ERR_HEADER for a malformed record, BW_ERR_EXTENSION for a
- * critical type this decoder does not know (none is defined yet) */
-static bw_status_t ext_scan(const uint8_t *area, size_t len)
+/* The bytes BW_EXT_FLOAT_EXACT sets apart at the body's end (its first
+ * field; 0 without it), or BW_ERR_HEADER for a malformed record,
+ * BW_ERR_EXTENSION for a critical type this decoder does not know. */
+static int32_t ext_scan(const uint8_t *area, size_t len)
 {
     size_t pos = 0;
     uint8_t type;
     const uint8_t *d;
-    uint32_t dl;
-    bw_status_t st = BW_OK;
+    uint32_t dl, tail = 0;
+    int32_t st = 0;
     while (pos < len) {
-        if (!bw_ext_next(area, len, &pos, &type, &d, &dl))
+        if (!bw_ext_next(area, len, &pos, &type, &d, &dl) ||
+            (type == BW_EXT_FLOAT_EXACT && (!get_varint(d, d + dl, &tail) || tail > INT32_MAX)))
             return BW_ERR_HEADER;
-        if (type < BW_EXT_ANCILLARY)
+        if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u)
             st = BW_ERR_EXTENSION;
     }
-    return st;
+    return st < 0 ? st : (int32_t)tail;
 }
 
+/* the encoder writes records without a tail: it codes no bytes past the body */
 bool bw_ext_valid(const uint8_t *area, size_t len)
 {
-    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len) == BW_OK;
+    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len) == 0;
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -193,10 +196,14 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
             return BW_ERR_HEADER;
         h->ext_off = (uint32_t)(q - p);
         h->ext_len = el;
-        bw_status_t est = ext_scan(q, el);
-        if (est != BW_OK)
-            return est;
+        int32_t tail = ext_scan(q, el);
+        if (tail < 0)
+            return (bw_status_t)tail;
         q += el;
+        /* the tail is the host's, between the coded body and the CRC */
+        if ((size_t)tail > (size_t)(end - q))
+            return BW_ERR_HEADER;
+        end -= tail;
     }
     h->header_len = (uint32_t)(q - p);
     h->body_len = (uint32_t)(end - q);

@@ -234,8 +234,8 @@ static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t *
 /* Writes the header of the plan at out (NULL: only counts); returns its
  * length (at most BW_HEADER_MAX). */
 size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode);
-/* Extension records well formed, of known critical types only, at most
- * BW_EXT_MAX bytes. */
+/* Extension records well formed, of known critical types only, without a
+ * tail (an encoder codes none), at most BW_EXT_MAX bytes. */
 bool bw_ext_valid(const uint8_t *area, size_t len);
 
 /* ---- encoder (bw_encode.c) and its byte-budget search (bw_budget.c) ------- */

@@ -15,6 +15,7 @@ static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
     "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
+    "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
     "                       [--coder range|ms|rice]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
@@ -28,9 +29,15 @@ static const char encode_help[] =
     "  --level-in Li     full BRDF: incoming hemisphere at level Li\n"
     "  --input-format F  f32 (default), u16, i32, or sed (Spectral Evolution; several\n"
     "                    -i files make a set of spectra, reflectance in units of 1e-5)\n"
-    "  --lossless        bit-exact (default); float input must be integer multiples of\n"
-    "                    --scale (default 1)\n"
+    "  --lossless        bit-exact (default); float32 input comes back bit for bit\n"
+    "                    (NaN, infinities, -0.0 and subnormals too); with --scale\n"
+    "                    every value must be an integer multiple of it\n"
     "  --max-error E     every decoded value within E of the input (value units)\n"
+    "  --max-rel-error R every decoded value x' within R |x| of its input x (0 < R < 1;\n"
+    "                    zeros stay zero); with --max-error E too, within the tighter\n"
+    "                    of the two: min(E, R |x|), as CCSDS 123.0-B-2 combines them\n"
+    "  --rel-floor F     with --max-rel-error: within max(R |x|, F), so values below\n"
+    "                    F / R need only be within F\n"
     "  --bytes N         the payload is at most N bytes, best quality that fits\n"
     "  --ratio R         the payload is at most 4*samples/R bytes (R:1 against float32)\n"
     "  --basis B         spectral wavelet (default auto: the smallest payload); pred:\n"
@@ -102,7 +109,8 @@ int bw_cmd_encode(int argc, char **argv)
     cli_shape_t sh = {0};
     int fmt = BWH_FMT_F32, device = DEV_HOST, lossless = 0, stream = 0, relative = 0;
     int n_lossless = 0, n_max_error = 0, n_bytes = 0, n_ratio = 0, has_symmetry = 0;
-    double max_error = 0, ratio = 0, scale = 0;
+    double max_error = 0, ratio = 0, scale = 0, max_rel = 0, rel_floor = 0;
+    int n_max_rel = 0, n_rel_floor = 0;
     uint32_t bytes = 0, drop = 0;
     int has_drop = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = 0;
@@ -116,6 +124,8 @@ int bw_cmd_encode(int argc, char **argv)
         {"input-format", 0, CLI_CHOICE, .dest = &fmt, .choices = formats},
         {"lossless", 0, CLI_FLAG, .dest = &lossless, .seen = &n_lossless},
         {"max-error", 0, CLI_POSITIVE, .dest = &max_error, .seen = &n_max_error},
+        {"max-rel-error", 0, CLI_POSITIVE, .dest = &max_rel, .seen = &n_max_rel},
+        {"rel-floor", 0, CLI_POSITIVE, .dest = &rel_floor, .seen = &n_rel_floor},
         {"bytes", 0, CLI_U32, .dest = &bytes, .lo = 1, .hi = UINT32_MAX, .seen = &n_bytes},
         {"ratio", 0, CLI_POSITIVE, .dest = &ratio, .seen = &n_ratio},
         {"basis", 0, CLI_CALL, .dest = &basis, .parse = parse_basis,
@@ -145,11 +155,20 @@ int bw_cmd_encode(int argc, char **argv)
         return cli_usage("needs -i INPUT and -o OUTPUT");
     if (n_lossless + n_max_error + n_bytes + n_ratio > 1)
         return cli_usage("give only one of --lossless, --max-error, --bytes, --ratio");
+    if (n_max_rel && !(max_rel < 1))
+        return cli_usage("--max-rel-error must lie between 0 and 1");
+    if (n_max_rel && (n_lossless || n_bytes || n_ratio || relative))
+        return cli_usage("--max-rel-error goes alone or with --max-error, not with --lossless, "
+                         "--bytes, --ratio or --relative");
+    if (n_rel_floor && !n_max_rel)
+        return cli_usage("--rel-floor needs --max-rel-error");
     bwh_encode_opts_t o;
     memset(&o, 0, sizeof o);
     o.mode = n_max_error ? BW_MODE_MAX_ERROR : n_bytes || n_ratio ? BW_MODE_BYTES
                                                                   : BW_MODE_LOSSLESS;
     o.max_error = max_error;
+    o.max_rel_error = max_rel;
+    o.rel_floor = rel_floor;
     o.byte_budget = bytes;
     o.basis = basis;
     o.scale = scale;
@@ -197,6 +216,18 @@ int bw_cmd_encode(int argc, char **argv)
         if (b < 1)
             b = 1;
         o.byte_budget = b > (double)UINT32_MAX ? UINT32_MAX : (size_t)floor(b);
+    }
+    if (n_max_rel && !floats) {
+        /* a relative bound is a bound on the values: integer input as its values */
+        floats = malloc((count ? count : 1) * sizeof *floats);
+        if (!floats) {
+            bwh_fail("out of memory");
+            goto fail;
+        }
+        bwh_value_map_t vm = bwh_value_map(iscale, 0.0f,
+                                           bwh_decimal_exponent(iscale) ? BW_FLAG_DECIMAL_SCALE : 0u);
+        for (size_t i = 0; i < count; i++)
+            floats[i] = bwh_value_of(&vm, ints[i]);
     }
     if ((floats ? bwh_encode_f32(&d, floats, &o, &payload, &plen)
                 : bwh_encode_scaled(&d, ints, &o, iscale, &payload, &plen)) != 0 ||

@@ -3,6 +3,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "bwh_exact.h"
+#include "bwh_ext.h"
+#include "bwh_guarantee.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
@@ -27,9 +30,22 @@ int bw_cmd_info(int argc, char **argv)
         return cli_fail("%s", bwh_last_error());
     bw_header_t h;
     int hs = bw_header_read(p, len, &h);
-    free(p);
-    if (hs != BW_OK)
+    if (hs != BW_OK) {
+        free(p);
         return cli_fail("%s: %s", path, bw_strerror(hs));
+    }
+    /* the guarantee, and the records that map samples to values */
+    bwh_guarantee_t g;
+    const uint8_t *xd, *ld;
+    uint32_t xl, ll, n_exc = 0;
+    int map = -1;
+    unsigned low = 0;
+    int fx = bwh_ext_find(p, &h, BW_EXT_FLOAT_EXACT, &xd, &xl);
+    int fl = bwh_ext_find(p, &h, BW_EXT_LOG_MAP, &ld, &ll);
+    int gs = bwh_guarantee_of(p, &h, &g);
+    free(p);
+    if (gs != 0 || fx < 0 || fl < 0 || (fx == 1 && bwh_exact_fields(xd, xl, &map, &low, &n_exc) != 0))
+        return cli_fail("%s: %s", path, gs != 0 ? bwh_last_error() : "malformed value records");
     size_t n = bw_dims_samples(&h.dims);
     double scale = bwh_bits_to_float(h.scale_bits);
     printf("version: %u\n", h.version);
@@ -46,8 +62,15 @@ int bw_cmd_info(int argc, char **argv)
     printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     printf("coder: %s\n", bwh_coder_name(h.flags));
     printf("symmetry: %s\n", bwh_symmetry_name(h.flags));
-    printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
-                                                       : "offset + scale * sample");
+    if (map == BWH_EXACT_PLANES)
+        printf("values: float32 bits: the samples their high plane, %u low bits raw\n", low);
+    else if (fl == 1)
+        printf("values: the signed log map of record 0x02\n");
+    else
+        printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                                           : "offset + scale * sample");
+    if (fx == 1)
+        printf("exceptions: %u\n", n_exc);
     printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
     printf("prequant: %u\n", h.prequant);
     printf("step: %.4f\n", h.step_q8 / 256.0);
@@ -57,5 +80,17 @@ int bw_cmd_info(int argc, char **argv)
     printf("bits_per_sample: %.6f\n", 8.0 * h.payload_len / (double)n);
     printf("ratio_vs_float32: %.3f\n", 4.0 * (double)n / h.payload_len);
     printf("crc32: 0x%08x\n", h.crc);
+    char rule[160];
+    bwh_guarantee_rule(&g, rule, sizeof rule);
+    printf("guarantee: %s\n", bwh_guarantee_name(g.kind));
+    printf("guarantee_rule: %s\n", rule);
+    printf("guarantee_recorded: %s\n", g.recorded ? "yes" : "no (from the header)");
+    char num[32];
+    bwh_shortest(g.max_error, num, sizeof num);
+    printf("guarantee_max_error: %s\n", num);
+    bwh_shortest(g.max_rel_error, num, sizeof num);
+    printf("guarantee_max_rel_error: %s\n", num);
+    bwh_shortest(g.rel_floor, num, sizeof num);
+    printf("guarantee_rel_floor: %s\n", num);
     return CLI_EXIT_OK;
 }

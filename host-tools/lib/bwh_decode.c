@@ -2,9 +2,13 @@
 #include "bwh_decode.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 #include "bwh_error.h"
+#include "bwh_exact.h"
+#include "bwh_ext.h"
+#include "bwh_logmap.h"
 #include "bwh_values.h"
 
 /* The header of p[len], checked, and its sample count against the limit. */
@@ -77,9 +81,27 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
             return bwh_fail("out of memory");
         }
         bwh_value_map_t vm = bwh_value_map(scale, off, h->flags);
-        for (size_t i = 0; i < n; i++) {
+        /* the critical records 0x01 (float bits, exceptions) and 0x02 (the
+         * log map) take the place of the header's scale, or follow it */
+        const uint8_t *xd = NULL, *ld = NULL, *tail;
+        uint32_t xl = 0, ll = 0;
+        bwh_logmap_t lm;
+        int fx = bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl);
+        int fl = bwh_ext_find(p, h, BW_EXT_LOG_MAP, &ld, &ll);
+        int planes = fx == 1 && bwh_exact_map_of(xd, xl) == BWH_EXACT_PLANES;
+        bool plain = scale == 1.0f && bwh_float_to_bits(off) == 0 &&
+                     !(h->flags & (BW_FLAG_DECIMAL_SCALE | BW_FLAG_LOG_VALUE));
+        if (fx < 0 || fl < 0 || (fx == 1 && bwh_exact_map_of(xd, xl) < 0) ||
+            (fl == 1 && bwh_logmap_parse(ld, ll, &lm) != 0) || ((planes || fl == 1) && !plain) ||
+            (planes && fl == 1)) {
+            if (v != (float *)(void *)w)
+                free(v);
+            free(w);
+            return bwh_fail("the payload's value records are malformed or conflict");
+        }
+        for (size_t i = 0; i < n && !planes; i++) {
             int32_t q = w[i];
-            float x = bwh_value_of(&vm, q);
+            float x = fl == 1 ? bwh_logmap_value(&lm, q) : bwh_value_of(&vm, q);
             if (!isfinite(x)) {
                 bwh_fail("sample %zu (%d) decodes to %g, beyond float32 (scale %g, offset %g%s)",
                          i, q, (double)x, (double)scale, (double)off,
@@ -90,6 +112,14 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
                 return -1;
             }
             v[i] = x;
+        }
+        int map;
+        size_t tl = bwh_ext_tail(p, h, &tail);
+        if (fx == 1 && bwh_exact_apply(xd, xl, tail, tl, w, v, n, &map) != 0) {
+            if (v != (float *)(void *)w)
+                free(v);
+            free(w);
+            return -1;
         }
         *values = v;
     }

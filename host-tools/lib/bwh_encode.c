@@ -7,7 +7,10 @@
 
 #include "bwh_decode.h"
 #include "bwh_device.h"
+#include "bwh_encode_bound.h"
 #include "bwh_error.h"
+#include "bwh_ext.h"
+#include "bwh_guarantee.h"
 #include "bwh_values.h"
 
 static double sse_of(const int32_t *x, const int32_t *y, size_t n)
@@ -201,6 +204,12 @@ static int encode_log(const bw_dims_t *dims, const float *x, const bwh_encode_op
 int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
                    size_t *out_len)
 {
+    /* a relative bound (with or without an absolute one), and lossless
+     * without a given scale: bwh_encode_bound.c */
+    if (o->max_rel_error > 0 || o->rel_floor > 0)
+        return bwh_encode_relative(dims, x, o, out, out_len);
+    if (o->mode == BW_MODE_LOSSLESS && !(o->scale > 0) && !(o->flags & BW_FLAG_LOG_VALUE))
+        return bwh_encode_exact(dims, x, o, NULL, out, out_len);
     if (o->flags & BW_FLAG_LOG_VALUE)
         return encode_log(dims, x, o, out, out_len);
     *out = NULL;
@@ -212,7 +221,8 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     double maxabs = 0;
     for (size_t i = 0; i < n; i++) {
         if (!isfinite(x[i]))
-            return bwh_fail("sample %zu is %s", i, isnan(x[i]) ? "NaN" : "infinite");
+            return bwh_fail("sample %zu is %s (--lossless keeps NaN and infinities bit for bit)", i,
+                            isnan(x[i]) ? "NaN" : "infinite");
         double a = fabs((double)x[i]);
         if (a > maxabs)
             maxabs = a;
@@ -272,8 +282,10 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     for (size_t i = 0; i < n; i++) {
         double v = (double)x[i] / scale;
         double r = nearbyint(v);
-        /* lossless: the value must come back as the very same float */
-        if (o->mode == BW_MODE_LOSSLESS && bwh_value_of(&vm, (int32_t)r) != x[i]) {
+        /* lossless: the value must come back as the very same float, bits
+         * and all (-0.0 is not 0.0) */
+        if (o->mode == BW_MODE_LOSSLESS &&
+            bwh_float_to_bits(bwh_value_of(&vm, (int32_t)r)) != bwh_float_to_bits(x[i])) {
             free(q);
             return bwh_fail("lossless needs values that are whole multiples of the scale %g "
                         "(sample %zu = %.9g); use --max-error, --bytes or --scale",
@@ -287,29 +299,12 @@ int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_
     if (rc != 0)
         return rc;
     if (o->mode == BW_MODE_LOSSLESS || o->mode == BW_MODE_MAX_ERROR) {
-        /* check the guarantee where the user sees it: in float32 */
-        bw_header_t h;
-        int32_t *s = NULL;
-        float *v = NULL;
-        if (bwh_decode_limit(*out, *out_len, SIZE_MAX, &h, &s, &v) != 0) {
-            free(*out);
-            *out = NULL;
-            return -1;
-        }
-        double bound = o->mode == BW_MODE_LOSSLESS ? 0.0 : o->max_error;
-        for (size_t i = 0; i < n; i++) {
-            if (fabs((double)v[i] - (double)x[i]) > bound) {
-                bwh_fail("error bound not met at sample %zu after float conversion (|%.9g - %.9g| > %g)",
-                     i, (double)v[i], (double)x[i], bound);
-                free(s);
-                free(v);
-                free(*out);
-                *out = NULL;
-                return -1;
-            }
-        }
-        free(s);
-        free(v);
+        /* check the guarantee where the user sees it, in float32, and
+         * record it */
+        bwh_guarantee_t g = {.kind = o->mode == BW_MODE_LOSSLESS ? BWH_GUARANTEE_EXACT
+                                                                  : BWH_GUARANTEE_ABSOLUTE,
+                             .max_error = o->mode == BW_MODE_LOSSLESS ? 0.0 : o->max_error};
+        return bwh_encode_seal(out, out_len, x, n, &g, NULL, 0, NULL, 0, 0);
     }
     return 0;
 }
@@ -338,5 +333,23 @@ int bwh_encode_scaled(const bw_dims_t *dims, const int32_t *x, const bwh_encode_
     }
     if (bwh_decimal_exponent(scale))
         io.flags |= BW_FLAG_DECIMAL_SCALE;
-    return bwh_encode_i32(dims, x, &io, scale, 0.0f, out, out_len);
+    int rc = bwh_encode_i32(dims, x, &io, scale, 0.0f, out, out_len);
+    /* The header states the guarantee itself where it is exact in value
+     * units: lossless mode, and a bound in whole samples of scale 1 (the
+     * integers and their float32 values are the same). Otherwise the bound
+     * the user gave is recorded: the core checked the samples, and the bound
+     * in samples keeps the values' float32 rounding in hand. */
+    if (rc != 0 || io.mode != BW_MODE_MAX_ERROR ||
+        (scale == 1.0f && !(io.flags & BW_FLAG_DECIMAL_SCALE)))
+        return rc;
+    bwh_guarantee_t g = {.kind = BWH_GUARANTEE_ABSOLUTE, .max_error = o->max_error};
+    uint8_t rec[32];
+    size_t rl = bwh_guarantee_record(&g, rec);
+    if (bwh_ext_add(out, out_len, rec, rl, NULL, 0) != 0) {
+        free(*out);
+        *out = NULL;
+        *out_len = 0;
+        return -1;
+    }
+    return 0;
 }

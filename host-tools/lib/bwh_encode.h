@@ -38,14 +38,26 @@ typedef struct {
     double device_timeout;         /* seconds, 0: 120 */
     int drop_chunk;                /* tests: lose the first copy of a chunk, -1: none */
     uint64_t *device_instructions; /* out: the device's count for the encode */
+    /* float input: R > 0 bounds every value relatively, |x' - x| <= max(R |x|, F)
+     * with F = rel_floor (0: none); with mode MAX_ERROR as well the tighter
+     * of the two, |x' - x| <= min(E, max(R |x|, F)) (bwh_guarantee.h) */
+    double max_rel_error;
+    double rel_floor;
 } bwh_encode_opts_t;
 
-/* Encodes float samples (NaN/Inf rejected). *out is allocated. The mapping
- * to integers is chosen from the mode:
- *   LOSSLESS   every value must be an integer multiple of `scale` (default 1)
+/* Encodes float samples. *out is allocated. The mapping to integers is
+ * chosen from the mode:
+ *   LOSSLESS   every value bit for bit (bwh_exact.h: a binary or decimal
+ *              scale, or the float bit planes; NaN and infinities kept
+ *              too); with a given `scale`, every value must be an integer
+ *              multiple of it
  *   MAX_ERROR  scale = E / 3.5: integer bound 3 plus half a step of rounding
  *   BYTES      scale = max|x| / 2^23, fine enough to vanish under the budget
- * and the result is checked in float against the input. */
+ *   max_rel_error > 0: the relative bound's log map (bwh_logmap.h), alone
+ *              or with MAX_ERROR's bound
+ * The lossy modes refuse NaN and infinities. The result is checked in float
+ * against the input, and a lossless or bounded payload records its
+ * guarantee (record 0x82, bwh_guarantee.h). */
 int bwh_encode_f32(const bw_dims_t *dims, const float *x, const bwh_encode_opts_t *o, uint8_t **out,
                    size_t *out_len);
 
@@ -58,7 +70,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
  * 1e-5, or 1), o->max_error in value units: the bound becomes whole sample
  * units, keeping in hand the float32 rounding of the largest decoded value
  * (a bound below one unit: exact coding), and a scale of 10^-k is recorded
- * as exactly that (BW_FLAG_DECIMAL_SCALE). */
+ * as exactly that (BW_FLAG_DECIMAL_SCALE). The payload records its
+ * guarantee (exact, or E in value units). */
 int bwh_encode_scaled(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opts_t *o,
                       float scale, uint8_t **out, size_t *out_len);
 

@@ -274,6 +274,134 @@ assert abs(float(kv['rmse']) - rmse) < 1e-6
 assert float(kv['max_abs_error']) == 1.0
 PY
 
+# ---- float32 bit for bit, the relative bound, the guarantee in the payload --
+# any float32 file comes back bit for bit: fractions (the bit planes), and
+# -0.0, subnormals, infinities and NaNs with their payloads
+expect_ok "lossless on fractions" "$BW" encode -i "$T/p.f32" -o "$T/pl.bwv" --bands 1 --level 4 --incoming 16 --lossless
+"$BW" decode -i "$T/pl.bwv" -o "$T/pld.f32" && cmp -s "$T/p.f32" "$T/pld.f32" && ok || bad "f32 lossless not bit-exact"
+"$BW" info "$T/pl.bwv" >"$T/info" && [ "$(key guarantee "$T/info")" = exact ] &&
+    [ "$(key guarantee_rule "$T/info")" = "x' = x bit for bit" ] && ok || bad "lossless guarantee: $(grep guarantee "$T/info")"
+grep -q '^values: float32 bits' "$T/info" && ok || bad "info does not show the bit planes: $(key values "$T/info")"
+$PY - "$T/oddf.f32" <<'PY'
+import struct, sys
+v = [1.5, -0.0, 0.0, 1e-45, -3e-39, float('inf'), float('-inf'), 3.4e38, -2.5e-20, 7.0]
+b = b''.join(struct.pack('<f', x) for x in v)
+b += struct.pack('<I', 0x7FC00001) + struct.pack('<I', 0xFFA00000)  # quiet NaN, signalling NaN
+open(sys.argv[1], 'wb').write(b * 3)
+PY
+expect_ok "lossless on odd floats" "$BW" encode -i "$T/oddf.f32" -o "$T/odd.bwv" --bands 12 --lossless
+"$BW" decode -i "$T/odd.bwv" -o "$T/oddd.f32" && cmp -s "$T/oddf.f32" "$T/oddd.f32" && ok || bad "odd floats not bit-exact"
+"$BW" info "$T/odd.bwv" >"$T/info" && [ "$(key exceptions "$T/info")" = 12 ] && ok ||
+    bad "odd floats: $(key exceptions "$T/info") exceptions, not the 12 non-finite samples"
+# decimals and binary fractions take a scale, not the bit planes
+$PY -c "import struct; open('$T/dec.f32','wb').write(b''.join(struct.pack('<f', float('%.3f' % (0.5 + 0.001 * ((i * 37) % 900)))) for i in range(400)))"
+expect_ok "lossless on decimals" "$BW" encode -i "$T/dec.f32" -o "$T/dec.bwv" --bands 100 --lossless
+"$BW" decode -i "$T/dec.bwv" -o "$T/decd.f32" && cmp -s "$T/dec.f32" "$T/decd.f32" && ok || bad "decimals not bit-exact"
+"$BW" info "$T/dec.bwv" >"$T/info" && [ "$(key scale "$T/info")" = 0.00100000005 ] && ok || bad "decimals: scale $(key scale "$T/info")"
+$PY -c "import struct; open('$T/bin.f32','wb').write(b''.join(struct.pack('<f', ((i * 7) % 301) / 64.0 - 2) for i in range(400)))"
+expect_ok "lossless on binary fractions" "$BW" encode -i "$T/bin.f32" -o "$T/bin.bwv" --bands 100 --lossless
+"$BW" decode -i "$T/bin.bwv" -o "$T/bind.f32" && cmp -s "$T/bin.f32" "$T/bind.f32" && ok || bad "binary fractions not bit-exact"
+"$BW" info "$T/bin.bwv" >"$T/info" && [ "$(key scale "$T/info")" = 0.015625 ] && ok || bad "binary fractions: scale $(key scale "$T/info")"
+# --scale keeps its old meaning: multiples of it, or refused
+expect_error "lossless on fractions of a given scale" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --lossless --scale 0.001
+# the relative bound: every sample, zeros and signs too, and with a floor or an absolute bound
+$PY - "$T/sg.f32" <<'PY'
+import math, struct, sys
+v = []
+for i in range(64 * 33):
+    x = math.exp(math.sin(i * 0.37) * 6) * (1 if (i // 7) % 3 else -1)
+    v.append(0.0 if i % 11 == 0 else x)
+open(sys.argv[1], 'wb').write(struct.pack('<%df' % len(v), *v))
+PY
+check_bound() { # NAME IN OUT.bwv R F E: every sample of the decode within the rule
+    "$BW" decode -i "$3" -o "$T/bd.f32" || { bad "$1: decode"; return; }
+    $PY - "$2" "$T/bd.f32" "$4" "$5" "$6" <<'PY' && ok || bad "$1: bound broken"
+import sys
+import numpy as np
+x = np.fromfile(sys.argv[1], dtype='<f4').astype(np.float64)
+y = np.fromfile(sys.argv[2], dtype='<f4').astype(np.float64)
+R, F, E = (float(a) for a in sys.argv[3:6])
+bound = np.maximum(R * np.abs(x), F)
+if E > 0:
+    bound = np.minimum(E, bound)
+assert x.size == y.size and x.size > 0, (x.size, y.size)
+bad = np.flatnonzero(~(np.abs(y - x) <= bound))
+assert bad.size == 0, (bad.size, x[bad[0]], y[bad[0]], bound[bad[0]])
+PY
+}
+for R in 0.01 0.0001; do
+    expect_ok "max-rel-error $R" "$BW" encode -i "$T/sg.f32" -o "$T/sg.bwv" --bands 33 --max-rel-error $R
+    check_bound "max-rel-error $R" "$T/sg.f32" "$T/sg.bwv" $R 0 0
+    "$BW" info "$T/sg.bwv" >"$T/info" && [ "$(key guarantee "$T/info")" = relative ] &&
+        [ "$(key guarantee_max_rel_error "$T/info")" = $R ] && ok || bad "relative guarantee: $(grep guarantee "$T/info")"
+    expect_ok "max-rel-error $R floor" "$BW" encode -i "$T/sg.f32" -o "$T/sgf.bwv" --bands 33 --max-rel-error $R --rel-floor 0.01
+    check_bound "max-rel-error $R floor" "$T/sg.f32" "$T/sgf.bwv" $R 0.01 0
+    expect_ok "max-rel-error $R and max-error" "$BW" encode -i "$T/sg.f32" -o "$T/sgb.bwv" --bands 33 --max-rel-error $R --max-error 0.5
+    check_bound "max-rel-error $R and max-error" "$T/sg.f32" "$T/sgb.bwv" $R 0 0.5
+    "$BW" info "$T/sgb.bwv" >"$T/info" && [ "$(key guarantee "$T/info")" = both ] &&
+        [ "$(key guarantee_rule "$T/info")" = "|x' - x| <= min(0.5, $R |x|)" ] && ok || bad "both: $(grep guarantee "$T/info")"
+done
+[ "$(stat -c %s "$T/sgf.bwv")" -lt "$(stat -c %s "$T/sg.bwv")" ] && ok || bad "a floor does not make the payload smaller"
+# positive values: the logarithm in the header (no critical record), the Phong set
+expect_ok "max-rel-error positive" "$BW" encode -i "$T/p.f32" -o "$T/pr3.bwv" --bands 1 --level 4 --incoming 16 --max-rel-error 0.001
+check_bound "max-rel-error positive" "$T/p.f32" "$T/pr3.bwv" 0.001 0 0
+"$BW" info "$T/pr3.bwv" | grep -q '^values: exp(' && ok || bad "positive relative: not the header's logarithm"
+# integer and .sed input: the bound is on their values
+expect_ok "sed max-rel-error" "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/fsr.bwv" --max-rel-error 0.001
+check_bound "sed max-rel-error" "$T/fs.f32" "$T/fsr.bwv" 0.001 0 0
+# a bound finer than float32 resolves: exact coding, the relative guarantee recorded
+expect_ok "max-rel-error below float32" "$BW" encode -i "$T/sg.f32" -o "$T/sge.bwv" --bands 33 --max-rel-error 1e-8
+"$BW" decode -i "$T/sge.bwv" -o "$T/sged.f32" && cmp -s "$T/sg.f32" "$T/sged.f32" && ok || bad "max-rel-error 1e-8 not exact"
+# every guaranteed payload says what it promises; a byte budget promises nothing
+"$BW" info "$T/p.bwv" >"$T/info" && [ "$(key guarantee "$T/info")" = none ] &&
+    [ "$(key guarantee_rule "$T/info")" = "no per-sample bound" ] && ok || bad "budget guarantee: $(grep guarantee "$T/info")"
+expect_ok "max-error guarantee" "$BW" encode -i "$T/p.f32" -o "$T/pe.bwv" --bands 1 --level 4 --incoming 16 --max-error 0.0005
+"$BW" info "$T/pe.bwv" >"$T/info" && [ "$(key guarantee "$T/info")" = absolute ] &&
+    [ "$(key guarantee_max_error "$T/info")" = 0.0005 ] && ok || bad "absolute: $(grep guarantee "$T/info")"
+"$BW" info "$T/fsp_pred.bwv" >"$T/info" && [ "$(key guarantee_rule "$T/info")" = "|x' - x| <= 0.0002" ] && ok ||
+    bad "sed absolute: $(grep guarantee "$T/info")"
+# the guarantees on real data: field spectra, an RGL BRDF, Spectralon, as float32
+"$BW" import-rgl -i tests/data/rgl/paper_white_rgb.bsdf -o "$T/rgl.f32" --level 4 --channel g >"$T/out" ||
+    bad "import-rgl"
+nrgl=$(sed -n 's/^incoming: \([0-9]*\).*/\1/p' "$T/out")
+$PY - tests/data/spectralon/BRF_normalization_factor.csv "$T/spl.f32" <<'PY'
+import struct, sys
+rows = [[float(v) for v in l.split(',')[1:]] for l in open(sys.argv[1]) if l.strip()][::10]
+open(sys.argv[2], 'wb').write(b''.join(struct.pack('<%df' % len(r), *r) for r in rows))
+PY
+minabs() { $PY -c "import sys, numpy as np; a = np.abs(np.fromfile(sys.argv[1], dtype='<f4').astype(np.float64)); print(repr(a[a > 0].min()))" "$1"; }
+for set in "fs.f32 --bands 1024" "rgl.f32 --bands 1 --level 4 --incoming $nrgl" "spl.f32 --bands 2151"; do
+    f=${set%% *}; lay=${set#* }
+    expect_ok "$f lossless" "$BW" encode -i "$T/$f" -o "$T/rl.bwv" $lay --lossless
+    "$BW" decode -i "$T/rl.bwv" -o "$T/rld.f32" && cmp -s "$T/$f" "$T/rld.f32" && ok || bad "$f: lossless not bit-exact"
+    mn=$(minabs "$T/$f")
+    for R in 0.01 0.001 0.0001; do
+        expect_ok "$f max-rel-error $R" "$BW" encode -i "$T/$f" -o "$T/rr.bwv" $lay --max-rel-error $R
+        check_bound "$f max-rel-error $R" "$T/$f" "$T/rr.bwv" $R 0 0
+        # the same guarantee through the absolute bound R x min |x| costs more
+        E=$($PY -c "print('%.9g' % ($R * $mn))")
+        if "$BW" encode -i "$T/$f" -o "$T/ra.bwv" $lay --max-error "$E" 2>/dev/null; then
+            [ "$(stat -c %s "$T/rr.bwv")" -le "$(stat -c %s "$T/ra.bwv")" ] && ok ||
+                bad "$f R=$R: relative $(stat -c %s "$T/rr.bwv") B, absolute at R x min $(stat -c %s "$T/ra.bwv") B"
+        fi
+    done
+    expect_ok "$f both bounds" "$BW" encode -i "$T/$f" -o "$T/rb.bwv" $lay --max-rel-error 0.001 --max-error 0.0003 --rel-floor 1e-5
+    check_bound "$f both bounds" "$T/$f" "$T/rb.bwv" 0.001 1e-5 0.0003
+done
+# on the device the core codes the samples, the host maps the floats: the same payload
+for m in "--lossless" "--max-rel-error 0.001" "--max-rel-error 0.01 --max-error 0.5"; do
+    "$BW" encode --device linux -i "$T/sg.f32" -o "$T/dev.bwv" --bands 33 $m >/dev/null 2>"$T/err" &&
+        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
+        ok || bad "device linux $m: $(cat "$T/err")"
+done
+# usage and refusals
+expect_status "rel-floor alone" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --rel-floor 0.1
+expect_status "max-rel-error with a budget" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --max-rel-error 0.01 --ratio 8
+expect_status "max-rel-error with lossless" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --max-rel-error 0.01 --lossless
+expect_status "max-rel-error of 1" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --max-rel-error 1
+expect_error "max-rel-error on NaN" "$BW" encode -i "$T/oddf.f32" -o "$T/x.bwv" --bands 12 --max-rel-error 0.01
+grep -q "lossless keeps NaN" "$T/err" && ok || bad "NaN refusal: $(cat "$T/err")"
+
 # ---- bad input: one line, non-zero exit, no output left behind ---------------
 expect_error "missing input file" "$BW" encode -i "$T/nope.f32" -o "$T/x.bwv" --bands 1
 expect_error "wrong size for shape" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 3
@@ -282,7 +410,6 @@ $PY -c "import struct; open('$T/nan.f32','wb').write(struct.pack('<4f', 1, float
 expect_error "NaN sample" "$BW" encode -i "$T/nan.f32" -o "$T/x.bwv" --bands 4 --max-error 0.1
 $PY -c "import struct; open('$T/inf.f32','wb').write(struct.pack('<4f', 1, float('inf'), 2, 3))"
 expect_error "infinite sample" "$BW" encode -i "$T/inf.f32" -o "$T/x.bwv" --bands 4 --bytes 100
-expect_error "lossless on fractions" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --lossless
 $PY -c "import struct; open('$T/big.f32','wb').write(struct.pack('<4f', 1, 3e38, 2, 3))"
 expect_error "out-of-range sample" "$BW" encode -i "$T/big.f32" -o "$T/x.bwv" --bands 4 --max-error 0.001
 expect_error "budget too small" "$BW" encode -i "$T/p.f32" -o "$T/x.bwv" --bands 1 --level 4 --incoming 16 --bytes 10

@@ -151,6 +151,45 @@ def prediction_codes_spectra_within_the_bound_and_names_its_basis():
 
 
 @case
+def float_lossless_keeps_every_bit_and_says_so():
+    rng = np.random.default_rng(32)
+    x = (rng.standard_normal((7, 33)) * 10.0 ** rng.integers(-30, 30, (7, 33))).astype(np.float32)
+    x[0, :4] = [np.float32(-0.0), np.float32(1e-45), np.inf, -np.inf]
+    x[1, 0] = np.nan
+    p = brdfwave.encode(x, lossless=True, path=tmp("fl.bwv"))
+    m = brdfwave.decode_bytes(p)
+    assert_same_bits(m, x)
+    assert m.guarantee["kind"] == "exact", m.guarantee
+    assert brdfwave.check_guarantee(p, x, m) == 0
+    assert_same_bits(m, cli_decoded(tmp("fl.bwv")))
+
+
+@case
+def relative_bound_holds_on_every_sample_and_is_recorded():
+    rng = np.random.default_rng(7)
+    x = (np.exp(rng.uniform(-8, 3, (9, 40))) * rng.choice([-1, 1], (9, 40))).astype(np.float32)
+    x[2, 5:9] = 0
+    for kw, rule in (({"max_rel_error": 1e-3}, "relative"),
+                     ({"max_rel_error": 1e-2, "rel_floor": 1e-3}, "relative"),
+                     ({"max_rel_error": 1e-3, "max_error": 0.05}, "both")):
+        p = brdfwave.encode(x, **kw)
+        m = brdfwave.decode_bytes(p)
+        g = brdfwave.guarantee(p)
+        assert g["kind"] == rule and g["recorded"], (g, kw)
+        assert g["max_rel_error"] == kw["max_rel_error"], (g, kw)
+        R, F, E = kw["max_rel_error"], kw.get("rel_floor", 0.0), kw.get("max_error", np.inf)
+        bound = np.minimum(E, np.maximum(R * np.abs(x.astype(np.float64)), F))
+        err = np.abs(m.astype(np.float64) - x)
+        assert np.all(err <= bound), (kw, np.max(err / np.maximum(bound, 1e-300)))
+        assert brdfwave.check_guarantee(p, x, m) == 0
+        # a decoded file that moves one value past its bound is caught
+        bad = np.array(m)
+        bad.flat[17] = x.flat[17] + 2 * bound.flat[17] + np.float32(1e-30)
+        assert brdfwave.check_guarantee(p, x, bad) == 1
+    assert brdfwave.guarantee(brdfwave.encode(x, ratio=8))["kind"] == "none"
+
+
+@case
 def grid_equals_the_cli_csv():
     for level in (0, 2, 4):
         rows = bw("grid", "--level", str(level)).strip().split("\n")

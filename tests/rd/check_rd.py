@@ -4,8 +4,11 @@
 Every case encodes a fixed input with the brdfwave CLI, decodes it and checks:
   * the guarantee of its mode: --lossless decodes bit-exactly, --max-error E
     keeps every sample within E, --ratio R never exceeds 4 n / R bytes;
-  * the rate against tests/rd/baseline.txt: the payload of a lossless or
-    max-error case, and the RMSE (with --relative the relative L2 error) of a
+    float32 input: --lossless-f32 (--lossless on the float32 values) gives
+    back every bit, --max-rel-error R keeps every value within R |x| (with
+    --max-error E as well, within min(E, R |x|));
+  * the rate against tests/rd/baseline.txt: the payload of a lossless,
+    max-error or relative case, and the RMSE (with --relative the relative L2 error) of a
     byte-budget case, whose rate is the budget, may not grow by more than 1 %.
 RD_BASELINE_UPDATE=1 rewrites the baseline from this run (after a deliberate
 change; a smaller rate passes without it). Prints one line per case and
@@ -89,6 +92,13 @@ CASES = [  # set, mode arguments, extra layout arguments
     ("spectralon8", ["--lossless"], []),
     ("spectralon8", ["--max-error", "4"], []),
     ("spectralon8", ["--ratio", "64"], []),
+    # float32 input: bit for bit, and the relative bound alone and with the absolute one
+    ("field20", ["--lossless-f32"], []),
+    ("rgl_paper", ["--lossless-f32"], []),
+    ("field20", ["--max-rel-error", "0.001"], []),
+    ("rgl_paper", ["--max-rel-error", "0.01"], []),
+    ("rgl_paper", ["--max-rel-error", "0.0001"], []),
+    ("spectralon8", ["--max-rel-error", "0.001"], ["--max-error", "0.0005"]),
 ]
 
 
@@ -114,7 +124,13 @@ def main():
             errs = []
             try:
                 ratio = mode[0] == "--ratio"
-                if ratio:
+                floats = mode[0] in ("--lossless-f32", "--max-rel-error")
+                if floats:
+                    src, fmt = os.path.join(tmp, "in.f32"), "f32"
+                    f.astype("<f4").tofile(src)
+                    if mode[0] == "--lossless-f32":
+                        mode = ["--lossless"]
+                elif ratio:
                     src, fmt = os.path.join(tmp, "in.f32"), "f32"
                     f.astype("<f4").tofile(src)
                 else:
@@ -124,7 +140,28 @@ def main():
                     mode + extra)
                 nbytes = os.path.getsize(enc)
                 dec = os.path.join(tmp, "c.out")
-                if ratio:
+                if floats:
+                    run([bw, "decode", "-i", enc, "-o", dec])
+                    d = np.fromfile(dec, dtype="<f4")
+                    x = f.astype(np.float32)
+                    if d.size != x.size:
+                        errs.append("decoded %d values, expected %d" % (d.size, x.size))
+                    elif mode[0] == "--lossless":
+                        nbad = int(np.sum(d.view(np.uint32) != x.view(np.uint32)))
+                        if nbad:
+                            errs.append("%d values not bit for bit" % nbad)
+                    else:
+                        R = float(mode[1])
+                        ax = np.abs(x.astype(np.float64))
+                        bound = R * ax
+                        if "--max-error" in extra:
+                            bound = np.minimum(bound, float(extra[extra.index("--max-error") + 1]))
+                        nbad = int(np.sum(~(np.abs(d.astype(np.float64) - x) <= bound)))
+                        if nbad:
+                            errs.append("%d values beyond the bound" % nbad)
+                    value = float(nbytes)
+                    what = "%d B = %.4f bits/sample (float32)" % (nbytes, 8.0 * nbytes / x.size)
+                elif ratio:
                     run([bw, "decode", "-i", enc, "-o", dec])
                     d = np.fromfile(dec, dtype="<f4").astype(np.float64)
                     budget = int(4 * f.size / float(mode[1]))

@@ -52,6 +52,11 @@ $PY -c "import sys; sys.exit(0 if float('$(sed -n 's/^max_abs_error: //p' "$T/cm
 "$BW" synth --model phong --kd 0.75 --ks 0.25 --n 20 --level 4 --incoming 16 -o "$T/p.f32"
 same_payload "phong ratio 64" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64
 same_payload "phong max-error" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --max-error 0.01 --basis 53
+# float input: the host maps the values (bit planes, log map), the device codes the samples
+"$BW" import-rgl -i tests/data/rgl/paper_white_rgb.bsdf -o "$T/rgl.f32" --level 4 --channel g >/dev/null
+same_payload "RGL float32 lossless" -i "$T/rgl.f32" --bands 1 --level 4 --incoming 7 --lossless
+cmp -s "$T/rgl.f32" "$T/dev.f32" && ok || bad "RGL float32 lossless: device payload not bit-exact"
+same_payload "RGL relative bound" -i "$T/rgl.f32" --bands 1 --level 4 --incoming 7 --max-rel-error 0.001
 "$BW" synth --model ward --level 2 --level-in 2 -o "$T/w.f32"
 same_payload "ward full brdf bytes" -i "$T/w.f32" --bands 1 --level 2 --level-in 2 --bytes 2000
 head -c $((4 * 256 * 81)) /dev/urandom >"$T/r.i32"

@@ -198,6 +198,85 @@ static void decoders_refuse_unknown_critical_records_and_inconsistent_versions(v
     assert_int_equal(bw_header_read(edit, plain, &h), BW_ERR_VERSION);
 }
 
+/* Builds at dst the payload src[len] (a version-6 payload) with the records
+ * recs[rlen] after its header's fields and tail[tlen] before its CRC;
+ * returns the new length. */
+static size_t with_records(uint8_t *dst, const uint8_t *src, size_t len, const uint8_t *recs,
+                           size_t rlen, const uint8_t *tail, size_t tlen)
+{
+    bw_header_t h;
+    assert_int_equal(bw_header_read(src, len, &h), BW_OK);
+    assert_int_equal(h.ext_len, 0);
+    assert_true(rlen < 128);
+    size_t k = h.header_len;
+    memcpy(dst, src, k);
+    dst[2] = 7;
+    dst[5] |= BW_FLAG_EXT;
+    dst[k++] = (uint8_t)rlen;
+    memcpy(dst + k, recs, rlen);
+    k += rlen;
+    memcpy(dst + k, src + h.header_len, h.body_len);
+    k += h.body_len;
+    if (tlen) /* no tail: tail may be NULL */
+        memcpy(dst + k, tail, tlen);
+    k += tlen;
+    recrc(dst, k + 4);
+    return k + 4;
+}
+
+static void the_float_records_are_known_and_their_tail_is_left_to_the_host(void **state)
+{
+    (void)state;
+    setup_data();
+    bw_params_t p = params(BW_MODE_LOSSLESS);
+    size_t plain = encode(&p, BW_OK);
+    static uint8_t src[sizeof out], edit[sizeof out + 300];
+    memcpy(src, out, plain);
+    bw_header_t h0, h;
+    assert_int_equal(bw_header_read(src, plain, &h0), BW_OK);
+
+    /* record 0x01 says the last 200 bytes before the CRC are not the coder's */
+    static uint8_t tail[200];
+    for (unsigned i = 0; i < sizeof tail; i++)
+        tail[i] = (uint8_t)(i * 37u + 5u);
+    const uint8_t rec[] = {BW_EXT_FLOAT_EXACT, 3, 200 | 0x80, 1, 0,
+                           BW_EXT_LOG_MAP, 2, 0xAA, 0xBB};
+    size_t len = with_records(edit, src, plain, rec, sizeof rec, tail, sizeof tail);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_OK);
+    assert_int_equal(h.body_len, h0.body_len);
+    assert_int_equal(h.payload_len - 4 - h.header_len - h.body_len, sizeof tail);
+    memset(ver, 0, sizeof ver);
+    assert_int_equal(bw_decode(edit, len, ver, N, work, sizeof work / sizeof *work, NULL), BW_OK);
+    assert_memory_equal(ver, samples, sizeof samples);
+
+    /* a tail longer than what follows the header */
+    const uint8_t big[] = {BW_EXT_FLOAT_EXACT, 3, 0xFF, 0xFF, 0x03};
+    len = with_records(edit, src, plain, big, sizeof big, tail, 10);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
+    /* a record 0x01 without its length field */
+    const uint8_t empty[] = {BW_EXT_FLOAT_EXACT, 0};
+    len = with_records(edit, src, plain, empty, sizeof empty, NULL, 0);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
+    /* 0x03 is critical and unknown */
+    const uint8_t three[] = {0x03, 1, 0};
+    len = with_records(edit, src, plain, three, sizeof three, NULL, 0);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
+    /* type 0 too */
+    const uint8_t zero[] = {0x00, 1, 0};
+    len = with_records(edit, src, plain, zero, sizeof zero, NULL, 0);
+    assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
+
+    /* the encoder writes them, but no tail: it codes no bytes past its body */
+    const uint8_t no_tail[] = {BW_EXT_FLOAT_EXACT, 2, 0, 0, BW_EXT_LOG_MAP, 1, 7};
+    p.ext = no_tail;
+    p.ext_len = sizeof no_tail;
+    len = encode(&p, BW_OK);
+    assert_int_equal(bw_header_read(out, len, &h), BW_OK);
+    p.ext = rec;
+    p.ext_len = sizeof rec;
+    encode(&p, BW_ERR_ARG);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -205,6 +284,7 @@ int main(void)
         cmocka_unit_test(the_streaming_encoder_writes_the_same_records),
         cmocka_unit_test(malformed_records_are_refused_by_the_encoder),
         cmocka_unit_test(decoders_refuse_unknown_critical_records_and_inconsistent_versions),
+        cmocka_unit_test(the_float_records_are_known_and_their_tail_is_left_to_the_host),
     };
     return cmocka_run_group_tests_name("ext", tests, NULL, NULL);
 }

@@ -13,9 +13,10 @@ service over I2C is brdfwave.acquire (python3 -m brdfwave.acquire --help); it
 does not load numpy, so it starts fast on a small host.
 """
 from ._lib import BrdfwaveError, header_of
+from .guarantee import check_guarantee, guarantee
 
-__all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
-           "header_of"]
+__all__ = ["BrdfwaveError", "Measurement", "check_guarantee", "decode", "decode_bytes", "encode",
+           "grid", "guarantee", "header_of"]
 
 
 def __getattr__(name):

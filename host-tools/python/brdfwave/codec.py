@@ -17,6 +17,7 @@ import numpy as np
 
 from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
                    header_of, last_error, lib)
+from .guarantee import guarantee
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
            "header_of"]
@@ -30,6 +31,7 @@ class Measurement(np.ndarray):
       directions   (n_out, 3) unit vectors of the outgoing triangles, None for spectra
       incoming     (n_in, 3) unit vectors of the incoming triangles (full BRDF), else None
       wavelengths  (bands,) in nm if given to decode(), else None (payloads carry none)
+      guarantee    what the payload promises of every value (brdfwave.guarantee)
     """
 
     def __new__(cls, values, header=None, directions=None, incoming=None, wavelengths=None):
@@ -38,6 +40,7 @@ class Measurement(np.ndarray):
         obj.directions = directions
         obj.incoming = incoming
         obj.wavelengths = wavelengths
+        obj.guarantee = None
         return obj
 
     def __array_finalize__(self, obj):
@@ -47,6 +50,7 @@ class Measurement(np.ndarray):
         self.directions = getattr(obj, "directions", None)
         self.incoming = getattr(obj, "incoming", None)
         self.wavelengths = getattr(obj, "wavelengths", None)
+        self.guarantee = getattr(obj, "guarantee", None)
 
 
 def grid(level):
@@ -114,7 +118,9 @@ def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0):
         wavelengths = np.asarray(wavelengths, dtype=np.float64)
         if wavelengths.shape != (d.bands,):
             raise BrdfwaveError("%d wavelengths given for %d bands" % (wavelengths.size, d.bands))
-    return Measurement(vals.reshape(shape), hd, directions, incoming, wavelengths)
+    m = Measurement(vals.reshape(shape), hd, directions, incoming, wavelengths)
+    m.guarantee = guarantee(payload)
+    return m
 
 
 def decode(path, wavelengths=None, integers=False, max_samples=0):
@@ -136,14 +142,17 @@ def decode(path, wavelengths=None, integers=False, max_samples=0):
 
 def encode(values, level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, basis="auto", scale=None, stream=False, symmetry="auto",
-           path=None, device=None):
+           path=None, device=None, max_rel_error=None, rel_floor=None):
     """Encodes float values to a payload (bytes; also written to `path` if given),
     as `brdfwave encode` does with float32 input:
       level=None                 a set of spectra, values (n_spectra, bands)
       level=L                    a spectral reflectance, values (4*4^L, bands)
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
-    One of lossless (default), max_error=E, nbytes=N, ratio=R. basis: "haar", "53",
+    One of lossless (default; float32 values come back bit for bit), max_error=E,
+    nbytes=N, ratio=R; or max_rel_error=R (every value within max(R |x|, F) of its
+    input, F = rel_floor or 0), alone or with max_error=E (within the tighter of
+    the two). The payload records its guarantee (brdfwave.guarantee). basis: "haar", "53",
     "97", "pred" (spectra, lossless or max_error only) or "auto". symmetry: "auto" (try
     the mirror image (x, -y, z) for directional data, and reciprocity for a full BRDF
     with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none".
@@ -169,6 +178,16 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
     modes = [m for m in (lossless, max_error, nbytes, ratio) if m not in (None, False)]
     if len(modes) > 1:
         raise BrdfwaveError("give only one of lossless, max_error, nbytes, ratio")
+    if max_rel_error is not None:
+        if not 0 < max_rel_error < 1:
+            raise BrdfwaveError("max_rel_error must lie between 0 and 1")
+        if lossless or nbytes is not None or ratio is not None:
+            raise BrdfwaveError("max_rel_error goes alone or with max_error")
+        o.max_rel_error = float(max_rel_error)
+    if rel_floor is not None:
+        if max_rel_error is None or not rel_floor > 0:
+            raise BrdfwaveError("rel_floor needs max_rel_error and must be positive")
+        o.rel_floor = float(rel_floor)
     if max_error is not None:
         if not max_error > 0:
             raise BrdfwaveError("max_error must be positive")
