@@ -534,6 +534,55 @@ def coders_section(A, sets, parsed):
         A("")
 
 
+def device_targets_section(A, sets, parsed):
+    """The device encode's targets: the byte budget's search and the basis
+    choice against one fixed encode of the same run."""
+    A("## Targets of the device encode (measured)")
+    A("")
+    A("Byte budget: the whole encode with the basis fixed (search included, *encode, basis "
+      "fixed* above) against one encode at a fixed step with the same coder and basis (the "
+      "`step8` row of 'The coders side by side'); target at most 1.5 x, landing within 1 % "
+      "under the budget (or the lossless payload, where that fits). Basis choice: the encode trying every basis (*encode*, the default) "
+      "against the encode with the basis it chose fixed; target at most 1.5 x with payloads "
+      "within 1 % of trying every basis (the default tries every basis, so its payload is "
+      "that one).")
+    A("")
+    A("| data set | target | figure | met |")
+    A("|---|---|---|---|")
+    for ds in sets:
+        r = parsed[ds.key]
+        fast = {(d.get("coder", "rice"), d["basis"], d["mode"]): d for d in r["fast"]}
+        for m in ("ratio8", "ratio32"):
+            row = r["rows"].get(m)
+            if not row or "bytes" not in row:
+                continue
+            n = int(row["samples"])
+            one = fast.get(("range", row["basis"], "step8")) if ds.bands > 1 else next(
+                (d for k, d in fast.items() if k[0] == "range" and k[2] == "step8"), None)
+            search = int(row["enc_fixed"]) or int(row["enc"])
+            if one:
+                x = search / int(one["enc"])
+                land = int(row["bytes"]) / int(row["budget"])
+                exact = row.get("worst") == "0"
+                A("| %s | budget %s: <= 1.5 x one encode, within 1 %% under | %.1f x (%.1f vs "
+                  "%.1f instr/sample), %d of %s bytes (%s) | %s |" % (
+                      ds.key, m[5:], x, search / n, int(one["enc"]) / n, int(row["bytes"]),
+                      row["budget"], "lossless, it fits" if exact else "%.4f" % land,
+                      "yes" if x <= 1.5 and (exact or 0.99 <= land <= 1.0) else "no"))
+        if ds.bands > 1:
+            worst = None
+            for m in ("lossless", "maxerr1", "maxerr4", "maxerr16"):
+                row = r["rows"].get(m)
+                if row and "bytes" in row and int(row["enc_fixed"]):
+                    x = int(row["enc"]) / int(row["enc_fixed"])
+                    if worst is None or x > worst[0]:
+                        worst = (x, m)
+            if worst:
+                A("| %s | basis choice <= 1.5 x the fixed basis | %.2f x at most (%s) | %s |" % (
+                    ds.key, worst[0], worst[1], "yes" if worst[0] <= 1.5 else "no"))
+    A("")
+
+
 def fast_section(A, sets, parsed, peers):
     A("## The Rice coder on the device (measured)")
     A("")
@@ -745,6 +794,7 @@ def main():
             log("  peers on %s: %s" % (ds.key, e))
     fast_section(A, sets, parsed, peers)
     coders_section(A, sets, parsed)
+    device_targets_section(A, sets, parsed)
 
     # floors
     A("## Floors (measured, same image and samples)")
