@@ -38,6 +38,10 @@ typedef struct {
     double device_timeout;         /* seconds, 0: 120 */
     int drop_chunk;                /* tests: lose the first copy of a chunk, -1: none */
     uint64_t *device_instructions; /* out: the device's count for the encode */
+    /* extension records for the payload (bw_params_t.ext: the metadata
+     * record of bwh_meta_encode), ext_len bytes; none when 0 */
+    const uint8_t *ext;
+    size_t ext_len;
 } bwh_encode_opts_t;
 
 /* Encodes float samples (NaN/Inf rejected). *out is allocated. The mapping

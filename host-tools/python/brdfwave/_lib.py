@@ -41,7 +41,8 @@ class EncodeOpts(ctypes.Structure):
                 ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
                 ("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
                 ("device_timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
-                ("device_instructions", ctypes.POINTER(ctypes.c_uint64))]
+                ("device_instructions", ctypes.POINTER(ctypes.c_uint64)),
+                ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)
