@@ -22,6 +22,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "bw_codec.h"
 
@@ -193,6 +194,10 @@ void bwh_time_format(double sec, int tz, char *buf, size_t cap);
 int bwh_time_parse(const char *s, double *sec, int *tz);
 /* seconds since 1970 of a civil date and time (proleptic Gregorian) */
 double bwh_time_of(int year, int month, int day, int hour, int min, double sec);
+
+/* The metadata as "key: value" lines, one per part (bwh_meta_text.c):
+ * lists in full, texts as JSON strings; nothing for empty metadata. */
+void bwh_meta_print(const bwh_meta_t *m, FILE *f);
 
 /* JSON (bwh_meta_json.c): the object of docs/FORMAT.md's metadata table,
  * and back. *json is allocated. 0, or -1. */
