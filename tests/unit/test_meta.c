@@ -9,13 +9,17 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
+#include "brdf_eval.h"
 #include "bw_codec.h"
 #include "bwh_encode.h"
 #include "bwh_error.h"
+#include "bwh_file.h"
 #include "bwh_meta.h"
 
 #define N_SPECTRA 3u
@@ -373,6 +377,58 @@ static void times_should_read_back_as_iso_8601(void **state)
     assert_int_equal(bwh_time_parse("2019-13-01T10:32:00", &t, &tz), -1);
 }
 
+/* An isotropic BRDF of 3 incoming planes, plane k all k, written with and
+ * without the incidence angles 0, 30, 60 degrees: evaluation at theta_i =
+ * 30 degrees reads plane 1 with them, and halfway between the default
+ * angles 15 and 45 without. */
+static double value_at_30_degrees(int with_angles)
+{
+    enum { LEVEL = 1, N_OUT = 16, N_IN = 3 };
+    bw_dims_t d;
+    assert_int_equal(bw_dims_make(&d, BW_SHAPE_BRDF_ISO, LEVEL, 0, N_IN, 1), BW_OK);
+    float x[N_IN * N_OUT];
+    for (size_t i = 0; i < N_IN * N_OUT; i++)
+        x[i] = (float)(i / N_OUT);
+    bwh_meta_t m;
+    bwh_meta_init(&m);
+    static const double inc[N_IN] = {0, 30, 60};
+    if (with_angles)
+        assert_int_equal(bwh_meta_set_numbers(&m.incidence, inc, N_IN), 0);
+    assert_int_equal(bwh_meta_check(&m, &d), 0);
+    uint8_t *area, *p;
+    size_t len, plen;
+    assert_int_equal(bwh_meta_encode(&m, &area, &len), 0);
+    bwh_encode_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.mode = BW_MODE_LOSSLESS;
+    o.basis = BW_BASIS_HAAR;
+    o.drop_chunk = -1;
+    o.ext = area;
+    o.ext_len = len;
+    assert_int_equal(bwh_encode_f32(&d, x, &o, &p, &plen), 0);
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/test_meta_%d_%d.bwv", (int)getpid(), with_angles);
+    assert_int_equal(bwh_write_file(path, p, plen), 0);
+    bwh_brdf_data_t b;
+    assert_int_equal(bwh_brdf_data_load(&b, path), 0);
+    unlink(path);
+    double t = 30.0 * 3.14159265358979323846 / 180.0;
+    double wi[3] = {sin(t), 0, cos(t)}, wo[3] = {0, 0, 1};
+    double v = bwh_brdf_data_band(&b, wi, wo, 0);
+    bwh_brdf_data_free(&b);
+    free(p);
+    free(area);
+    bwh_meta_free(&m);
+    return v;
+}
+
+static void evaluation_should_use_the_measured_incidence_angles(void **state)
+{
+    (void)state;
+    assert_true(fabs(value_at_30_degrees(1) - 1.0) < 1e-9);
+    assert_true(fabs(value_at_30_degrees(0) - 0.5) < 1e-9);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -385,6 +441,7 @@ int main(void)
         cmocka_unit_test(metadata_that_does_not_fit_should_be_refused),
         cmocka_unit_test(payload_should_carry_the_metadata),
         cmocka_unit_test(times_should_read_back_as_iso_8601),
+        cmocka_unit_test(evaluation_should_use_the_measured_incidence_angles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
