@@ -259,7 +259,9 @@ int bwh_read_raw(const char *path, int f, bwh_measure_t *m)
     free(b);
     m->count = n;
     raw_shape(m, layout);
-    if (!(m->meta.present & BWH_M_SAMPLE_TYPE)) {
+    /* f32 is what a writer gives without a sample type: raw float input
+     * without a sidecar keeps a payload without metadata */
+    if (!(m->meta.present & BWH_M_SAMPLE_TYPE) && t != BWH_ST_F32) {
         m->meta.sample_type = t;
         m->meta.present |= BWH_M_SAMPLE_TYPE;
     }

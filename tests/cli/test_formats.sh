@@ -220,6 +220,18 @@ expect_ok "--no-metadata" "$BW" encode -i $I/asd/3L9257.000 -o "$T/x.bwv" --max-
 grep -q '^version: 6$' "$T/info" && grep -q '^metadata_bytes: 0$' "$T/info" && ok ||
     bad "--no-metadata: not a version-6 payload without metadata"
 
+# ---- u16 in, u16 out ---------------------------------------------------------
+$PY -c 'import numpy as np; (np.arange(4 * 300, dtype="<u2") * 53 % 65536).astype("<u2").tofile("'"$T"'/u.u16")'
+expect_ok "u16 encode" "$BW" encode -i "$T/u.u16" --input-format u16 --bands 300 -o "$T/u.bwv" --lossless
+expect_ok "u16 decode raw" "$BW" decode -i "$T/u.bwv" -o "$T/u2.raw" --output-format raw
+cmp -s "$T/u.u16" "$T/u2.raw" && ok || bad "u16 in: raw out is not the same u16 file"
+expect_ok "u16 decode npy" "$BW" decode -i "$T/u.bwv" -o "$T/u2.npy"
+$PY -c 'import numpy as np, sys; a = np.load(sys.argv[1]); sys.exit(0 if a.dtype == np.uint16 and a.shape == (4, 300) else 1)' "$T/u2.npy" &&
+    ok || bad "u16 in: npy out is not uint16 (4, 300)"
+cp "$T/rt0.f32" "$T/nosidecar.f32"
+expect_ok "f32 raw without sidecar" "$BW" encode -i "$T/nosidecar.f32" --bands 2 -o "$T/f.bwv" --max-error 1
+"$BW" info "$T/f.bwv" | grep -q '^version: 6$' && ok || bad "raw f32 without sidecar: not version 6"
+
 # ---- '-': standard input and output ----------------------------------------
 "$BW" decode -i - -o - <"$T/sed.bwv" >"$T/std.f32" 2>"$T/err" && ok || bad "decode - -: $(cat "$T/err")"
 "$BW" decode -i "$T/sed.bwv" -o "$T/file.f32" 2>/dev/null
