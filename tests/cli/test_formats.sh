@@ -121,8 +121,14 @@ echo "metadata bytes: RGL paper_white (green, level 4, 7 incidences):" \
     "(without: $(stat -c %s "$T/bare.bwv"))"
 cp "$T/x.bwv" "$T/rgl.bwv"
 roundtrip "bsdf" "$T/rgl.bwv" --max-error 0.01
-# import-rgl's raw output with --incoming 7 takes the default angles; the
-# payload of the bsdf reader carries the measured ones to the evaluator
+# import-rgl's raw output keeps the measured angles in its sidecar, and
+# encode of the raw file with --incoming 7 carries them into the payload
+expect_ok "import-rgl" "$BW" import-rgl -i $D/rgl/paper_white_rgb.bsdf -o "$T/paper.f32" --channel g
+expect_ok "encode import-rgl output" "$BW" encode -i "$T/paper.f32" -o "$T/x.bwv" --bands 1 \
+    --level 4 --incoming 7 --max-error 0.01
+check "import-rgl angles" '[round(x * 180 / np.pi, 2) for x in m["incidence"]] == [0, 27.67, 39.86, 49.94, 59.27, 68.57, 78.46]
+    and m["quantity"] == "brdf"'
+# the payload carries the measured angles to the evaluator and the renderer
 expect_ok "render with measured angles" "$BW" render --scene sphereflake \
     --material payload:"$T/rgl.bwv" --sampling wavelet --level 4 --spp 1 --size 16x12 \
     -o "$T/r.png"
