@@ -213,7 +213,7 @@ int bwh_read_gonio(const char *path, const bwh_read_opts_t *o, bwh_measure_t *m)
     meta->present |= BWH_M_QUANTITY | BWH_M_SAMPLE_TYPE;
     meta->wl_unit = BWH_WL_NM;
     meta->inc_unit = BWH_ANGLE_DEG;
-    char proj[640];
+    char proj[sizeof counts + 160];
     snprintf(proj, sizeof proj,
              "measured directions per incidence %s (and their mirror images), projected onto "
              "level %u by local modified Shepard interpolation over the 8 nearest",
