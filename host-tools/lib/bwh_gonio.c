@@ -11,6 +11,8 @@
  * the paper's 474 measured directions are. Kept: the incidence angles, the
  * bands' centres and widths, the quantity (reflectance factor), the time of
  * the first measurement, and how many directions each incidence had.
+ * The same data pivoted, one column per geometry (parse_wide), reads alike
+ * (without bandwidths and time, which that layout does not hold).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -35,6 +37,118 @@ typedef struct {
     size_t nv;
 } geom_t;
 
+/* The same data pivoted (the WWU "autospec" layout of shared/data's
+ * spectralon.csv): "Database of origin, ...", "Sample Name, ...",
+ * "Viewing geometry, i=I e=E az=A, ..." (one column per geometry), then
+ * after a line "Wavelength" one row per band: the wavelength and the
+ * values of every geometry. Fills g[ng] and wl[nb]; 0, or -1. */
+static int parse_wide(bwh_text_t *t, const char *path, geom_t **pg, size_t *png, double *wl,
+                      size_t *pnb, char *sample, size_t sample_cap)
+{
+    char *line;
+    geom_t *g = NULL;
+    size_t ng = 0, nb = 0;
+    int in_rows = 0;
+    while ((line = bwh_text_line(t))) {
+        char *l = bwh_trim(line);
+        if (!*l)
+            continue;
+        if (!strncmp(l, "Sample Name,", 12)) {
+            char *c = bwh_trim(l + 12), *e = strchr(c, ',');
+            snprintf(sample, sample_cap, "%.*s", e ? (int)(e - c) : (int)strlen(c), c);
+            bwh_trim(sample);
+            continue;
+        }
+        if (!strncmp(l, "Viewing geometry,", 17)) {
+            size_t cap = 0;
+            for (char *p = l + 17; p && *p;) {
+                double i, e, a;
+                if (sscanf(p, " i=%lf e=%lf az=%lf", &i, &e, &a) != 3 || !isfinite(i) ||
+                    !isfinite(e) || !isfinite(a) || i < 0 || i >= 90 || e < 0 || e > 90) {
+                    bwh_fail("%s:%u: geometry %zu is not \"i=I e=E az=A\" within [0, 90) "
+                             "degrees", path, t->line, ng + 1);
+                    free(g);
+                    return -1;
+                }
+                if (ng == cap) {
+                    geom_t *n2 = realloc(g, (cap = cap ? cap * 2 : 256) * sizeof *g);
+                    if (!n2) {
+                        free(g);
+                        return bwh_fail("out of memory");
+                    }
+                    g = n2;
+                }
+                memset(&g[ng], 0, sizeof *g);
+                g[ng].inc = i;
+                g[ng].emi = e;
+                g[ng].azi = a;
+                ng++;
+                p = strchr(p, ',');
+                if (p)
+                    p++;
+            }
+            continue;
+        }
+        if (!strcmp(l, "Wavelength")) {
+            in_rows = 1;
+            continue;
+        }
+        if (!in_rows)
+            continue; /* other header lines */
+        if (!ng) {
+            free(g);
+            return bwh_fail("%s:%u: rows before a \"Viewing geometry\" line", path, t->line);
+        }
+        if (nb == MAX_BANDS) {
+            free(g);
+            return bwh_fail("%s:%u: more than %d bands", path, t->line, MAX_BANDS);
+        }
+        char *p = l, *e;
+        errno = 0;
+        wl[nb] = strtod(p, &e);
+        if (e == p || errno || !isfinite(wl[nb]) || (nb && wl[nb] <= wl[nb - 1])) {
+            free(g);
+            return bwh_fail("%s:%u: not a wavelength above the one before", path, t->line);
+        }
+        p = e;
+        for (size_t k = 0; k < ng; k++) {
+            while (*p == ' ')
+                p++;
+            if (*p++ != ',') {
+                free(g);
+                return bwh_fail("%s:%u: %zu values, %zu geometries%s", path, t->line, k, ng,
+                                t->last_cut ? " (the file is cut short)" : "");
+            }
+            errno = 0;
+            g[k].v[nb] = strtod(p, &e);
+            if (e == p || errno || !isfinite(g[k].v[nb])) {
+                free(g);
+                return bwh_fail("%s:%u: value %zu is not a number", path, t->line, k + 1);
+            }
+            p = e;
+        }
+        while (*p == ' ' || *p == ',')
+            p++;
+        if (*p || t->last_cut) {
+            free(g);
+            return bwh_fail("%s:%u: %s", path, t->line,
+                            *p ? "more values than geometries" : "the file is cut short");
+        }
+        nb++;
+    }
+    if (!ng || !nb) {
+        free(g);
+        return bwh_fail("%s: no %s", path, ng ? "band rows after \"Wavelength\"" :
+                                               "\"Viewing geometry\" line");
+    }
+    for (size_t k = 0; k < ng; k++)
+        g[k].nv = nb;
+    *pg = g;
+    *png = ng;
+    *pnb = nb;
+    return 0;
+}
+
 int bwh_read_gonio(const char *path, const bwh_read_opts_t *o, bwh_measure_t *m)
 {
     bwh_measure_init(m);
@@ -48,13 +162,17 @@ int bwh_read_gonio(const char *path, const bwh_read_opts_t *o, bwh_measure_t *m)
     double wl[MAX_BANDS], fwhm[MAX_BANDS], t0 = NAN;
     double *inc = NULL, *val = NULL, *res = NULL;
     double(*dir)[3] = NULL;
-    if (!line || strncmp(line, "# 'counter', 'incidence', 'emission', 'azimuth'", 47)) {
-        bwh_fail("%s: not a goniometer CSV (its first line is not \"# 'counter', 'incidence', "
-                 "'emission', 'azimuth', ...\")",
+    char sample[256] = "";
+    int wide = line && !strncmp(line, "Database of origin", 18);
+    if (!line || (!wide && strncmp(line, "# 'counter', 'incidence', 'emission', 'azimuth'", 47))) {
+        bwh_fail("%s: not a goniometer CSV (its first line is neither \"# 'counter', "
+                 "'incidence', 'emission', 'azimuth', ...\" nor \"Database of origin, ...\")",
                  path);
         goto out;
     }
-    while ((line = bwh_text_line(&t))) {
+    if (wide && parse_wide(&t, path, &g, &ng, wl, &nb, sample, sizeof sample) != 0)
+        goto out;
+    while (!wide && (line = bwh_text_line(&t))) {
         if (!*bwh_trim(line))
             continue;
         double c[C_MIN];
@@ -219,8 +337,9 @@ int bwh_read_gonio(const char *path, const bwh_read_opts_t *o, bwh_measure_t *m)
              "level %u by local modified Shepard interpolation over the 8 nearest",
              counts, level);
     if (bwh_meta_set_numbers(&meta->wavelengths, wl, nb) ||
-        bwh_meta_set_numbers(&meta->fwhm, fwhm, nb) ||
+        (!wide && bwh_meta_set_numbers(&meta->fwhm, fwhm, nb)) ||
         bwh_meta_set_numbers(&meta->incidence, inc, n_in) ||
+        (sample[0] && bwh_meta_add_field(meta, "sample", sample)) ||
         bwh_meta_add_field(meta, "projection", proj))
         goto out;
     if (isfinite(t0)) {

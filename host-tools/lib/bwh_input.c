@@ -89,7 +89,8 @@ int bwh_input_detect(const char *path)
         return BWH_IN_SIG;
     if (!strncmp(head, "ENVI", 4) && (head[4] == '\n' || head[4] == '\r'))
         return BWH_IN_ENVI;
-    if (!strncmp(head, "# 'counter', 'incidence', 'emission'", 36))
+    if (!strncmp(head, "# 'counter', 'incidence', 'emission'", 36) ||
+        !strncmp(head, "Database of origin,", 19))
         return BWH_IN_GONIO;
     if (strstr(head, "\nChannels:") && (strstr(head, "\nData:") || n == sizeof head - 1) &&
         (strstr(head, "Instrument:") || strstr(head, "Measurement:")))

@@ -203,6 +203,16 @@ check "gonio" 'm["incidence"] == [0, 15, 30, 45, 58, 70] and w == [450, 550, 650
     and 0.5 < float(np.median(a)) < 1.5'
 cp "$T/x.bwv" "$T/gonio.bwv"
 roundtrip "gonio" "$T/gonio.bwv" --max-error 1e-4
+# the same data pivoted, a column per geometry: the same samples
+expect_ok "gonio wide" "$BW" encode -i $D/goniometer/spectralon.csv -o "$T/x.bwv" --max-error 1e-4
+check "gonio wide" 'm["incidence"] == [0, 15, 30, 45, 58, 70] and w == [450, 550, 650, 750, 905, 1064]
+    and f["sample"] == "Spectralon" and a.shape == (6, 1024, 6)'
+"$BW" decode -i "$T/gonio.bwv" -o "$T/g1.f32" 2>/dev/null
+"$BW" decode -i "$T/x.bwv" -o "$T/g2.f32" 2>/dev/null
+cmp -s "$T/g1.f32" "$T/g2.f32" && ok || bad "gonio: the pivoted file gives other samples"
+head -c 40000 $D/goniometer/spectralon.csv >"$T/cut_wide.csv"
+expect_error "gonio wide cut short" "cut_wide.csv" "$BW" encode -i "$T/cut_wide.csv" \
+    --input-format gonio -o "$T/y.bwv" --max-error 1
 
 # ---- metadata from JSON and free fields -------------------------------------
 cat >"$T/extra.json" <<'EOF'
