@@ -295,7 +295,7 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            incidence_unit=None, quantity=None, unit=None, fields=None, metadata=None,
            level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder="range",
-           stream=False, symmetry="auto", path=None, device=None):
+           stream=False, symmetry="auto", path=None, device=None, firmware=None):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
     given), as `brdfwave encode` does, with its metadata.
 
@@ -319,7 +319,12 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     coder: "range" or "rice"; stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
-    --device`)."""
+    --device`; firmware: its image, else found beside the library or named by
+    $BW_FIRMWARE_LINUX / $BW_FIRMWARE). The options of reading a file
+    (--input-format, --channel, --column, --ignore-value, --wavelength-table)
+    are read()'s. Without metadata (the CLI's --no-metadata) the payload is
+    version 6: give a plain numpy array (np.asarray(m) of a Measurement)
+    and no metadata arguments."""
     L = lib()
     src_meta = {}
     if isinstance(values, Measurement):
@@ -400,6 +405,8 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         if device not in ("linux", "qemu"):
             raise BrdfwaveError("device must be None, 'linux' or 'qemu'")
         o.device = device.encode()
+        if firmware is not None:
+            o.firmware = os.fsencode(firmware)
     merged = dict(src_meta)
     merged.update(metadata or {})
     mj = _metadata_json(merged, wavelengths, wavelength_unit, incidence, incidence_unit,
