@@ -194,6 +194,30 @@ expect_ok "envi cube" "$BW" encode -i $I/envi/ang20150420t182808_corr_v1e_img_42
 check "envi cube" 'a.shape[-1] == len(w) and len(w) > 400 and "fwhm" in m and w[0] < 400'
 cp "$T/x.bwv" "$T/envi.bwv"
 roundtrip "envi cube" "$T/envi.bwv" --max-error 1e-4
+# the same cube as BSQ, as BIL, and big-endian: the same samples and metadata
+"$BW" decode -i "$T/envi.bwv" -o "$T/cube0.f32" 2>/dev/null
+"$BW" info --json "$T/envi.bwv" >"$T/cube0.json"
+$PY - $I/envi/ang20150420t182808_corr_v1e_img_4200-4210_70-80 "$T" <<'EOF'
+import re, sys
+import numpy as np
+src, out = sys.argv[1], sys.argv[2]
+hdr = open(src + ".hdr").read()
+a = np.fromfile(src + ".img", dtype="<f4").reshape(10, 10, 432)   # BIP: line, sample, band
+for name, inter, arr, order in (("bsq", "bsq", a.transpose(2, 0, 1), 0),
+                                ("bil", "bil", a.transpose(0, 2, 1), 0),
+                                ("be", "bip", a, 1)):
+    h = re.sub(r"interleave = \w+", "interleave = " + inter, hdr)
+    h = re.sub(r"byte order = \d", "byte order = %d" % order, h)
+    open("%s/c_%s.hdr" % (out, name), "w").write(h)
+    np.ascontiguousarray(arr).astype(">f4" if order else "<f4").tofile("%s/c_%s.img" % (out, name))
+EOF
+for v in bsq bil be; do
+    expect_ok "envi cube $v" "$BW" encode -i "$T/c_$v.hdr" -o "$T/c.bwv" --max-error 1e-4
+    "$BW" decode -i "$T/c.bwv" -o "$T/c.f32" 2>/dev/null
+    "$BW" info --json "$T/c.bwv" >"$T/c.json"
+    cmp -s "$T/c.f32" "$T/cube0.f32" && cmp -s "$T/c.json" "$T/cube0.json" && ok ||
+        bad "envi cube $v: other samples or metadata than the BIP file's"
+done
 
 # ---- goniometer CSV: scattered directions onto the grid --------------------
 expect_ok "gonio" "$BW" encode -i $D/goniometer/20200313_mastcamz_spectralon.csv -o "$T/x.bwv" \
