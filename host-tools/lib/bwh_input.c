@@ -298,29 +298,41 @@ int bwh_sidecar_read(const char *path, bwh_meta_t *m, int *layout)
 
 int bwh_measure_mark_missing(bwh_measure_t *m, double ignore)
 {
-    if (!m->values)
-        return 0; /* integer samples: the value cannot be a float marker */
+    if (!m->values && !m->ints)
+        return 0;
     size_t bands = m->bands ? m->bands : m->count, rows = bands ? m->count / bands : 0;
     float mark = (float)ignore;
+    /* integer samples (decimal text read exactly): the marker is the
+     * integer whose value it is, if there is one */
+    int32_t qmark = 0;
+    int int_mark = 0;
+    if (m->ints) {
+        double q = ignore / m->scale;
+        if (!(fabs(q) <= 2147483647.0) || q != nearbyint(q))
+            return 0; /* no integer sample has that value */
+        qmark = (int32_t)q;
+        int_mark = 1;
+    }
     int any = 0;
-    for (size_t r = 0; r < rows; r++) {
-        float *v = m->values + r * bands;
-        for (size_t k = 0; k < bands; k++)
-            if (v[k] == mark || (isnan(mark) && isnan(v[k]))) {
-                if (bwh_meta_add_missing(&m->meta, r * bands + k))
+    for (size_t r = 0; r < rows; r++)
+        for (size_t k = 0; k < bands; k++) {
+            size_t i = r * bands + k;
+            int miss = int_mark ? m->ints[i] == qmark
+                                : m->values[i] == mark || (isnan(mark) && isnan(m->values[i]));
+            if (miss) {
+                if (bwh_meta_add_missing(&m->meta, i))
                     return -1;
                 any = 1;
             }
-    }
+        }
     if (!any)
         return 0;
-    m->meta.missing_value = (double)mark == ignore ? ignore : (double)mark;
+    m->meta.missing_value = (double)mark == ignore || int_mark ? ignore : (double)mark;
     /* fill: the nearest valid sample before, else after, in the spectrum */
     size_t run = 0;
     for (size_t r = 0; r < rows; r++) {
-        float *v = m->values + r * bands;
         uint64_t base = (uint64_t)r * bands;
-        float last = 0;
+        size_t last = 0;
         int have = 0;
         for (size_t k = 0; k < bands; k++) {
             uint64_t i = base + k;
@@ -328,15 +340,18 @@ int bwh_measure_mark_missing(bwh_measure_t *m, double ignore)
                 run++;
             int miss = run < m->meta.n_missing && i >= m->meta.missing[run][0];
             if (!miss) {
-                if (!have)
-                    for (size_t j = 0; j < k; j++)
-                        v[j] = v[k];
-                last = v[k];
+                for (size_t j = have ? k : 0; !have && j < k; j++) {
+                    if (int_mark)
+                        m->ints[base + j] = m->ints[i];
+                    else
+                        m->values[base + j] = m->values[i];
+                }
+                last = (size_t)i;
                 have = 1;
-            } else if (have) {
-                v[k] = last;
+            } else if (int_mark) {
+                m->ints[i] = have ? m->ints[last] : 0;
             } else {
-                v[k] = 0;
+                m->values[i] = have ? m->values[last] : 0.0f;
             }
         }
     }

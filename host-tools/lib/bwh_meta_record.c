@@ -787,10 +787,12 @@ static int get_field(rbuf_t *r, unsigned tag, bwh_meta_t *m)
         uint64_t bits = bw_get_u32(r->p) | (uint64_t)bw_get_u32(r->p + 4) << 32;
         memcpy(&m->missing_value, &bits, 8);
         r->p += 8;
-        size_t n = 0;
-        if (get_count(r, &n))
+        /* runs are not bounded by the bands or the spectra, only by the
+         * bytes (2 at least each) */
+        uint64_t n = 0;
+        if (get_varint(r, &n))
             return -1;
-        if (!n || n > (size_t)(r->end - r->p))
+        if (!n || n > (uint64_t)(r->end - r->p) / 2u)
             return bad(r, "a bad number of runs");
         m->missing = malloc(n * sizeof *m->missing);
         if (!m->missing)

@@ -238,6 +238,16 @@ head -c 40000 $D/goniometer/spectralon.csv >"$T/cut_wide.csv"
 expect_error "gonio wide cut short" "cut_wide.csv" "$BW" encode -i "$T/cut_wide.csv" \
     --input-format gonio -o "$T/y.bwv" --max-error 1
 
+# ---- missing samples: marked, coded as their neighbours, given back --------
+printf 'wavelength_nm,a,b,c\n400,0.1,-1,0.3\n410,-1,0.2,-1\n420,0.1,-1,0.3\n430,-1,0.2,-1\n' >"$T/miss.csv"
+expect_ok "missing in exact decimals" "$BW" encode -i "$T/miss.csv" --ignore-value -1 -o "$T/x.bwv" \
+    --max-error 0.001
+check "missing in exact decimals" 'm["missing"]["value"] == -1 and len(m["missing"]["runs"]) == 5
+    and a.shape == (3, 4) and (a == -1).sum() == 6 and a[0, 0] == np.float32(0.1)'
+expect_ok "missing to csv" "$BW" decode -i "$T/x.bwv" -o "$T/miss2.csv"
+grep -v '^#' "$T/miss2.csv" | cmp -s - <(tail -n +1 "$T/miss.csv") && ok ||
+    bad "missing samples: the CSV does not come back as it was"
+
 # ---- metadata from JSON and free fields -------------------------------------
 cat >"$T/extra.json" <<'EOF'
 {"quantity": "radiance", "instrument": "bench", "time": "2024-05-01T10:00:00+02:00",
