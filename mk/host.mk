@@ -11,6 +11,14 @@ LDLIBS := -lm
 # are not position independent: that costs the core about 2 % more
 # instructions.
 LIB_SRC := $(CORE_SRC) firmware/link/bw_frame.c $(wildcard host-tools/lib/*.c)
+# the reference model's RGL loader and its projection of scattered
+# directions onto the grid, for the library's readers of RGL and goniometer
+# files (bwh_rgl.c, bwh_project.c): the same objects as libbwref's
+LIB_REF_SRC := host-tools/ref/bwr_rgl.c host-tools/ref/bwr_project.c host-tools/ref/bwr_geodesic.c
+LIB_SRC += $(LIB_REF_SRC)
+LIB_REF_USERS := host-tools/lib/bwh_project.c host-tools/lib/bwh_rgl.c
+$(patsubst %.c,$(BUILD)/%.o,$(LIB_REF_USERS)) $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_REF_USERS)): \
+    CFLAGS += -Ihost-tools/ref
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC))
 LIB_PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
 LIB := $(BUILD)/libbrdfwave.a

@@ -51,9 +51,9 @@ for t in "$BUILD"/tests/test_*; do
     [ -x "$t" ] || continue
     run "$(basename "$t")" "$t"
 done
-for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh tests/cli/test_cli.sh tests/cli/test_render.sh tests/freestanding/check.sh tests/sanitize.sh tests/fuzz/replay.sh \
+for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh tests/cli/test_cli.sh tests/cli/test_formats.sh tests/cli/test_render.sh tests/freestanding/check.sh tests/sanitize.sh tests/fuzz/replay.sh \
     tests/target/run.sh tests/target/test_e2e.sh tests/target/build_boards.sh \
-    tests/python/test_package.py tests/hw/run.sh; do
+    tests/python/test_package.py tests/python/test_install.sh tests/hw/run.sh; do
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
 

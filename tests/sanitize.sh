@@ -4,7 +4,8 @@
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
 # trips. Compiles the sources directly (firmware/codec/*.c, the link frames
 # and the I2C window, host-tools/lib/*.c, the renderer's meshes for
-# test_mesh, the reference model's RGL loader for test_sample, each test)
+# test_mesh, the reference model's RGL loader, projection and grid for the
+# library's RGL and goniometer readers, each test)
 # into $SANITIZE_BUILD (default build/sanitize), independent of the
 # Makefile's build. The codec core is
 # compiled as for the device (-Os and the switches of mk/core-device.mk:
@@ -26,7 +27,8 @@ CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-
         -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
 DEVICE_CFG=$(sed -n 's/^BW_DEVICE_CFG := //p' mk/core-device.mk)
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c firmware/link/bw_i2cwin.c $(ls host-tools/lib/*.c)
-         host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c"
+         host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c host-tools/ref/bwr_project.c
+         host-tools/ref/bwr_geodesic.c"
 export BW_TEST_QUICK=${BW_TEST_QUICK:-1}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

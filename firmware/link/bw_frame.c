@@ -124,12 +124,15 @@ size_t bw_job_pack(const bw_job_t *j, uint8_t *o)
     bw_put_u32(o + 28, j->offset_bits);
     for (size_t i = 0; i + 1 < sizeof j->source && j->source[i]; i++)
         o[32 + i] = (uint8_t)j->source[i];
-    return BW_JOB_SIZE;
+    size_t n = j->ext && j->ext_len <= BW_JOB_EXT_MAX ? j->ext_len : 0u;
+    if (n)
+        memcpy(o + BW_JOB_SIZE, j->ext, n);
+    return BW_JOB_SIZE + n;
 }
 
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
 {
-    if (len != BW_JOB_SIZE || in[6] || in[7])
+    if (len < BW_JOB_SIZE || len > BW_JOB_SIZE + BW_JOB_EXT_MAX || in[6] || in[7])
         return false;
     memset(j, 0, sizeof *j);
     j->shape = in[0];
@@ -144,6 +147,10 @@ bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
     j->byte_budget = bw_get_u32(in + 20);
     j->scale_bits = bw_get_u32(in + 24);
     j->offset_bits = bw_get_u32(in + 28);
+    if (len > BW_JOB_SIZE) {
+        j->ext = in + BW_JOB_SIZE;
+        j->ext_len = (uint32_t)(len - BW_JOB_SIZE);
+    }
     size_t i = 0;
     for (; i < sizeof j->source - 1u; i++) {
         j->source[i] = (char)in[32 + i];
@@ -234,6 +241,8 @@ void bw_job_make(bw_job_t *j, const bw_dims_t *d, const bw_params_t *p)
     j->byte_budget = p->byte_budget;
     j->scale_bits = p->scale_bits;
     j->offset_bits = p->offset_bits;
+    j->ext = p->ext;
+    j->ext_len = p->ext_len;
 }
 
 void bw_job_params(const bw_job_t *j, bw_params_t *p)
@@ -246,4 +255,6 @@ void bw_job_params(const bw_job_t *j, bw_params_t *p)
     p->byte_budget = j->byte_budget;
     p->scale_bits = j->scale_bits;
     p->offset_bits = j->offset_bits;
+    p->ext = j->ext;
+    p->ext_len = j->ext_len;
 }

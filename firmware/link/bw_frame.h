@@ -91,9 +91,15 @@ typedef struct {
     uint8_t shape, level_out, level_in, mode, basis, flags;
     uint32_t n_in, bands, max_error, byte_budget, scale_bits, offset_bits;
     char source[128]; /* the sensor's input (QEMU: a file by semihosting) */
+    /* the payload's extension records (bw_params_t.ext: the host's
+     * metadata), sent after the fixed part of the frame: they point into
+     * the frame's data and hold while it does. NULL and 0: none. */
+    const uint8_t *ext;
+    uint32_t ext_len;
 } bw_job_t;
 
-#define BW_JOB_SIZE 160u
+#define BW_JOB_SIZE 160u /* the fixed part; a JOB frame is this plus ext_len */
+#define BW_JOB_EXT_MAX (BW_FRAME_MAX_DATA - BW_JOB_SIZE)
 
 /* What a device can take, sent after the status in an ERROR frame so that
  * the host can say what to do instead: jobs held whole in memory have at
@@ -123,7 +129,9 @@ bool bw_hello_unpack(const uint8_t *in, size_t len, uint8_t *version, bw_limits_
  * application and the host both decide with this one rule. */
 bw_status_t bw_limits_admit(const bw_limits_t *lim, const bw_dims_t *d, const bw_params_t *p,
                             bool *streamed);
-size_t bw_job_pack(const bw_job_t *job, uint8_t *out); /* BW_JOB_SIZE bytes */
+/* BW_JOB_SIZE + job->ext_len bytes (at most BW_FRAME_MAX_DATA); the
+ * records beyond BW_JOB_EXT_MAX are not packed: check ext_len first */
+size_t bw_job_pack(const bw_job_t *job, uint8_t *out);
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
 
 /* The job of encoding samples of these dimensions with these parameters

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_input.h"
+#include "bwh_meta.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
@@ -13,22 +15,41 @@
 
 static const char encode_help[] =
     "usage: brdfwave encode -i IN [-i IN2 ...] -o OUT.bwv [--bands B] [--level L]\n"
-    "                       [--incoming N | --level-in Li] [--input-format f32|u16|i32|sed]\n"
+    "                       [--incoming N | --level-in Li] [--input-format F]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
     "                       [--coder range|ms|rice]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
+    "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
     "\n"
-    "Compresses a measurement. Raw input is little-endian, row-major\n"
-    "[incoming][outgoing][band], directions in 'brdfwave grid' order.\n"
-    "  --bands B         bands per spectrum (sed: taken from the file)\n"
+    "Compresses a measurement with its metadata (wavelengths, units, incidence\n"
+    "angles, instrument, time, location, free fields: 'brdfwave info'). Raw input\n"
+    "is little-endian, row-major [incoming][outgoing][band], directions in\n"
+    "'brdfwave grid' order, with the metadata of its sidecar IN.json if there is one.\n"
+    "  --bands B         bands per spectrum (raw input; the other formats say)\n"
     "  --level L         outgoing geodesic level 0..6; without it the input is a\n"
     "                    set of spectra [spectrum][band]\n"
     "  --incoming N      N incoming directions, outgoing transform only (isotropic BRDF)\n"
     "  --level-in Li     full BRDF: incoming hemisphere at level Li\n"
-    "  --input-format F  f32 (default), u16, i32, or sed (Spectral Evolution; several\n"
-    "                    -i files make a set of spectra, reflectance in units of 1e-5)\n"
+    "  --input-format F  auto (default: from the content and the name), f32, u16, i32,\n"
+    "                    sed (Spectral Evolution), sig (Spectra Vista), asd (ASD, every\n"
+    "                    version), usgs (USGS ASCII spectrum; its wavelength table is\n"
+    "                    found beside it), envi (header and library or image), csv\n"
+    "                    (a wavelength column and a column per spectrum, or angle\n"
+    "                    columns), npy, bsdf (an RGL BRDF sampled on the grid at\n"
+    "                    --level, default 4, at its measured incidence angles) or\n"
+    "                    gonio (a goniometer's scattered directions projected onto\n"
+    "                    the grid); several -i files make one set of spectra\n"
+    "  --channel C       bsdf: rgb (default), r, g or b\n"
+    "  --column C        sed, sig, asd: reflectance (default), target or reference\n"
+    "  --ignore-value V  samples equal to V are missing (ENVI files name theirs):\n"
+    "                    coded as their neighbours, given back as V\n"
+    "  --wavelength-table FILE  usgs: the wavelength table to use\n"
+    "  --metadata FILE   JSON metadata (the keys of 'brdfwave info --json') to add to\n"
+    "                    or replace the input's\n"
+    "  --field KEY=VALUE a free field to add (repeatable)\n"
+    "  --no-metadata     no metadata record in the payload\n"
     "  --lossless        bit-exact (default); float32 input comes back bit for bit\n"
     "                    (NaN, infinities, -0.0 and subnormals too); with --scale\n"
     "                    every value must be an integer multiple of it\n"
@@ -98,8 +119,88 @@ static int parse_coder(const char *v, void *dest)
 
 enum { DEV_HOST, DEV_QEMU, DEV_LINUX };
 static const char *const devices[] = {"host", "qemu", "linux", NULL};
-static const char *const formats[] = {"f32", "u16", "i32", "sed", NULL};
-enum { FMT_SED = 3 };
+static const char *const channels[] = {"rgb", "r", "g", "b", NULL};
+static const char *const columns[] = {"reflectance", "target", "reference", NULL};
+
+static int parse_format(const char *v, void *dest)
+{
+    int f = bwh_input_format_from_name(v);
+    if (f < 0)
+        return -1;
+    *(int *)dest = f;
+    return 0;
+}
+
+/* the measurement's metadata with --metadata FILE and --field KEY=VALUE */
+static int metadata_options(bwh_meta_t *m, const char *file, const cli_list_t *fields)
+{
+    if (file) {
+        uint8_t *b;
+        size_t n;
+        if (bwh_read_file(file, &b, &n) != 0)
+            return -1;
+        char *s = realloc(b, n + 1);
+        if (!s) {
+            free(b);
+            return bwh_fail("out of memory");
+        }
+        s[n] = 0;
+        bwh_meta_t x;
+        int rc = bwh_meta_from_json(s, &x);
+        free(s);
+        if (rc)
+            return bwh_fail("%s: %s", file, bwh_last_error());
+        rc = bwh_meta_merge(m, &x);
+        bwh_meta_free(&x);
+        if (rc)
+            return -1;
+    }
+    for (int i = 0; i < fields->n; i++) {
+        const char *eq = strchr(fields->item[i], '=');
+        if (!eq || eq == fields->item[i])
+            return bwh_fail("--field needs KEY=VALUE, got '%s'", fields->item[i]);
+        char key[256];
+        snprintf(key, sizeof key, "%.*s", (int)(eq - fields->item[i]), fields->item[i]);
+        bwh_meta_t x;
+        bwh_meta_init(&x);
+        int rc = bwh_meta_add_field(&x, key, eq + 1) || bwh_meta_merge(m, &x);
+        bwh_meta_free(&x);
+        if (rc)
+            return -1;
+    }
+    return 0;
+}
+
+/* The dimensions: the file's shape, or the shape options (which must agree
+ * with what the file says) */
+static int dims_of(const bwh_measure_t *m, const cli_shape_t *sh, bwh_shape_t *shape,
+                   bw_dims_t *d)
+{
+    int given = sh->has_level || sh->has_incoming || sh->has_level_in;
+    if (m->bands && sh->has_bands && shape->bands != m->bands)
+        return bwh_fail("the input has %u bands, --bands says %u", m->bands, shape->bands);
+    if (m->bands)
+        shape->bands = m->bands;
+    if (m->shape < 0 || (m->shape == BW_SHAPE_SPECTRA && given))
+        return bwh_shape_dims(shape, m->count, d);
+    /* the options given must say what the file says (--level also picks
+     * the grid of the formats sampled onto it, and the reader used it) */
+    if ((sh->has_level && sh->level != m->level_out) ||
+        (sh->has_incoming && (m->shape != BW_SHAPE_BRDF_ISO || sh->incoming != m->n_in)) ||
+        (sh->has_level_in && (m->shape != BW_SHAPE_BRDF_FULL || sh->level_in != m->level_in)))
+        return bwh_fail("the input holds a %s at level %u with %u incoming directions; the "
+                        "shape options say otherwise",
+                        bwh_shape_name((unsigned)m->shape), m->level_out,
+                        m->shape == BW_SHAPE_REFLECTANCE ? 1u : m->n_in);
+    unsigned n_in = m->shape == BW_SHAPE_REFLECTANCE ? 1u : m->n_in;
+    if (bw_dims_make(d, (bw_shape_t)m->shape, m->level_out, m->level_in, n_in, m->bands) != BW_OK ||
+        bw_dims_samples(d) != m->count)
+        return bwh_fail("the input's shape (%s, %u by %u directions, %u bands) does not make "
+                        "its %zu samples",
+                        bwh_shape_name((unsigned)m->shape), n_in, m->level_out, m->bands,
+                        m->count);
+    return 0;
+}
 
 int bw_cmd_encode(int argc, char **argv)
 {
@@ -107,7 +208,12 @@ int bw_cmd_encode(int argc, char **argv)
     cli_list_t in = {inputs, 0, (int)(sizeof inputs / sizeof *inputs)};
     const char *outp = NULL;
     cli_shape_t sh = {0};
-    int fmt = BWH_FMT_F32, device = DEV_HOST, lossless = 0, stream = 0, relative = 0;
+    int fmt = BWH_IN_AUTO, device = DEV_HOST, lossless = 0, stream = 0, relative = 0;
+    int channel = 0, column = 0, no_meta = 0, has_ignore = 0;
+    double ignore = 0;
+    const char *meta_file = NULL, *wl_table = NULL;
+    const char *field_items[256];
+    cli_list_t fields = {field_items, 0, 256};
     int n_lossless = 0, n_max_error = 0, n_bytes = 0, n_ratio = 0, has_symmetry = 0;
     double max_error = 0, ratio = 0, scale = 0, max_rel = 0, rel_floor = 0;
     int n_max_rel = 0, n_rel_floor = 0;
@@ -121,7 +227,17 @@ int bw_cmd_encode(int argc, char **argv)
         CLI_SHAPE_BANDS(&sh),
         CLI_SHAPE_LEVELS(&sh),
         CLI_SHAPE_INCOMING(&sh),
-        {"input-format", 0, CLI_CHOICE, .dest = &fmt, .choices = formats},
+        {"input-format", 0, CLI_CALL, .dest = &fmt, .parse = parse_format,
+         .what = "--input-format must be auto, f32, u16, i32, sed, sig, asd, usgs, envi, csv, "
+                 "npy, bsdf or gonio"},
+        {"channel", 0, CLI_CHOICE, .dest = &channel, .choices = channels},
+        {"column", 0, CLI_CHOICE, .dest = &column, .choices = columns},
+        {"ignore-value", 0, CLI_REAL, .dest = &ignore, .lo = -3.4e38, .hi = 3.4e38,
+         .seen = &has_ignore},
+        {"wavelength-table", 0, CLI_STRING, .dest = &wl_table},
+        {"metadata", 0, CLI_STRING, .dest = &meta_file},
+        {"field", 0, CLI_LIST, .dest = &fields},
+        {"no-metadata", 0, CLI_FLAG, .dest = &no_meta},
         {"lossless", 0, CLI_FLAG, .dest = &lossless, .seen = &n_lossless},
         {"max-error", 0, CLI_POSITIVE, .dest = &max_error, .seen = &n_max_error},
         {"max-rel-error", 0, CLI_POSITIVE, .dest = &max_rel, .seen = &n_max_rel},
@@ -183,34 +299,61 @@ int bw_cmd_encode(int argc, char **argv)
         (sh.has_level || o.mode > BW_MODE_MAX_ERROR || (o.flags & BW_FLAG_STREAM_ORDER)))
         return cli_usage("--basis pred codes sets of spectra (no --level) with --lossless "
                          "or --max-error, not --stream");
-    if (fmt != FMT_SED && in.n > 1)
-        return cli_usage("several inputs are only for --input-format sed");
-    if (fmt != FMT_SED && !sh.has_bands)
+    if (in.n > 1 && fmt >= BWH_IN_F32 && fmt <= BWH_IN_I32)
+        return cli_usage("several inputs make a set of spectra: not for raw input");
+    if ((fmt == BWH_IN_F32 || fmt == BWH_IN_U16 || fmt == BWH_IN_I32) && !sh.has_bands)
         return cli_usage("--bands is required for raw input");
-    if (relative && fmt != BWH_FMT_F32)
-        return cli_usage("--relative is for float input (--input-format f32)");
+    if (relative && (fmt == BWH_IN_U16 || fmt == BWH_IN_I32))
+        return cli_usage("--relative is for float input");
+    if (no_meta && (meta_file || fields.n))
+        return cli_usage("--no-metadata with --metadata or --field");
 
-    /* the samples: floats (f32), or integers of value scale * sample */
+    /* the samples: floats, or integers of value scale * sample */
     int32_t *ints = NULL;
     float *floats = NULL, iscale = 1.0f;
     size_t count = 0;
-    uint8_t *payload = NULL;
-    size_t plen = 0;
+    uint8_t *payload = NULL, *ext = NULL;
+    size_t plen = 0, ext_len = 0;
     int rc = CLI_EXIT_FAIL;
     bw_dims_t d;
-    if (fmt == FMT_SED) {
-        if (bwh_sed_read_set(in.item, in.n, &ints, &shape.bands, &count) != 0)
+    bwh_measure_t m;
+    bwh_read_opts_t ro = BWH_READ_OPTS_INIT;
+    ro.level = sh.has_level ? (int)sh.level : -1;
+    ro.channel = channel;
+    ro.column = column;
+    ro.has_ignore = has_ignore;
+    ro.ignore = ignore;
+    ro.wavelengths = wl_table;
+    if (bwh_measure_read(in.item, in.n, fmt, &ro, &m) != 0) {
+        bwh_measure_init(&m);
+        goto fail;
+    }
+    if (!m.bands && !sh.has_bands) {
+        cli_fail("%s: raw samples: give --bands (or a sidecar %s.json with the wavelengths)",
+                 in.item[0], in.item[0]);
+        goto out;
+    }
+    if (dims_of(&m, &sh, &shape, &d) != 0 || metadata_options(&m.meta, meta_file, &fields) != 0)
+        goto fail;
+    if (!no_meta && (bwh_meta_check(&m.meta, &d) != 0 ||
+                     bwh_meta_encode(&m.meta, &ext, &ext_len) != 0))
+        goto fail;
+    o.ext = ext;
+    o.ext_len = ext_len;
+    count = m.count;
+    if (m.values || relative) {
+        floats = m.values ? m.values : bwh_measure_floats(&m);
+        if (!floats)
             goto fail;
-        iscale = (float)BWH_SED_SCALE;
+        if (m.values)
+            m.values = NULL;
     } else {
-        if (bwh_raw_read(in.item[0], (bwh_format_t)fmt, fmt == BWH_FMT_F32 ? &floats : NULL,
-                         &ints, &count) != 0)
-            goto fail;
-        if (fmt == BWH_FMT_I32 && scale > 0)
+        ints = m.ints;
+        m.ints = NULL;
+        iscale = (float)m.scale;
+        if (m.scale == 1.0 && scale > 0)
             iscale = (float)scale;
     }
-    if (bwh_shape_dims(&shape, count, &d) != 0)
-        goto fail;
     if (n_ratio) {
         double b = 4.0 * (double)count / ratio;
         if (b < 1)
@@ -246,5 +389,7 @@ out:
     free(ints);
     free(floats);
     free(payload);
+    free(ext);
+    bwh_measure_free(&m);
     return rc;
 }

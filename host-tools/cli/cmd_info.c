@@ -6,18 +6,44 @@
 #include "bwh_exact.h"
 #include "bwh_ext.h"
 #include "bwh_guarantee.h"
+#include "bwh_meta.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
 #include "commands.h"
 
-static const char info_help[] = "usage: brdfwave info IN.bwv\n"
-                                "\n"
-                                "Prints the payload header as 'key: value' lines.\n";
+static const char info_help[] =
+    "usage: brdfwave info IN.bwv [--json]\n"
+    "\n"
+    "Prints the payload header as 'key: value' lines, then its metadata\n"
+    "(wavelengths, quantity and unit, incidence angles, instrument, time,\n"
+    "location, free fields) and the bytes it takes. '-' is standard input.\n"
+    "  --json  the metadata alone as JSON (what 'encode --metadata' reads)\n";
+
+/* The bytes the payload would be smaller without its metadata: the record
+ * and, when it is the only one, the extension area's length field. */
+static size_t metadata_bytes(const uint8_t *p, const bw_header_t *h)
+{
+    size_t pos = 0, at = 0, bytes = 0, records = 0;
+    uint8_t type;
+    const uint8_t *d;
+    uint32_t dl;
+    while (bw_ext_next(p + h->ext_off, h->ext_len, &pos, &type, &d, &dl)) {
+        records++;
+        if (type == BW_EXT_METADATA)
+            bytes += pos - at;
+        at = pos;
+    }
+    if (bytes && records == 1)
+        for (uint32_t n = h->ext_len; n; n >>= 7)
+            bytes++;
+    return bytes;
+}
 
 int bw_cmd_info(int argc, char **argv)
 {
-    const cli_opt_t opts[] = {{NULL}};
+    int json = 0;
+    const cli_opt_t opts[] = {{"json", 0, CLI_FLAG, .dest = &json}, {NULL}};
     int first, st;
     if (!cli_parse(argc, argv, opts, info_help, &first, &st))
         return st;
@@ -43,9 +69,27 @@ int bw_cmd_info(int argc, char **argv)
     int fx = bwh_ext_find(p, &h, BW_EXT_FLOAT_EXACT, &xd, &xl);
     int fl = bwh_ext_find(p, &h, BW_EXT_LOG_MAP, &ld, &ll);
     int gs = bwh_guarantee_of(p, &h, &g);
-    free(p);
-    if (gs != 0 || fx < 0 || fl < 0 || (fx == 1 && bwh_exact_fields(xd, xl, &map, &low, &n_exc) != 0))
+    if (gs != 0 || fx < 0 || fl < 0 || (fx == 1 && bwh_exact_fields(xd, xl, &map, &low, &n_exc) != 0)) {
+        free(p);
         return cli_fail("%s: %s", path, gs != 0 ? bwh_last_error() : "malformed value records");
+    }
+    bwh_meta_t meta;
+    int ms = bwh_meta_of_payload(p, len, &h, &meta);
+    size_t meta_bytes = metadata_bytes(p, &h);
+    free(p);
+    if (ms != 0)
+        return cli_fail("%s: %s", path, bwh_last_error());
+    if (json) {
+        char *j;
+        if (bwh_meta_to_json(&meta, &j) != 0) {
+            bwh_meta_free(&meta);
+            return cli_fail("%s", bwh_last_error());
+        }
+        printf("%s\n", j);
+        free(j);
+        bwh_meta_free(&meta);
+        return CLI_EXIT_OK;
+    }
     size_t n = bw_dims_samples(&h.dims);
     double scale = bwh_bits_to_float(h.scale_bits);
     printf("version: %u\n", h.version);
@@ -92,5 +136,8 @@ int bw_cmd_info(int argc, char **argv)
     printf("guarantee_max_rel_error: %s\n", num);
     bwh_shortest(g.rel_floor, num, sizeof num);
     printf("guarantee_rel_floor: %s\n", num);
+    printf("metadata_bytes: %zu\n", meta_bytes);
+    bwh_meta_print(&meta, stdout);
+    bwh_meta_free(&meta);
     return CLI_EXIT_OK;
 }

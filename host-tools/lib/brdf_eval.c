@@ -9,6 +9,7 @@
 #include "bwh_decode.h"
 #include "bwh_error.h"
 #include "bwh_file.h"
+#include "bwh_meta.h"
 #include "geodesic.h"
 
 #define E_PI 3.14159265358979323846
@@ -90,12 +91,39 @@ int bwh_brdf_data_load(bwh_brdf_data_t *d, const char *path)
     int32_t *samples;
     float *values;
     int rc = bwh_decode(buf, len, &h, &samples, &values);
+    bwh_meta_t meta;
+    bwh_meta_init(&meta);
+    if (rc == 0)
+        rc = bwh_meta_of_payload(buf, len, &h, &meta);
     free(buf);
-    if (rc != 0)
+    if (rc != 0) {
+        free(samples);
+        free(values);
         return bwh_fail("%s: %s", path, bwh_last_error());
+    }
     free(samples);
-    rc = bwh_brdf_data_init(d, &h.dims, values, NULL, 0.0, 0.0);
+    /* the measured incidence angles and wavelength range the payload
+     * carries (docs/FORMAT.md, Metadata), else the defaults */
+    double *theta_deg = NULL, lf = 0.0, ll = 0.0;
+    if (h.dims.shape == BW_SHAPE_BRDF_ISO && meta.incidence.n == h.dims.n_in) {
+        theta_deg = malloc(meta.incidence.n * sizeof *theta_deg);
+        if (!theta_deg) {
+            free(values);
+            bwh_meta_free(&meta);
+            return bwh_fail("out of memory");
+        }
+        for (size_t i = 0; i < meta.incidence.n; i++)
+            theta_deg[i] = meta.inc_unit == BWH_ANGLE_RAD ? meta.incidence.v[i] * 180.0 / E_PI
+                                                          : meta.incidence.v[i];
+    }
+    if (meta.wavelengths.n == h.dims.bands && meta.wl_unit == BWH_WL_NM && h.dims.bands > 1) {
+        lf = meta.wavelengths.v[0];
+        ll = meta.wavelengths.v[h.dims.bands - 1];
+    }
+    rc = bwh_brdf_data_init(d, &h.dims, values, theta_deg, lf, ll);
+    free(theta_deg);
     free(values);
+    bwh_meta_free(&meta);
     if (rc != 0)
         return bwh_fail("%s: %s", path, bwh_last_error());
     return 0;

@@ -43,7 +43,10 @@ typedef struct {
  * 0, or -1 (bwh_last_error()). */
 int bwh_brdf_data_init(bwh_brdf_data_t *d, const bw_dims_t *dims, const float *values,
                        const double *theta_in_deg, double lambda_first, double lambda_last);
-/* Decodes a payload file and initialises d from it. */
+/* Decodes a payload file and initialises d from it, with the incidence
+ * angles and the wavelength range its metadata carries (docs/FORMAT.md,
+ * Metadata; the measured angles of an RGL file, for one), else the
+ * defaults above. */
 int bwh_brdf_data_load(bwh_brdf_data_t *d, const char *path);
 void bwh_brdf_data_free(bwh_brdf_data_t *d);
 

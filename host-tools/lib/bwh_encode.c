@@ -77,6 +77,10 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
     p.flags = (uint8_t)(o->flags & BW_FLAGS_KNOWN);
+    if (o->ext_len > BW_EXT_MAX)
+        return bwh_fail("extension records of %zu bytes, more than %u", o->ext_len, BW_EXT_MAX);
+    p.ext = o->ext;
+    p.ext_len = (uint32_t)o->ext_len;
     if (o->mode == BW_MODE_MAX_ERROR) {
         if (!(o->max_error >= 1.0) || o->max_error > BW_SAMPLE_MAX)
             return bwh_fail("max error must be at least 1 sample unit (and below %d)", BW_SAMPLE_MAX);
@@ -101,6 +105,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         return -1;
     }
     size_t wb = bw_work_bound(n, dims->bands), cap = bw_payload_bound(n);
+    if (o->ext_len)
+        cap += o->ext_len + BW_EXT_OVERHEAD;
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
     uint8_t *buf = malloc(cap);
     if (!work || !ver || !buf) {

@@ -43,6 +43,10 @@ typedef struct {
      * of the two, |x' - x| <= min(E, max(R |x|, F)) (bwh_guarantee.h) */
     double max_rel_error;
     double rel_floor;
+    /* extension records for the payload (bw_params_t.ext: the metadata
+     * record of bwh_meta_encode), ext_len bytes; none when 0 */
+    const uint8_t *ext;
+    size_t ext_len;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

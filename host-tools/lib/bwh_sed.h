@@ -21,6 +21,11 @@ int bwh_sed_read(const char *path, int32_t **values, uint32_t *bands, double **w
 int bwh_sed_read_set(const char *const *paths, int n, int32_t **values, uint32_t *bands,
                      size_t *count);
 
+/* A decimal with at most `decimals` fraction digits, exactly, in units of
+ * 10^-decimals (within the codec's sample range); *end after it. 0, or -1
+ * (not such a number). */
+int bwh_parse_fixed(const char *s, int decimals, const char **end, int32_t *out);
+
 /* the value of one integer unit of bwh_sed_read's samples */
 #define BWH_SED_SCALE 1e-5
 

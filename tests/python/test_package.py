@@ -1,10 +1,14 @@
 #!/usr/bin/python3
 """The Python package against the CLI: decode of codec payloads equals
 `brdfwave decode` bit for bit, encode equals `brdfwave encode` byte for byte,
-grid equals `brdfwave grid`; bad input raises a clear BrdfwaveError; the
-register map module matches firmware/link/bw_i2cmap.h.
+grid equals `brdfwave grid`; metadata and the readers as the CLI has them;
+bad input raises a clear exception in Python's terms; the ctypes structures
+are checked against the library; the register map module matches
+firmware/link/bw_i2cmap.h.
 Prints "RESULT: N passed, M failed"."""
+import ctypes
 import glob
+import json
 import os
 import re
 import subprocess
@@ -222,8 +226,8 @@ def bad_input_raises_a_clear_error():
     try:
         brdfwave.decode(tmp("missing.bwv"))
         raise AssertionError("missing file decoded")
-    except brdfwave.BrdfwaveError as e:
-        assert "missing.bwv" in str(e)
+    except FileNotFoundError as e:
+        assert e.filename == tmp("missing.bwv")
     for kw in ({"level": 3}, {"level": 9}, {"max_error": -1}, {"symmetry": "rotate"}):
         try:
             brdfwave.encode(np.zeros((2, 5), np.float32), **kw)
@@ -306,6 +310,154 @@ def register_map_matches_the_c_header():
     assert len(defs) > 30
     for name, v in defs.items():
         assert getattr(i2cmap, name) == int(v, 0), name
+
+
+@case
+def metadata_travels_with_the_array():
+    wl = np.array([400.5, 401.7, 403.1, 410.0, 500.25])
+    x = np.linspace(0.1, 0.9, 15, dtype=np.float32).reshape(3, 5)
+    p = brdfwave.encode(x, wavelengths=wl, quantity="radiance", max_error=1e-4,
+                        fields={"site": "plot 4"}, metadata={"instrument": "bench",
+                                                             "serial": "7"})
+    m = brdfwave.decode(p)
+    assert m.layout == "spectra" and m.shape == (3, 5)
+    assert np.array_equal(m.wavelengths, wl) and m.wavelength_unit == "nm"
+    assert m.quantity == "radiance" and m.unit == "W m^-2 sr^-1 nm^-1"
+    assert m.metadata["instrument"] == "bench" and m.metadata["fields"] == {"site": "plot 4"}
+    assert float(np.abs(m - x).max()) <= 1e-4
+    # the CLI reads the same metadata
+    with open(tmp("meta.bwv"), "wb") as f:
+        f.write(p)
+    assert json.loads(bw("info", "--json", tmp("meta.bwv"))) == m.metadata
+    # a decoded measurement encodes again with its metadata and layout
+    assert brdfwave.decode(brdfwave.encode(m, max_error=1e-4)).metadata == m.metadata
+    # without metadata: no metadata record
+    assert brdfwave.decode_bytes(brdfwave.encode(x, max_error=1e-4)).metadata == {}
+    assert brdfwave.header_of(p)["version"] == 7
+
+
+@case
+def incidence_angles_in_the_callers_units():
+    x = np.fromfile(tmp("phong.f32"), dtype="<f4").reshape(5, 256, 1)
+    for unit, a in (("deg", [0.0, 27.67, 39.86, 49.94, 59.27]),
+                    ("rad", [0.0, 0.48, 0.69, 0.87, 1.03])):
+        m = brdfwave.decode(brdfwave.encode(x, level=3, incoming=True, max_error=0.002,
+                                            incidence=a, incidence_unit=unit))
+        assert m.layout == "brdf-iso" and m.incidence_unit == unit
+        assert list(m.incidence) == a and m.directions.shape == (256, 3)
+    try:
+        brdfwave.encode(x, level=3, incoming=True, max_error=0.002, incidence=[0, 10])
+        raise AssertionError("2 angles for 5 incoming directions accepted")
+    except brdfwave.BrdfwaveError as e:
+        assert "incidence" in str(e), str(e)
+
+
+@case
+def integers_are_coded_as_integers():
+    for dt in (np.uint8, np.int16, np.uint16, np.int32):
+        x = (np.arange(24).reshape(3, 8) * 37 % 200).astype(dt)
+        if dt == np.int32:
+            x[0, 0] = 2 ** 24 - 1
+        m = brdfwave.decode(brdfwave.encode(x), integers=True)
+        assert np.array_equal(np.asarray(m), x.astype(np.int32)), dt
+        assert m.metadata["sample_type"] == {np.uint8: "u8", np.int16: "i16",
+                                             np.uint16: "u16", np.int32: "i32"}[dt]
+    try:
+        brdfwave.encode(np.array([[16777217, 1]], dtype=np.int64))
+        raise AssertionError("16777217 accepted")
+    except brdfwave.BrdfwaveError as e:
+        assert "16777217" in str(e)
+
+
+@case
+def every_mode_and_option_of_the_cli():
+    x = np.fromfile(tmp("phong.f32"), dtype="<f4").reshape(5, 256, 1)
+    x.tofile(tmp("opts.f32"))
+    for kw, opts in (({"ratio": 16, "relative": True}, ["--ratio", "16", "--relative"]),
+                     ({"max_error": 0.002, "coder": "rice", "stream": True, "basis": "53"},
+                      ["--max-error", "0.002", "--coder", "rice", "--stream", "--basis", "53"]),
+                     ({"nbytes": 600, "symmetry": "mirror"},
+                      ["--bytes", "600", "--symmetry", "mirror"])):
+        p = brdfwave.encode(x, level=3, incoming=True, **kw)
+        bw("encode", "-i", tmp("opts.f32"), "-o", tmp("opts.bwv"), "--bands", "1", "--level",
+           "3", "--incoming", "5", *opts)
+        with open(tmp("opts.bwv"), "rb") as f:
+            assert p == f.read(), kw
+
+
+@case
+def errors_speak_python():
+    x = np.linspace(0.1, 0.9, 10, dtype=np.float32).reshape(2, 5)
+    try:
+        brdfwave.encode(x, scale=0.3)
+        raise AssertionError("lossless float off the scale accepted")
+    except ValueError as e:
+        assert "max_error=" in str(e) and "--" not in str(e), str(e)
+    try:
+        brdfwave.encode(x, max_error=0.01, path="/nonexistent/a.bwv")
+        raise AssertionError("written to a missing folder")
+    except FileNotFoundError as e:
+        assert e.filename == "/nonexistent/a.bwv", e
+    try:
+        brdfwave.encode(x, level="3")
+        raise AssertionError("level '3' accepted")
+    except TypeError:
+        pass
+    try:
+        brdfwave.read_sed(tmp("none.sed"))
+        raise AssertionError("missing .sed read")
+    except FileNotFoundError as e:
+        assert e.filename == tmp("none.sed")
+    p = brdfwave.encode(x, max_error=0.01, path=tmp("h.bwv"))
+    assert brdfwave.header_of(tmp("h.bwv")) == brdfwave.header_of(p)
+    info = bw("info", tmp("h.bwv"))
+    want = float(re.search(r"^max_error: (\S+)$", info, re.M).group(1))
+    assert abs(brdfwave.header_of(p)["max_error"] - want) <= 1e-9 * want, (want, info)
+
+
+@case
+def readers_give_what_the_cli_encodes():
+    data = os.path.join(ROOT, "tests", "data")
+    seds = sorted(glob.glob(os.path.join(data, "field_psr3500", "*.sed")))[:4]
+    s = brdfwave.read_sed(seds)
+    assert s.shape == (4, 1024) and s.metadata["serial"] == "1116037"
+    assert s.metadata["spectrum_names"] == [os.path.basename(f) for f in seds]
+    bw("encode", "-i", *seds, "-o", tmp("sed.bwv"), "--lossless")
+    with open(tmp("sed.bwv"), "rb") as f:
+        assert brdfwave.encode(s, lossless=True, scale=1e-5) == f.read()
+    inst = os.path.join(data, "instruments")
+    for path, fmt, bands in ((os.path.join(inst, "asd", "soil.asd"), "asd", 2151),
+                             (os.path.join(inst, "svc_sig", "gr070214_003.sig"), "sig", 991),
+                             (os.path.join(inst, "envi", "s06av95a_envi.hdr"), "envi", 224)):
+        m = getattr(brdfwave, "read_" + fmt)(path)
+        assert m.shape[-1] == bands and len(m.wavelengths) == bands, (path, m.shape)
+    r = brdfwave.read_bsdf(os.path.join(data, "rgl", "paper_white_rgb.bsdf"), channel="g")
+    assert r.layout == "brdf-iso" and r.shape == (7, 1024, 1)
+    assert [round(float(np.degrees(a)), 2) for a in r.incidence] == \
+        [0, 27.67, 39.86, 49.94, 59.27, 68.57, 78.46]
+
+
+@case
+def the_structures_are_checked_against_the_library():
+    from brdfwave import _abi, _lib
+    L = _lib.lib()
+    _abi.check(L, {"bw_header_t": _lib.Header, "bwh_encode_opts_t": _lib.EncodeOpts})
+
+    class Short(ctypes.Structure):
+        _fields_ = _lib.EncodeOpts._fields_[:-1]
+    try:
+        _abi.check(L, {"bwh_encode_opts_t": Short})
+        raise AssertionError("a structure of the wrong size passed")
+    except ImportError as e:
+        assert "bwh_encode_opts_t" in str(e), str(e)
+
+
+@case
+def the_package_has_a_version_and_docstrings():
+    assert re.match(r"^\d+\.\d+\.\d+$", brdfwave.__version__)
+    for name in brdfwave.__all__:
+        if name != "__version__":
+            assert getattr(brdfwave, name).__doc__, name
 
 
 print("RESULT: %d passed, %d failed" % (passed, failed))

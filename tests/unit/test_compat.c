@@ -1,7 +1,9 @@
 /* Archived payloads keep decoding: every payload under tests/golden/v<N>/,
  * written by the encoder of format version N, decodes to the samples and
  * values its MANIFEST records (CRC-32 of the little-endian int32 samples and
- * float32 values), and its header says version N. From version 6 on every
+ * float32 values), and its header says version N. From version 7 on a
+ * payload NAME.bwv with a metadata record (docs/FORMAT.md, Metadata) has
+ * NAME.json beside it, the metadata it decodes to; one without has none. From version 6 on every
  * decoder must pass this for every earlier version. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,10 +18,43 @@
 #include "bw_config.h"
 #include "bw_crc32.h"
 #include "bw_le.h"
+#include "bwh_meta.h"
 #include "bwhost.h"
 
 /* the versions with archived payloads, oldest first */
 static const unsigned versions[] = {6, 7};
+
+/* The metadata of payload p[len] (header h) is that of the JSON file
+ * path: both read to a bwh_meta_t and written again as JSON, which must be
+ * the same text. */
+static void assert_metadata_is(const uint8_t *p, size_t len, const bw_header_t *h,
+                               const char *path)
+{
+    bwh_meta_t got, want;
+    if (bwh_meta_of_payload(p, len, h, &got) != 0)
+        fail_msg("%s: %s", path, bwh_last_error());
+    if (bwh_meta_empty(&got))
+        fail_msg("%s: the payload has no metadata", path);
+    uint8_t *j;
+    size_t jn;
+    if (bwh_read_file(path, &j, &jn) != 0)
+        fail_msg("%s", bwh_last_error());
+    char *text = realloc(j, jn + 1);
+    assert_non_null(text);
+    text[jn] = 0;
+    if (bwh_meta_from_json(text, &want) != 0)
+        fail_msg("%s: %s", path, bwh_last_error());
+    free(text);
+    char *a, *b;
+    assert_int_equal(bwh_meta_to_json(&got, &a), 0);
+    assert_int_equal(bwh_meta_to_json(&want, &b), 0);
+    if (strcmp(a, b))
+        fail_msg("%s: the payload's metadata differs from the file's", path);
+    free(a);
+    free(b);
+    bwh_meta_free(&got);
+    bwh_meta_free(&want);
+}
 
 /* CRC-32 of n 32-bit words (int32 or float32) written little-endian */
 static uint32_t crc_of_words(const void *words, size_t n)
@@ -80,6 +115,22 @@ static void every_archived_payload_decodes_to_its_recorded_samples(void **state)
                 fail_msg("%s: %zu samples, recorded %lu", path, got, n);
             if (crc_of_words(s, n) != crc_s || crc_of_words(x, n) != crc_v)
                 fail_msg("%s: decodes to other samples than recorded", path);
+            if (versions[v] >= 7) {
+                /* with NAME.json, the metadata it holds; else none */
+                snprintf(path, sizeof path, "%s/%s.json", dir, name);
+                FILE *js = fopen(path, "r");
+                if (js) {
+                    fclose(js);
+                    assert_metadata_is(p, len, &h, path);
+                } else {
+                    bwh_meta_t none;
+                    if (bwh_meta_of_payload(p, len, &h, &none) != 0)
+                        fail_msg("%s: %s", path, bwh_last_error());
+                    if (!bwh_meta_empty(&none))
+                        fail_msg("%s.bwv: metadata, but no %s", name, path);
+                    bwh_meta_free(&none);
+                }
+            }
             free(s);
             free(x);
             free(p);

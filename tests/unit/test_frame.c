@@ -170,6 +170,27 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     b[6] = 0;
     memset(b + 32, 'x', 128); /* no terminating NUL */
     assert_false(bw_job_unpack(b, sizeof b, &k));
+
+    /* the extension records travel after the fixed part, up to a frame */
+    static uint8_t ext[BW_JOB_EXT_MAX], big[BW_FRAME_MAX_DATA + 1];
+    for (size_t i = 0; i < sizeof ext; i++)
+        ext[i] = (uint8_t)(i * 7 + 1);
+    j.ext = ext;
+    j.ext_len = 5;
+    assert_int_equal(bw_job_pack(&j, big), BW_JOB_SIZE + 5);
+    assert_true(bw_job_unpack(big, BW_JOB_SIZE + 5, &k));
+    assert_int_equal(k.ext_len, 5);
+    assert_ptr_equal(k.ext, big + BW_JOB_SIZE);
+    assert_memory_equal(k.ext, ext, 5);
+    j.ext_len = BW_JOB_EXT_MAX;
+    assert_int_equal(bw_job_pack(&j, big), BW_FRAME_MAX_DATA);
+    assert_true(bw_job_unpack(big, BW_FRAME_MAX_DATA, &k));
+    assert_memory_equal(k.ext, ext, BW_JOB_EXT_MAX);
+    assert_false(bw_job_unpack(big, BW_FRAME_MAX_DATA + 1, &k));
+    bw_params_t p;
+    bw_job_params(&k, &p);
+    assert_ptr_equal(p.ext, k.ext);
+    assert_int_equal(p.ext_len, BW_JOB_EXT_MAX);
 }
 
 int main(void)

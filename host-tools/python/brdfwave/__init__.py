@@ -14,14 +14,18 @@ does not load numpy, so it starts fast on a small host.
 """
 from ._lib import BrdfwaveError, header_of
 from .guarantee import check_guarantee, guarantee
+from ._version import __version__
 
-__all__ = ["BrdfwaveError", "Measurement", "check_guarantee", "decode", "decode_bytes", "encode",
-           "grid", "guarantee", "header_of"]
+_ARRAY_API = ("Measurement", "decode", "decode_bytes", "encode", "grid", "read", "read_sed",
+              "read_sig", "read_asd", "read_usgs", "read_envi", "read_csv", "read_npy",
+              "read_bsdf", "read_gonio")
+__all__ = ["BrdfwaveError", "check_guarantee", "guarantee", "header_of",
+           "__version__"] + list(_ARRAY_API)
 
 
 def __getattr__(name):
     # numpy is loaded with the first use of the array API
-    if name in ("Measurement", "decode", "decode_bytes", "encode", "grid"):
+    if name in _ARRAY_API:
         from . import codec
         return getattr(codec, name)
     raise AttributeError("module 'brdfwave' has no attribute %r" % name)

@@ -7,8 +7,8 @@ import struct
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-class BrdfwaveError(Exception):
-    """A payload, an input or an option the library rejected."""
+class BrdfwaveError(ValueError):
+    """A payload, an input or an option the library rejected (a ValueError)."""
 
 
 class Dims(ctypes.Structure):
@@ -42,7 +42,8 @@ class EncodeOpts(ctypes.Structure):
                 ("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
                 ("device_timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
                 ("device_instructions", ctypes.POINTER(ctypes.c_uint64)),
-                ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double)]
+                ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
+                ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)
@@ -74,6 +75,10 @@ def _find():
     env = os.environ.get("BRDFWAVE_LIB")
     if env:
         return env
+    # an installed package carries its library (pip install host-tools/python)
+    own = os.path.join(_HERE, "libbrdfwave.so")
+    if os.path.exists(own):
+        return own
     # in the source tree: host-tools/python/brdfwave -> build/host
     cand = os.path.join(_HERE, "..", "..", "..", "build", "host", "libbrdfwave.so")
     if os.path.exists(cand):
@@ -92,6 +97,11 @@ def lib():
     if _lib is not None:
         return _lib
     L = ctypes.CDLL(_find())
+    from . import _abi
+    _abi.check(L, {"bw_dims_t": Dims, "bw_header_t": Header, "bwh_shape_t": Shape,
+                   "bwh_encode_opts_t": EncodeOpts, "bwh_i2c_t": I2C,
+                   "bwh_i2c_payload_t": I2CPayload})
+    _abi.declare(L)
     P = ctypes.POINTER
     L.bwh_last_error.restype = ctypes.c_char_p
     L.bwh_last_error.argtypes = []
@@ -156,19 +166,28 @@ def _float_of(bits):
 
 def _header_dict(h):
     d = h.dims
+    scale = _float_of(h.scale_bits)
     return {"version": h.version, "shape": SHAPES[d.shape], "level_out": d.level_out,
             "level_in": d.level_in, "n_in": d.n_in, "n_out": d.n_out, "bands": d.bands,
             "basis": _BASIS_NAMES[h.basis], "spectral_levels": h.spectral_levels,
             "mode": _MODES[h.mode], "flags": h.flags, "prequant": h.prequant,
-            "step_q8": h.step_q8, "max_error": h.max_error, "scale": _float_of(h.scale_bits),
+            "step_q8": h.step_q8,
+            # in the values' units, as 'brdfwave info' prints it; the
+            # integer bound in max_error_samples
+            "max_error": h.max_error * scale if h.mode == 1 else 0.0,
+            "max_error_samples": h.max_error, "scale": scale,
             "offset": _float_of(h.offset_bits), "payload_len": h.payload_len,
             "header_len": h.header_len, "body_len": h.body_len, "crc": h.crc}
 
 
 def header_of(payload):
-    """Validates a payload's header and CRC (bw_header_read); returns it as a dict."""
+    """Validates a payload's header and CRC (bw_header_read); returns it as a
+    dict. payload: bytes, or the path of a payload file."""
     L = lib()
     h = Header()
+    if isinstance(payload, (str, os.PathLike)):
+        with open(payload, "rb") as f:
+            payload = f.read()
     payload = bytes(payload)
     st = L.bw_header_read(payload, len(payload), ctypes.byref(h))
     if st != 0:

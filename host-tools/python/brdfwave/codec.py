@@ -1,56 +1,139 @@
-"""brdfwave.codec: payloads to numpy arrays and back, the geodesic grid.
+"""brdfwave.codec: numpy arrays to payloads and back, with their metadata;
+the measurement files of the field read to arrays; the geodesic grid.
 
-    import brdfwave
-    m = brdfwave.decode("payload-1.bwv")      # Measurement (a numpy ndarray)
-    m.shape, m.header["bands"], m.directions   # directions: unit vectors
-    p = brdfwave.encode(m, level=4, max_error=1e-3)
-    g = brdfwave.grid(4)                       # the scan order of `brdfwave grid`
+    import numpy as np, brdfwave
+    wl = np.linspace(350.0, 2500.0, 2151)
+    p = brdfwave.encode(spectra, wavelengths=wl, quantity="reflectance factor",
+                        max_error=1e-4)                    # bytes
+    m = brdfwave.decode(p)                                 # a Measurement
+    m.wavelengths, m.quantity, m.unit, m.metadata
+    s = brdfwave.read_sed(["a.sed", "b.sed"])              # a Measurement too
+    p = brdfwave.encode(s, lossless=True, scale=1e-5)      # with its metadata
 
-The codec itself is libbrdfwave (the C library), loaded with ctypes from
-build/host/libbrdfwave.so (`make pylib`) or $BRDFWAVE_LIB. The acquisition
-service over I2C is brdfwave.acquire (python3 -m brdfwave.acquire --help).
+The codec itself is libbrdfwave (the C library), loaded with ctypes; its
+structures are checked against this package's at load (brdfwave._abi).
 """
 import ctypes
+import errno
+import json
 import os
+import tempfile
 
 import numpy as np
 
-from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
-                   header_of, last_error, lib)
+from ._lib import (BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
+                   last_error, lib)
 from .guarantee import guarantee
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
-           "header_of"]
+           "read", "read_sed", "read_sig", "read_asd", "read_usgs", "read_envi", "read_csv",
+           "read_npy", "read_bsdf", "read_gonio"]
+
+_SHAPE_NAMES = ("spectra", "reflectance", "brdf-iso", "brdf-full")
+_INT_TYPES = {np.dtype(np.uint8): "u8", np.dtype(np.int16): "i16", np.dtype(np.uint16): "u16",
+              np.dtype(np.int32): "i32"}
+_SOURCE_DTYPES = {"u8": np.uint8, "i16": np.int16, "u16": np.uint16, "i32": np.int32,
+                  "f32": np.float32, "f64": np.float64}
+
+# the library's messages name command-line options; Python callers know
+# the keyword arguments
+_OPTION_NAMES = (("--max-rel-error", "max_rel_error="), ("--rel-floor", "rel_floor="),
+                 ("--max-error", "max_error="), ("--bytes", "nbytes="), ("--ratio", "ratio="),
+                 ("--scale", "scale="), ("--lossless", "lossless=True"),
+                 ("--max-samples", "max_samples="), ("--relative", "relative=True"),
+                 ("--basis", "basis="), ("--symmetry", "symmetry="), ("--coder", "coder="),
+                 ("--level-in", "level_in="), ("--level", "level="),
+                 ("--incoming", "incoming="), ("--bands", "the last axis"))
+
+
+def _pythonic(msg):
+    for opt, kw in _OPTION_NAMES:
+        msg = msg.replace(opt, kw)
+    return msg
+
+
+def _error():
+    return BrdfwaveError(_pythonic(last_error()))
+
 
 class Measurement(np.ndarray):
-    """A decoded measurement: float32 values with the payload's metadata.
+    """A measurement: its values as a numpy array with its axes and metadata.
 
     Shape: spectra (n_spectra, bands); reflectance (n_out, bands); BRDF
     (n_in, n_out, bands), directions in grid order.
-      header       the payload header as a dict
-      directions   (n_out, 3) unit vectors of the outgoing triangles, None for spectra
-      incoming     (n_in, 3) unit vectors of the incoming triangles (full BRDF), else None
-      wavelengths  (bands,) in nm if given to decode(), else None (payloads carry none)
-      guarantee    what the payload promises of every value (brdfwave.guarantee)
+      metadata         the metadata as a dict (the keys of 'brdfwave info --json')
+      wavelengths      (bands,) array in wavelength_unit ("nm", "um", "cm-1"), or None
+      quantity, unit   what the values are ("reflectance factor", "1"; "brdf",
+                       "sr^-1"; ...), or None
+      incidence        (n_in,) zenith angles of an isotropic BRDF's incoming
+                       directions in incidence_unit ("deg" or "rad"), or None
+      directions       (n_out, 3) unit vectors of the outgoing triangles, or None
+      incoming         (n_in, 3) unit vectors of the incoming triangles (full BRDF),
+                       else None
+      layout           "spectra", "reflectance", "brdf-iso", "brdf-full", or None
+      level, level_in  grid levels of directional data
+      header           the payload header as a dict (decoded payloads)
+      guarantee        what the payload promises of every value (brdfwave.guarantee),
+                       for decoded payloads
     """
 
-    def __new__(cls, values, header=None, directions=None, incoming=None, wavelengths=None):
+    _ATTRS = ("metadata", "header", "layout", "level", "level_in", "directions", "incoming",
+              "guarantee")
+
+    def __new__(cls, values, metadata=None, layout=None, level=None, level_in=None,
+                header=None, wavelengths=None):
         obj = np.asarray(values).view(cls)
+        obj.metadata = dict(metadata or {})
+        if wavelengths is not None:
+            obj.metadata["wavelengths"] = [float(w) for w in np.asarray(wavelengths).ravel()]
+        obj.layout = layout
+        obj.level = level
+        obj.level_in = level_in
         obj.header = header
-        obj.directions = directions
-        obj.incoming = incoming
-        obj.wavelengths = wavelengths
+        obj.directions = _directions(level) if layout and layout != "spectra" else None
+        obj.incoming = _directions(level_in) if layout == "brdf-full" else None
         obj.guarantee = None
         return obj
 
     def __array_finalize__(self, obj):
         if obj is None:
             return
-        self.header = getattr(obj, "header", None)
-        self.directions = getattr(obj, "directions", None)
-        self.incoming = getattr(obj, "incoming", None)
-        self.wavelengths = getattr(obj, "wavelengths", None)
-        self.guarantee = getattr(obj, "guarantee", None)
+        for a in self._ATTRS:
+            setattr(self, a, getattr(obj, a, None))
+        if self.metadata is None:
+            self.metadata = {}
+
+    def _meta(self, key, array=False):
+        v = self.metadata.get(key)
+        if v is None:
+            return None
+        return np.asarray(v, dtype=np.float64) if array else v
+
+    @property
+    def wavelengths(self):
+        return self._meta("wavelengths", True)
+
+    @property
+    def wavelength_unit(self):
+        return self.metadata.get("wavelength_unit", "nm" if "wavelengths" in self.metadata
+                                 else None)
+
+    @property
+    def incidence(self):
+        return self._meta("incidence", True)
+
+    @property
+    def incidence_unit(self):
+        return self.metadata.get("incidence_unit", "deg" if "incidence" in self.metadata
+                                 else None)
+
+    @property
+    def quantity(self):
+        return self.metadata.get("quantity")
+
+    @property
+    def unit(self):
+        return self.metadata.get("unit")
 
 
 def grid(level):
@@ -58,7 +141,9 @@ def grid(level):
     `brdfwave grid --level L` prints them: a structured array with the fields
     index, theta_deg, phi_deg, x, y, z, solid_angle_sr."""
     L = lib()
-    if not isinstance(level, (int, np.integer)) or not 0 <= level <= 6:
+    if not isinstance(level, (int, np.integer)) or isinstance(level, bool):
+        raise TypeError("level must be an integer 0..6, not %s" % type(level).__name__)
+    if not 0 <= level <= 6:
         raise BrdfwaveError("level must be an integer 0..6")
     n = L.bwh_grid_count(int(level))
     xyz = np.zeros((n, 3), dtype=np.float64)
@@ -80,21 +165,63 @@ def grid(level):
 
 
 def _directions(level):
+    if level is None:
+        return None
     g = grid(level)
     return np.stack([g["x"], g["y"], g["z"]], axis=1)
 
 
+def _read_bytes(source):
+    if isinstance(source, (bytes, bytearray, memoryview)):
+        return bytes(source), None
+    if isinstance(source, (str, os.PathLike)):
+        with open(source, "rb") as f:  # FileNotFoundError etc. name the file
+            return f.read(), os.fspath(source)
+    raise TypeError("a payload is bytes or a path, not %s" % type(source).__name__)
+
+
+def _put_missing(values, meta):
+    miss = meta.get("missing")
+    if not miss or values.dtype.kind != "f":
+        return
+    flat = values.reshape(-1)
+    for start, n in miss.get("runs", []):
+        flat[start:start + n] = miss["value"]
+
+
 def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0):
     """Decodes a payload held in memory; see decode()."""
+    return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples)
+
+
+def decode(source, *, wavelengths=None, integers=False, max_samples=0):
+    """Decodes a payload (bytes, or the path of a payload file) to a
+    Measurement: float32 values (integers=True: the codec's int32 samples) in
+    the layout of `brdfwave decode`, [incoming][outgoing][band], with the
+    metadata the payload carries (wavelengths, quantity and unit, incidence
+    angles, instrument, time, location, free fields), in the units it was
+    given in. Samples the source marked missing get its missing value back.
+    wavelengths: for payloads without them. Payloads that decode to more
+    than max_samples samples (0: the library's default, 2**26) are refused
+    before anything is allocated."""
+    payload, path = _read_bytes(source)
+    try:
+        return _decode(payload, wavelengths, integers, max_samples)
+    except BrdfwaveError as e:
+        if path is None:
+            raise
+        raise BrdfwaveError("%s: %s" % (path, e)) from None
+
+
+def _decode(payload, wavelengths, integers, max_samples):
     L = lib()
-    payload = bytes(payload)
     h = Header()
     s = ctypes.POINTER(ctypes.c_int32)()
     v = ctypes.POINTER(ctypes.c_float)()
-    if L.bwh_decode_limit(payload, len(payload), max_samples, ctypes.byref(h),
+    if L.bwh_decode_limit(payload, len(payload), int(max_samples), ctypes.byref(h),
                           ctypes.byref(s) if integers else None,
                           None if integers else ctypes.byref(v)) != 0:
-        raise BrdfwaveError(last_error())
+        raise _error()
     try:
         d = h.dims
         n = d.n_in * d.n_out * d.bands
@@ -105,64 +232,137 @@ def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0):
     finally:
         free(s)
         free(v)
-    hd = _header_dict(h)
+    j = ctypes.c_char_p()
+    if L.bwh_meta_json_of_payload(payload, len(payload), ctypes.byref(j)) != 0:
+        raise _error()
+    try:
+        meta = json.loads(j.value.decode("utf-8"))
+    finally:
+        free(j)
     if d.shape == 0:
         shape = (d.n_in, d.bands)
     elif d.shape == 1:
         shape = (d.n_out, d.bands)
     else:
         shape = (d.n_in, d.n_out, d.bands)
-    directions = _directions(d.level_out) if d.shape > 0 else None
-    incoming = _directions(d.level_in) if d.shape == 3 else None
+    vals = vals.reshape(shape)
+    _put_missing(vals, meta)
     if wavelengths is not None:
         wavelengths = np.asarray(wavelengths, dtype=np.float64)
         if wavelengths.shape != (d.bands,):
             raise BrdfwaveError("%d wavelengths given for %d bands" % (wavelengths.size, d.bands))
-    m = Measurement(vals.reshape(shape), hd, directions, incoming, wavelengths)
+    m = Measurement(vals, meta, _SHAPE_NAMES[d.shape],
+                       d.level_out if d.shape > 0 else None,
+                       d.level_in if d.shape == 3 else None, _header_dict(h), wavelengths)
     m.guarantee = guarantee(payload)
     return m
 
 
-def decode(path, wavelengths=None, integers=False, max_samples=0):
-    """Decodes the payload file `path` to a Measurement (float32 values, or the
-    codec's int32 samples with integers=True), in the layout of
-    `brdfwave decode`: [incoming][outgoing][band]. Payloads that decode to
-    more than max_samples samples (0: the library's default, 2**26) are
-    refused before anything is allocated."""
-    try:
-        with open(path, "rb") as f:
-            payload = f.read()
-    except OSError as e:
-        raise BrdfwaveError("%s: %s" % (path, e.strerror)) from None
-    try:
-        return decode_bytes(payload, wavelengths, integers, max_samples)
-    except BrdfwaveError as e:
-        raise BrdfwaveError("%s: %s" % (path, e)) from None
+def _metadata_json(metadata, wavelengths, wavelength_unit, incidence, incidence_unit,
+                   quantity, unit, fields, integer_type):
+    m = dict(metadata or {})
+    if wavelengths is not None:
+        m["wavelengths"] = [float(w) for w in np.asarray(wavelengths, dtype=np.float64).ravel()]
+        if wavelength_unit is not None:
+            m["wavelength_unit"] = wavelength_unit
+    if incidence is not None:
+        m["incidence"] = [float(a) for a in np.asarray(incidence, dtype=np.float64).ravel()]
+        if incidence_unit is not None:
+            m["incidence_unit"] = incidence_unit
+    if quantity is not None:
+        m["quantity"] = quantity
+    if unit is not None:
+        m["unit"] = unit
+    if fields:
+        f = dict(m.get("fields") or {})
+        f.update({str(k): str(v) for k, v in fields.items()})
+        m["fields"] = f
+    if integer_type and "sample_type" not in m:
+        m["sample_type"] = integer_type
+    m.pop("shape", None)
+    return json.dumps(m) if m else None
 
 
-def encode(values, level=None, incoming=False, level_in=None, lossless=None, max_error=None,
-           nbytes=None, ratio=None, basis="auto", scale=None, stream=False, symmetry="auto",
-           path=None, device=None, max_rel_error=None, rel_floor=None):
-    """Encodes float values to a payload (bytes; also written to `path` if given),
-    as `brdfwave encode` does with float32 input:
+def _write_payload(path, payload):
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(errno.ENOENT, "no such directory for the payload", path)
+    fd, tmp = tempfile.mkstemp(prefix=".%s." % os.path.basename(path), dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(payload)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
+           incidence_unit=None, quantity=None, unit=None, fields=None, metadata=None,
+           level=None, incoming=False, level_in=None, lossless=None, max_error=None,
+           nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder="range",
+           stream=False, symmetry="auto", path=None, device=None, firmware=None,
+           max_rel_error=None, rel_floor=None):
+    """Encodes a numpy array to a payload (bytes; also written to `path` if
+    given), as `brdfwave encode` does, with its metadata.
+
+    Layout (a Measurement from decode() or read() brings its own):
       level=None                 a set of spectra, values (n_spectra, bands)
       level=L                    a spectral reflectance, values (4*4^L, bands)
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
-    One of lossless (default; float32 values come back bit for bit), max_error=E,
-    nbytes=N, ratio=R; or max_rel_error=R (every value within max(R |x|, F) of its
-    input, F = rel_floor or 0), alone or with max_error=E (within the tighter of
-    the two). The payload records its guarantee (brdfwave.guarantee). basis: "haar", "53",
-    "97", "pred" (spectra, lossless or max_error only) or "auto". symmetry: "auto" (try
-    the mirror image (x, -y, z) for directional data, and reciprocity for a full BRDF
-    with level_in == level; keep what pays), "mirror", "reciprocal", "both" or "none".
-    device: None (this host), "linux" or "qemu": the device application encodes
-    (as `brdfwave encode --device`; its image is found beside the library, or
-    named by $BW_FIRMWARE_LINUX / $BW_FIRMWARE) and the payload is checked here."""
+    Metadata (merged over a Measurement's and `metadata`, a dict with the
+    keys of 'brdfwave info --json'): wavelengths (one per band) in
+    wavelength_unit ("nm" default, "um", "cm-1"); incidence (one zenith angle
+    per incoming direction of an isotropic BRDF) in incidence_unit ("deg"
+    default, "rad"); quantity ("reflectance factor", "radiance", "brdf",
+    "counts", ...) and unit; fields, a dict of free text fields.
+    Mode, one of: lossless=True (the default; with scale= float values must
+    be whole multiples of it), max_error=E (every value within E), nbytes=N or
+    ratio=R (a byte budget; relative=True spends it on relative accuracy of
+    positive values); or max_rel_error=R (every value within max(R |x|, F) of
+    its input, F = rel_floor or 0), alone or with max_error=E (within the
+    tighter of the two). Float values come back bit for bit when lossless.
+    The payload records its guarantee (brdfwave.guarantee). Integer arrays (uint8, int16, uint16, int32) are coded
+    as they are (never through float32) and decode as those integers; their
+    max_error is in their units. basis: "haar", "53", "97", "pred" or "auto";
+    coder: "range", "ms" or "rice"; stream=True: streamed order; symmetry: "auto",
+    "mirror", "reciprocal", "both" or "none". device: None (this host),
+    "linux" or "qemu" (the device application encodes, as `brdfwave encode
+    --device`; firmware: its image, else found beside the library or named by
+    $BW_FIRMWARE_LINUX / $BW_FIRMWARE). The options of reading a file
+    (--input-format, --channel, --column, --ignore-value, --wavelength-table)
+    are read()'s. For a payload without a metadata record (the CLI's
+    --no-metadata) give a plain numpy array (np.asarray(m) of a Measurement)
+    and no metadata arguments."""
     L = lib()
-    x = np.ascontiguousarray(values, dtype=np.float32)
+    src_meta = {}
+    if isinstance(values, Measurement):
+        src_meta = values.metadata or {}
+        if level is None and not incoming and level_in is None and values.layout:
+            if values.layout != "spectra":
+                level = values.level
+            incoming = values.layout == "brdf-iso"
+            level_in = values.level_in if values.layout == "brdf-full" else None
+    arr = np.asarray(values)
+    if arr.dtype.kind not in "fiub":
+        raise TypeError("values must be numbers, not %s" % arr.dtype)
+    integer_type = _INT_TYPES.get(arr.dtype) if arr.dtype.kind in "iu" else None
+    if arr.dtype.kind in "iu":
+        if arr.size and (arr.min() < -(2 ** 24 - 1) or arr.max() > 2 ** 24 - 1):
+            raise BrdfwaveError("integer values must lie within +-(2**24 - 1) (the codec's "
+                                "samples); %d does not" % (arr.max() if arr.max() > 2 ** 24 - 1
+                                                          else arr.min()))
+        x = np.ascontiguousarray(arr, dtype=np.int32)
+    else:
+        x = np.ascontiguousarray(arr, dtype=np.float32)
     if x.ndim < 2:
         raise BrdfwaveError("values need at least 2 dimensions (..., bands)")
+    for name, v in (("level", level), ("level_in", level_in)):
+        if v is not None and (not isinstance(v, (int, np.integer)) or isinstance(v, bool)):
+            raise TypeError("%s must be an integer, not %s" % (name, type(v).__name__))
     s = Shape(-1 if level is None else level, -1 if level_in is None else level_in, 0,
               x.shape[-1])
     if incoming:
@@ -171,7 +371,7 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
         s.incoming = x.shape[0]
     d = Dims()
     if L.bwh_shape_dims(ctypes.byref(s), x.size, ctypes.byref(d)) != 0:
-        raise BrdfwaveError(last_error())
+        raise _error()
     need = d.n_in * d.n_out * d.bands
     o = EncodeOpts()
     o.drop_chunk = -1
@@ -198,12 +398,26 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
             if not ratio > 0:
                 raise BrdfwaveError("ratio must be positive")
             nbytes = max(1, int(np.floor(4.0 * need / ratio)))
+        if not nbytes >= 1:
+            raise BrdfwaveError("nbytes must be at least 1")
         o.byte_budget = int(nbytes)
+    if relative:
+        if o.mode != 2 or integer_type:
+            raise BrdfwaveError("relative=True is for float values with nbytes= or ratio=")
+        o.flags |= 0x08
     b = L.bwh_basis_from_name(basis.encode()) if isinstance(basis, str) else -1
     if b < 0:
         raise BrdfwaveError("basis must be haar, 53, 97, pred or auto")
     o.basis = b
+    if coder not in ("range", "rice", "ms"):
+        raise BrdfwaveError("coder must be range, ms or rice")
+    if coder == "rice":
+        o.flags |= 0x04
+    elif coder == "ms":
+        o.flags |= 0x80
     if scale is not None:
+        if not scale > 0:
+            raise BrdfwaveError("scale must be positive")
         o.scale = float(scale)
     if stream:
         o.flags |= 0x02
@@ -215,18 +429,118 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
         if device not in ("linux", "qemu"):
             raise BrdfwaveError("device must be None, 'linux' or 'qemu'")
         o.device = device.encode()
+        if firmware is not None:
+            o.firmware = os.fsencode(firmware)
+    merged = dict(src_meta)
+    merged.update(metadata or {})
+    mj = _metadata_json(merged, wavelengths, wavelength_unit, incidence, incidence_unit,
+                        quantity, unit, fields, integer_type)
+    area = ctypes.POINTER(ctypes.c_uint8)()
+    alen = ctypes.c_size_t()
+    if mj is not None and L.bwh_meta_area_from_json(mj.encode("utf-8"), ctypes.byref(d),
+                                                     ctypes.byref(area), ctypes.byref(alen)):
+        raise BrdfwaveError("metadata: " + _pythonic(last_error()))
     out = ctypes.POINTER(ctypes.c_uint8)()
     n = ctypes.c_size_t()
-    if L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
-                        ctypes.byref(o), ctypes.byref(out), ctypes.byref(n)) != 0:
-        raise BrdfwaveError(last_error())
     try:
+        o.ext = ctypes.cast(area, ctypes.c_void_p)
+        o.ext_len = alen.value
+        if integer_type:
+            rc = L.bwh_encode_scaled(ctypes.byref(d), x.ctypes.data_as(
+                ctypes.POINTER(ctypes.c_int32)), ctypes.byref(o), float(scale or 1.0),
+                ctypes.byref(out), ctypes.byref(n))
+        else:
+            rc = L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(
+                ctypes.POINTER(ctypes.c_float)), ctypes.byref(o), ctypes.byref(out),
+                ctypes.byref(n))
+        if rc != 0:
+            raise _error()
         payload = ctypes.string_at(out, n.value)
     finally:
         free(out)
+        free(area)
     if path is not None:
-        tmp = "%s.tmp%d" % (path, os.getpid())
-        with open(tmp, "wb") as f:
-            f.write(payload)
-        os.replace(tmp, path)
+        _write_payload(path, payload)
     return payload
+
+
+_CHANNELS = ("rgb", "r", "g", "b")
+_COLUMNS = ("reflectance", "target", "reference")
+
+
+def read(paths, *, format=None, level=None, channel="rgb", column="reflectance",
+         wavelength_table=None, ignore_value=None):
+    """Reads measurement files (one path or a list: several make one set of
+    spectra) to a Measurement with their metadata, as `brdfwave encode`
+    reads them. format: None (from the content and the name), "sed", "sig",
+    "asd", "usgs", "envi", "csv", "npy", "bsdf", "gonio", "f32", "u16",
+    "i32". level: the grid of bsdf and goniometer data (default 4);
+    channel: bsdf "rgb", "r", "g" or "b"; column: sed, sig, asd
+    "reflectance", "target" or "reference"; wavelength_table: a USGS
+    wavelength file; ignore_value: samples equal to it are missing. Raw
+    samples without a sidecar come back flat (1 dimension)."""
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    paths = [os.fspath(p) for p in paths]
+    if not paths:
+        raise BrdfwaveError("no file to read")
+    for p in paths:
+        if p != "-" and not os.path.exists(p):
+            raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), p)
+    if channel not in _CHANNELS:
+        raise BrdfwaveError("channel must be rgb, r, g or b")
+    if column not in _COLUMNS:
+        raise BrdfwaveError("column must be reflectance, target or reference")
+    L = lib()
+    arr = (ctypes.c_char_p * len(paths))(*[os.fsencode(p) for p in paths])
+    v = ctypes.POINTER(ctypes.c_float)()
+    count = ctypes.c_size_t()
+    d = Dims()
+    j = ctypes.c_void_p()
+    if L.bwh_read_flat(arr, len(paths), format.encode() if format else None,
+                       -1 if level is None else int(level), _CHANNELS.index(channel),
+                       _COLUMNS.index(column),
+                       os.fsencode(wavelength_table) if wavelength_table else None,
+                       ignore_value is not None,
+                       float(ignore_value) if ignore_value is not None else 0.0,
+                       ctypes.byref(v), ctypes.byref(count), ctypes.byref(d),
+                       ctypes.byref(j)) != 0:
+        raise _error()
+    try:
+        vals = np.ctypeslib.as_array(v, shape=(count.value,)).copy() if count.value else \
+            np.zeros(0, np.float32)
+        meta = json.loads(ctypes.string_at(j).decode("utf-8"))
+    finally:
+        free(v)
+        free(j)
+    layout = meta.pop("shape", None)
+    if not d.bands:
+        return Measurement(vals, meta)
+    if d.shape == 0:
+        shape = (d.n_in, d.bands)
+    elif d.shape == 1:
+        shape = (d.n_out, d.bands)
+    else:
+        shape = (d.n_in, d.n_out, d.bands)
+    return Measurement(vals.reshape(shape), meta, layout or _SHAPE_NAMES[d.shape],
+                       d.level_out if d.shape > 0 else None,
+                       d.level_in if d.shape == 3 else None)
+
+
+def _reader(fmt, what):
+    def r(paths, **kw):
+        return read(paths, format=fmt, **kw)
+    r.__name__ = "read_" + fmt
+    r.__doc__ = "Reads %s to a Measurement: read(paths, format=%r, **kw)." % (what, fmt)
+    return r
+
+
+read_sed = _reader("sed", "Spectral Evolution .sed files (one or several)")
+read_sig = _reader("sig", "Spectra Vista SVC .sig files")
+read_asd = _reader("asd", "ASD FieldSpec / Indico binary files (every version)")
+read_usgs = _reader("usgs", "USGS splib07 ASCII spectra (wavelength_table=, else beside)")
+read_envi = _reader("envi", "an ENVI header with its spectral library or image cube")
+read_csv = _reader("csv", "CSV: a wavelength column and a column per spectrum, or angles")
+read_npy = _reader("npy", "a numpy .npy array with its JSON sidecar, if any")
+read_bsdf = _reader("bsdf", "an RGL .bsdf BRDF sampled on the grid at its incidence angles")
+read_gonio = _reader("gonio", "a goniometer CSV projected onto the grid")

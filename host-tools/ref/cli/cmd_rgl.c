@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_meta.h"
+#include "bwh_output.h"
 #include "bwhost.h"
 #include "bwr_rgl.h"
 #include "bwref.h"
@@ -38,7 +40,10 @@ static const char rgl_help[] =
     "  --times-cos          write f cos(theta_o) (the loader's value) instead of f\n"
     "  --clamp              negative measured values (noise) become 0\n"
     "\n"
-    "Prints the incidence angles used and the value range.\n";
+    "Prints the incidence angles used and the value range. The sidecar OUT.json\n"
+    "(docs/FORMAT.md, Metadata) keeps the quantity, the channels and, for the\n"
+    "measured angles, the incidence angles, so that 'brdfwave encode -i OUT.f32'\n"
+    "carries them into the payload.\n";
 
 /* --incoming measured|N: 0 for the file's own angles */
 static int parse_incoming(const char *v, void *dest)
@@ -48,6 +53,38 @@ static int parse_incoming(const char *v, void *dest)
         return 0;
     }
     return cli_u32(v, 1, 4096, 0, dest);
+}
+
+/* OUT.json: the quantity, the channels and, for the file's own incidence
+ * angles, those (radians as the file gives them, like the encoder's .bsdf
+ * reader); for a full BRDF the layout alone */
+static int sidecar(const char *out, const bwr_rgl_t *b, size_t n_in, int measured, int full,
+                   int times_cos, int channel, int nb)
+{
+    static const char *const names[] = {"red", "green", "blue"};
+    bwh_meta_t m;
+    bwh_meta_init(&m);
+    m.quantity = times_cos ? BWH_Q_OTHER : BWH_Q_BRDF;
+    m.present |= BWH_M_QUANTITY;
+    int rc = times_cos ? bwh_meta_set_string(&m.unit, "sr^-1 (times cos theta_o)") : 0;
+    rc = rc || bwh_meta_set_strings(&m.band_names, names + (channel ? channel - 1 : 0),
+                                    (size_t)nb);
+    if (!rc && b->description[0])
+        rc = bwh_meta_add_field(&m, "description", b->description);
+    if (!rc && measured) {
+        double *th = malloc((n_in ? n_in : 1) * sizeof *th);
+        size_t k = 0;
+        for (size_t i = 0; th && i < b->n_theta && k < n_in; i++)
+            if (b->theta_i[i] < 89.0 * RGL_PI / 180.0)
+                th[k++] = b->theta_i[i];
+        m.inc_unit = BWH_ANGLE_RAD;
+        rc = !th || k != n_in || bwh_meta_set_numbers(&m.incidence, th, n_in);
+        free(th);
+    }
+    if (!rc)
+        rc = bwh_sidecar_write(out, &m, full ? BW_SHAPE_BRDF_FULL : BW_SHAPE_BRDF_ISO);
+    bwh_meta_free(&m);
+    return rc ? -1 : 0;
 }
 
 int bwref_cmd_import_rgl(int argc, char **argv)
@@ -184,6 +221,12 @@ int bwref_cmd_import_rgl(int argc, char **argv)
            n_out, level, nb, channels[channel], times_cos ? "f cos(theta_o)" : "f (1/sr)", vmin,
            vmax,
            negatives, clamp && negatives ? " (clamped to 0)" : "");
+    if (sidecar(out, &b, n_in, level_in < 0 && !n_fixed, level_in >= 0, times_cos, channel,
+                nb) != 0) {
+        remove(out);
+        rc = cli_fail("%s", bwh_last_error());
+        goto done;
+    }
     rc = 0;
 done:
     free(wo);

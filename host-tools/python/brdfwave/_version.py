@@ -1,0 +1,3 @@
+"""The package's version; the payload format it writes is 7 (docs/FORMAT.md)."""
+__version__ = "0.7.0"
+FORMAT_VERSION = 7
