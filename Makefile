@@ -30,11 +30,15 @@ $(BUILD)/%.o: %.c
 
 -include $(shell find build -name '*.d' 2>/dev/null)
 
-.PHONY: all clean check run bench deps deps-run fuzz tests tables target-tests help
+.PHONY: all clean check run bench deps deps-run fuzz tests tables target-tests help spdx
 .DEFAULT_GOAL := all
 
 clean:
 	rm -rf build
+
+# adds the licence's SPDX line to source files without one (scripts/spdx-check)
+spdx:
+	$(Q)scripts/spdx-check --add
 
 help:
 	@sed -n '2,9p' Makefile

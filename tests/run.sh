@@ -56,6 +56,10 @@ for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh te
     tests/python/test_package.py tests/hw/run.sh; do
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
+# the product: licence lines, the command line's conventions, install, packages
+for s in tests/license/test_spdx.sh; do
+    [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
+done
 
 echo
 [ -n "$failures" ] && echo "failed suites:$failures"
