@@ -1,7 +1,7 @@
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g
-CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib $(EXTRA_CFLAGS)
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib -Iinclude $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
 # libbrdfwave: the codec core, the link frames and host-tools/lib, one list
@@ -14,6 +14,12 @@ LIB_SRC := $(CORE_SRC) firmware/link/bw_frame.c $(wildcard host-tools/lib/*.c)
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC))
 LIB_PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
 LIB := $(BUILD)/libbrdfwave.a
+# the shared library: libbrdfwave.so.MAJOR (its SONAME) and the link
+# libbrdfwave.so beside it, both from the version in include/brdfwave/brdfwave.h
+VERSION := $(shell sed -n 's/^\#define BRDFWAVE_VERSION_STRING "\(.*\)"/\1/p' include/brdfwave/brdfwave.h)
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+SONAME := libbrdfwave.so.$(SOVERSION)
+SOLIB := $(BUILD)/$(SONAME)
 PYLIB := $(BUILD)/libbrdfwave.so
 
 $(BUILD)/pic/%.o: %.c
@@ -58,9 +64,12 @@ $(FWL): $(FWL_OBJ) $(LIB)
 $(LIB): $(LIB_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
-$(PYLIB): $(LIB_PIC_OBJ)
+$(SOLIB): $(LIB_PIC_OBJ)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
+	$(Q)$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) $^ -lm -o $@
+
+$(PYLIB): $(SOLIB)
+	$(Q)ln -sf $(SONAME) $@
 
 $(CLIKIT): $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC))
 	$(Q)rm -f $@ && $(AR) rcs $@ $^

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_device.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
@@ -153,11 +154,10 @@ int bw_cmd_encode(int argc, char **argv)
     o.scale = scale;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
-    o.device = device == DEV_HOST ? NULL : devices[device];
-    o.firmware = firmware;
-    o.drop_chunk = has_drop ? (int)drop : -1;
     uint64_t device_instructions = 0;
-    o.device_instructions = &device_instructions;
+    struct bwh_device_job job = {devices[device], firmware, 0, has_drop ? (int)drop : -1,
+                                 &device_instructions};
+    o.device = device == DEV_HOST ? NULL : &job;
     if (o.basis == BW_BASIS_PRED &&
         (sh.has_level || o.mode > BW_MODE_MAX_ERROR || (o.flags & BW_FLAG_STREAM_ORDER)))
         return cli_usage("--basis pred codes sets of spectra (no --level) with --lossless "
@@ -201,7 +201,7 @@ int bw_cmd_encode(int argc, char **argv)
         bwh_write_file(outp, payload, plen) != 0)
         goto fail;
     if (o.device)
-        printf("device %s: %zu samples -> %zu bytes, %llu %s (%.1f per sample)\n", o.device,
+        printf("device %s: %zu samples -> %zu bytes, %llu %s (%.1f per sample)\n", job.device,
                count, plen, (unsigned long long)device_instructions,
                device == DEV_LINUX ? "ns" : "instructions",
                (double)device_instructions / (double)count);

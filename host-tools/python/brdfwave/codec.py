@@ -15,8 +15,8 @@ import os
 
 import numpy as np
 
-from ._lib import (SHAPES, BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
-                   header_of, last_error, lib)
+from ._lib import (SHAPES, BrdfwaveError, DeviceJob, Dims, EncodeOpts, Header, Shape,
+                   _header_dict, free, header_of, last_error, lib)
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
            "header_of"]
@@ -165,7 +165,6 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
         raise BrdfwaveError(last_error())
     need = d.n_in * d.n_out * d.bands
     o = EncodeOpts()
-    o.drop_chunk = -1
     modes = [m for m in (lossless, max_error, nbytes, ratio) if m not in (None, False)]
     if len(modes) > 1:
         raise BrdfwaveError("give only one of lossless, max_error, nbytes, ratio")
@@ -195,7 +194,8 @@ def encode(values, level=None, incoming=False, level_in=None, lossless=None, max
     if device is not None:
         if device not in ("linux", "qemu"):
             raise BrdfwaveError("device must be None, 'linux' or 'qemu'")
-        o.device = device.encode()
+        job = DeviceJob(device.encode(), None, 0.0, -1, None)
+        o.device = ctypes.pointer(job)
     out = ctypes.POINTER(ctypes.c_uint8)()
     n = ctypes.c_size_t()
     if L.bwh_encode_f32(ctypes.byref(d), x.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
