@@ -22,7 +22,7 @@ SONAME := libbrdfwave.so.$(SOVERSION)
 SOLIB := $(BUILD)/$(SONAME)
 PYLIB := $(BUILD)/libbrdfwave.so
 
-$(BUILD)/pic/%.o: %.c
+$(BUILD)/pic/%.o: %.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(if $(Q),@echo "  CC-PIC  $<")
 	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
@@ -30,7 +30,7 @@ $(BUILD)/pic/%.o: %.c
 # the command line's own modules: options, numbers, exit statuses, shape
 # options (also linked into bwref)
 CLIKIT_SRC := host-tools/cli/cli_args.c host-tools/cli/cli_num.c host-tools/cli/cli_errors.c \
-              host-tools/cli/cli_shape.c
+              host-tools/cli/cli_shape.c host-tools/cli/cli_progress.c host-tools/cli/cli_kv.c
 CLIKIT := $(BUILD)/libbwcli.a
 
 # the renderer of `brdfwave render` (scene, tracer, materials, meshes,

@@ -5,6 +5,7 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_progress.h"
 #include "commands.h"
 
 static const char decode_help[] =
@@ -15,7 +16,8 @@ static const char decode_help[] =
     "or output; an OUT that is a device or a pipe is written to directly.\n"
     "  --max-samples N  refuse payloads that decode to more than N samples\n"
     "                   (default 67108864, 256 MiB of float32): a small payload\n"
-    "                   can describe gigabytes\n";
+    "                   can describe gigabytes\n"
+    "On a terminal a progress line shows while the work takes more than a second.\n";
 
 int bw_cmd_decode(int argc, char **argv)
 {
@@ -42,13 +44,17 @@ int bw_cmd_decode(int argc, char **argv)
     int32_t *s = NULL;
     float *v = NULL;
     /* one array: the integers, or the values in their place */
+    cli_progress_start("%zu bytes", len);
     if (bwh_decode_limit(p, len, max_samples, &h, as_int ? &s : NULL, as_int ? NULL : &v) != 0) {
         free(p);
+        cli_progress_end();
         return cli_fail("%s: %s", inp, bwh_last_error());
     }
     free(p);
     void *samples = as_int ? (void *)s : (void *)v;
+    cli_progress_text("%zu samples, writing", bw_dims_samples(&h.dims));
     int rc = bwh_raw_write(outp, samples, bw_dims_samples(&h.dims), as_int);
     free(samples);
+    cli_progress_end();
     return rc ? cli_fail("%s", bwh_last_error()) : CLI_EXIT_OK;
 }

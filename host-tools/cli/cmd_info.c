@@ -6,15 +6,18 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_kv.h"
 #include "commands.h"
 
-static const char info_help[] = "usage: brdfwave info IN.bwv\n"
+static const char info_help[] = "usage: brdfwave info [--json] IN.bwv\n"
                                 "\n"
-                                "Prints the payload header as 'key: value' lines.\n";
+                                "Prints the payload header as 'key: value' lines.\n"
+                                "  --json  as one JSON object instead (the same keys)\n";
 
 int bw_cmd_info(int argc, char **argv)
 {
-    const cli_opt_t opts[] = {{NULL}};
+    int json = 0;
+    const cli_opt_t opts[] = {{"json", 0, CLI_FLAG, .dest = &json}, {NULL}};
     int first, st;
     if (!cli_parse(argc, argv, opts, info_help, &first, &st))
         return st;
@@ -32,30 +35,35 @@ int bw_cmd_info(int argc, char **argv)
         return cli_fail("%s: %s", path, bw_strerror(hs));
     size_t n = bw_dims_samples(&h.dims);
     double scale = bwh_bits_to_float(h.scale_bits);
-    printf("version: %u\n", h.version);
-    printf("shape: %s\n", bwh_shape_name(h.dims.shape));
-    printf("level_out: %u\n", h.dims.level_out);
-    printf("level_in: %u\n", h.dims.level_in);
-    printf("incoming: %u\n", h.dims.n_in);
-    printf("outgoing: %u\n", h.dims.n_out);
-    printf("bands: %u\n", h.dims.bands);
-    printf("samples: %zu\n", n);
-    printf("basis: %s\n", bwh_basis_name(h.basis));
-    printf("spectral_levels: %u\n", h.spectral_levels);
-    printf("mode: %s\n", bwh_mode_name(h.mode));
-    printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
-    printf("coder: %s\n", bwh_coder_name(h.flags));
-    printf("symmetry: %s\n", bwh_symmetry_name(h.flags));
-    printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
-                                                       : "offset + scale * sample");
-    printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
-    printf("prequant: %u\n", h.prequant);
-    printf("step: %.4f\n", h.step_q8 / 256.0);
-    printf("scale: %.9g\n", scale);
-    printf("offset: %.9g\n", (double)bwh_bits_to_float(h.offset_bits));
-    printf("payload_bytes: %u\n", h.payload_len);
-    printf("bits_per_sample: %.6f\n", 8.0 * h.payload_len / (double)n);
-    printf("ratio_vs_float32: %.3f\n", 4.0 * (double)n / h.payload_len);
-    printf("crc32: 0x%08x\n", h.crc);
+    cli_kv_t kv;
+    char crc[16];
+    snprintf(crc, sizeof crc, "0x%08x", h.crc);
+    cli_kv_begin(&kv, stdout, json);
+    cli_kv_uint(&kv, "version", h.version);
+    cli_kv_str(&kv, "shape", bwh_shape_name(h.dims.shape));
+    cli_kv_uint(&kv, "level_out", h.dims.level_out);
+    cli_kv_uint(&kv, "level_in", h.dims.level_in);
+    cli_kv_uint(&kv, "incoming", h.dims.n_in);
+    cli_kv_uint(&kv, "outgoing", h.dims.n_out);
+    cli_kv_uint(&kv, "bands", h.dims.bands);
+    cli_kv_uint(&kv, "samples", n);
+    cli_kv_str(&kv, "basis", bwh_basis_name(h.basis));
+    cli_kv_uint(&kv, "spectral_levels", h.spectral_levels);
+    cli_kv_str(&kv, "mode", bwh_mode_name(h.mode));
+    cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    cli_kv_str(&kv, "coder", bwh_coder_name(h.flags));
+    cli_kv_str(&kv, "symmetry", bwh_symmetry_name(h.flags));
+    cli_kv_str(&kv, "values", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                                          : "offset + scale * sample");
+    cli_kv_num(&kv, "max_error", "%.9g", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
+    cli_kv_uint(&kv, "prequant", h.prequant);
+    cli_kv_num(&kv, "step", "%.4f", h.step_q8 / 256.0);
+    cli_kv_num(&kv, "scale", "%.9g", scale);
+    cli_kv_num(&kv, "offset", "%.9g", (double)bwh_bits_to_float(h.offset_bits));
+    cli_kv_uint(&kv, "payload_bytes", h.payload_len);
+    cli_kv_num(&kv, "bits_per_sample", "%.6f", 8.0 * h.payload_len / (double)n);
+    cli_kv_num(&kv, "ratio_vs_float32", "%.3f", 4.0 * (double)n / h.payload_len);
+    cli_kv_str(&kv, "crc32", crc);
+    cli_kv_end(&kv);
     return CLI_EXIT_OK;
 }

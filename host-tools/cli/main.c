@@ -26,7 +26,9 @@ static const cli_command_t commands[] = {
 
 static void usage(FILE *f)
 {
-    fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n\ncommands:\n", f);
+    fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n"
+          "       brdfwave --version\n\ncommands:\n",
+          f);
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].what);
     fputs("\nexit status: 0 success; 1 the command failed (one line on standard error says\n"
