@@ -38,14 +38,24 @@ CLIKIT := $(BUILD)/libbwcli.a
 RENDER_SRC := $(wildcard host-tools/render/*.c)
 RENDER_LIB := $(BUILD)/librender.a
 
+# the pictures of `brdfwave plot` (canvas, font, axes, hemisphere; the
+# renderer's PNG writer): libplot
+PLOT_SRC := $(wildcard host-tools/plot/*.c)
+PLOT_LIB := $(BUILD)/libplot.a
+$(patsubst %.c,$(BUILD)/%.o,$(PLOT_SRC)): CFLAGS += -Ihost-tools/render
+
+$(PLOT_LIB): $(patsubst %.c,$(BUILD)/%.o,$(PLOT_SRC))
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
 # brdfwave: main.c and one file per command (cmd_acquire.c: mk/hw.mk)
 CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
            host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
-           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c
+           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c \
+           host-tools/cli/cmd_plot.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 $(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
-$(CLI_OBJ): CFLAGS += -Ihost-tools/render
+$(CLI_OBJ): CFLAGS += -Ihost-tools/render -Ihost-tools/plot
 
 BW_CLI := $(BUILD)/brdfwave
 
@@ -80,10 +90,10 @@ $(RENDER_LIB): $(patsubst %.c,$(BUILD)/%.o,$(RENDER_SRC))
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
 
-$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a \
-	    $(LIB) $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) \
+	    $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
 include mk/ref.mk

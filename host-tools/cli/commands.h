@@ -12,5 +12,6 @@ int bw_cmd_synth(int argc, char **argv);
 int bw_cmd_receive(int argc, char **argv);
 int bw_cmd_acquire(int argc, char **argv);
 int bw_cmd_render(int argc, char **argv);
+int bw_cmd_plot(int argc, char **argv);
 
 #endif

@@ -22,6 +22,7 @@ static const cli_command_t commands[] = {
     /* the reference model's importer (host-tools/ref/cli/cmd_rgl.c), also `bwref import-rgl` */
     {"import-rgl", bwref_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
     {"render", bw_cmd_render, "path-trace a scene, comparing sampling strategies"},
+    {"plot", bw_cmd_plot, "PNG pictures: hemisphere map, spectra, rate-distortion curve"},
 };
 
 static void usage(FILE *f)

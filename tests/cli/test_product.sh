@@ -3,7 +3,7 @@
 # summary line of encode (measured: the numbers agree with info and compare),
 # a progress line on a terminal and never on a pipe, --json that parses,
 # misspelt options named with the one meant for every command, `make help`
-# listing every goal.
+# listing every goal, and the pictures of `brdfwave plot`.
 set -u
 cd "$(dirname "$0")/../.."
 BW=${BW:-build/host/brdfwave}
@@ -30,7 +30,7 @@ expect_status() {
 
 # ---- --version --------------------------------------------------------------
 V=$(sed -n 's/^#define BRDFWAVE_VERSION_STRING "\(.*\)"/\1/p' include/brdfwave/brdfwave.h)
-for args in "--version" "-V" "encode --version"; do
+for args in "--version" "-V" "encode --version" "plot hemisphere --version"; do
     # shellcheck disable=SC2086
     out=$("$BW" $args 2>&1) && [ "$(echo "$out" | head -1)" = "brdfwave $V (libbrdfwave $V)" ] && ok ||
         bad "brdfwave $args: $out"
@@ -166,6 +166,8 @@ grep -q -a 'big.bwv: 262144 samples -> ' "$T/tty" && ok || bad "encode on a term
 "$BW" encode -i "$T/big.f32" -o "$T/big.bwv" --bands 1 --level 6 --incoming 16 --ratio 30 2>"$T/pipe" &&
     ! grep -q -a $'\r' "$T/pipe" && [ "$(wc -l <"$T/pipe")" = 1 ] && ok ||
     bad "encode: a progress line in a pipe: $(od -c "$T/pipe" | head -3)"
+on_tty "$T/tty" "$BW" plot rd -i "$T/big.f32" --bands 1 --level 6 --incoming 16 --ratios 10,30,100 \
+    -o "$T/rd_tty.png" && progress_seen "$T/tty" "plot rd" && ok || bad "plot rd: no progress line"
 on_tty "$T/tty" "$BW" render --size 64x48 --time 0.6 --threads 1 --sampling uniform -o "$T/r.png" &&
     progress_seen "$T/tty" render && ok || bad "render: no progress line on a terminal"
 "$BW" render --size 64x48 --spp 4 -o "$T/r.png" >/dev/null 2>"$T/pipe" && [ ! -s "$T/pipe" ] && ok ||
@@ -181,6 +183,7 @@ unset BRDFWAVE_PROGRESS_DELAY
 
 # ---- a misspelt option of every command is named with the one meant -------------
 while read -r cmd typo meant; do
+    cmd=${cmd/_/ } # plot_rd: plot rd
     # shellcheck disable=SC2086
     expect_status "$cmd $typo" 2 "$BW" $cmd "$typo" 1
     grep -q "^brdfwave $cmd: unknown option '$typo' (did you mean '$meant'?)" "$T/err" && ok ||
@@ -196,6 +199,9 @@ receive --prot --port
 acquire --chpi --chip
 import-rgl --chanel --channel
 render --scnee --scene
+plot_hemisphere --edgse --edges
+plot_spectra --paylod --payload
+plot_rd --ratois --ratios
 EOF
 while read -r cmd typo meant; do
     expect_status "bwref $cmd $typo" 2 "$BWREF" "$cmd" "$typo" 1
@@ -205,6 +211,9 @@ wavedec --bsis --basis
 ratios --levle --level
 project --outptu --output
 EOF
+expect_status "plot without a kind" 2 "$BW" plot
+expect_status "plot, an unknown kind" 2 "$BW" plot histogram -i x -o y
+expect_status "plot, an option before the kind" 2 "$BW" plot -i x hemisphere
 
 # ---- make help lists every goal -------------------------------------------------
 make --no-print-directory help >"$T/help" 2>&1 || bad "make help"
@@ -222,6 +231,116 @@ for g in $(sed -n 's/^  make \([a-z][a-z0-9-]*\).*/\1/p' "$T/help"); do
     echo "$known" | grep -qx "$g" || extra="$extra $g"
 done
 [ -z "$extra" ] && ok || bad "make help lists goals make does not know:$extra"
+
+# ---- brdfwave plot ---------------------------------------------------------------
+# png_rgb FILE: width height and the pixels, for the checks below (numpy)
+cat >"$T/png.py" <<'PY'
+import struct, zlib
+import numpy as np
+def read(path):
+    d = open(path, 'rb').read()
+    assert d[:8] == b'\x89PNG\r\n\x1a\n'
+    pos, idat = 8, b''
+    while pos < len(d):
+        n, = struct.unpack('>I', d[pos:pos + 4])
+        typ, body = d[pos + 4:pos + 8], d[pos + 8:pos + 8 + n]
+        assert zlib.crc32(typ + body) & 0xffffffff == struct.unpack('>I', d[pos + 8 + n:pos + 12 + n])[0]
+        if typ == b'IHDR':
+            w, h, depth, colour = struct.unpack('>IIBB', body[:10])
+            assert (depth, colour) == (8, 2)
+        if typ == b'IDAT':
+            idat += body
+        pos += 12 + n
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(h, 3 * w + 1)
+    assert (raw[:, 0] == 0).all()
+    return raw[:, 1:].reshape(h, w, 3).astype(int)
+PY
+# hemisphere: the specular peak of a Phong BRDF lies opposite the incoming
+# direction (phi = 180 degrees, left of the centre) at its zenith angle
+for k in 4 12; do
+    "$BW" plot hemisphere -i "$T/p.bwv" --in $k -o "$T/h$k.png" >"$T/out" 2>"$T/err" ||
+        { bad "plot hemisphere --in $k: $(cat "$T/err")"; continue; }
+    [ ! -s "$T/out" ] && [ ! -s "$T/err" ] && ok || bad "plot hemisphere printed something"
+    PYTHONPATH=$T $PY - "$T/h$k.png" $k <<'PY' && ok || bad "hemisphere --in $k: peak not at the mirror direction"
+import sys, png
+np = png.np
+img = png.read(sys.argv[1]); k = int(sys.argv[2])
+assert img.shape == (640, 780, 3), img.shape
+# the disc: centre (300, 350), radius 240 pixels for 90 degrees (cmd_plot.c)
+cx, cy, r = 300, 350, 240
+theta = (k + 0.5) * 90 / 16
+yy, xx = np.mgrid[0:640, 0:780]
+inside = (xx - cx) ** 2 + (yy - cy) ** 2 < (r - 3) ** 2
+# the top of the colour map is yellow: red and green high, blue low
+score = np.where(inside, img[..., 0] + img[..., 1] - 2 * img[..., 2], -999)
+# the brightest triangle: its centre within one triangle (about 7 degrees,
+# 19 pixels, at level 4) of the mirror direction
+ys, xs = np.nonzero(score >= score.max() - 8)
+y, x = ys.mean(), xs.mean()
+want = cx - r * theta / 90
+assert abs(x - want) < 12 and abs(y - cy) < 12, (x, y, want)
+PY
+done
+# --log, --range, --band of a 3-band reflectance, and a raw input with its shape
+$PY -c "
+import numpy as n
+g = n.loadtxt('/dev/stdin', delimiter=',', skiprows=1)
+v = n.stack([g[:, 5], 0.5 * g[:, 5] ** 2, 0.1 + 0 * g[:, 5]], axis=1)  # cos theta, ...
+v.astype('<f4').tofile('$T/refl.f32')" < <("$BW" grid --level 3)
+"$BW" plot hemisphere -i "$T/refl.f32" --bands 3 --level 3 --band 0 -o "$T/refl.png" &&
+    PYTHONPATH=$T $PY - "$T/refl.png" <<'PY' && ok || bad "hemisphere of cos(theta): not brightest at the centre"
+import sys, png
+img = png.read(sys.argv[1])
+centre, rim = img[358, 308], img[358, 300 + 225] # beside the dashed lines
+# the colour map's top is yellow, its bottom dark violet (viridis)
+assert centre[0] + centre[1] - centre[2] > 300, centre
+assert sum(rim) < 200 and rim[2] > rim[0] > rim[1], rim
+PY
+"$BW" plot hemisphere -i "$T/refl.f32" --bands 3 --level 3 --log --range 0.01,1 --edges \
+    --title "a title" -o "$T/refl2.png" && ok || bad "plot hemisphere --log --range"
+expect_status "hemisphere of spectra" 1 "$BW" plot hemisphere -i "$T/fl.bwv" -o "$T/x.png"
+expect_status "hemisphere --band out of range" 2 "$BW" plot hemisphere -i "$T/refl.f32" --bands 3 --level 3 --band 3 -o "$T/x.png"
+expect_status "hemisphere of raw input without a shape" 2 "$BW" plot hemisphere -i "$T/refl.f32" -o "$T/x.png"
+expect_status "hemisphere --log of values <= 0" 2 "$BW" plot hemisphere -i "$T/refl.f32" --bands 3 --level 3 --log --range 0,1 -o "$T/x.png"
+[ ! -e "$T/x.png" ] && ok || bad "a failed plot left a picture"
+# spectra: the original and its payload, the wavelengths of the .sed files
+"$BW" plot spectra --input-format sed -i $DATA/field_psr3500/*.sed --payload "$T/f.bwv" \
+    --spectrum 0 --spectrum 59 -o "$T/s.png" 2>"$T/err" &&
+    PYTHONPATH=$T $PY - "$T/s.png" <<'PY' && ok || bad "plot spectra: $(cat "$T/err")"
+import sys, png
+img = png.read(sys.argv[1])
+assert img.shape == (760, 960, 3)
+# the two spectra's colours (cmd_plot: series 0 and 1) are drawn
+blue = ((img[..., 0] < 40) & (abs(img[..., 1] - 114) < 30) & (img[..., 2] > 150)).sum()
+red = ((img[..., 0] > 190) & (abs(img[..., 1] - 94) < 30) & (img[..., 2] < 50)).sum()
+assert blue > 500 and red > 500, (blue, red)
+PY
+expect_status "spectra without a payload" 2 "$BW" plot spectra -i "$T/p.f32" -o "$T/x.png"
+expect_status "spectra of another measurement" 1 "$BW" plot spectra -i "$T/r.u16" --input-format u16 --payload "$T/p.bwv" -o "$T/x.png"
+expect_status "spectra, a spectrum out of range" 2 "$BW" plot spectra -i "$T/p.f32" --payload "$T/p.bwv" --spectrum 16384 -o "$T/x.png"
+# rd: CSV on standard output, bits/sample falling and errors growing with the ratio
+"$BW" plot rd -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratios 8,16,32,64,128 --relative \
+    -o "$T/rd.png" >"$T/rd.csv" 2>"$T/err" && [ ! -s "$T/err" ] &&
+    $PY - "$T/rd.csv" <<'PY' && ok || bad "plot rd: $(cat "$T/err") $(cat "$T/rd.csv")"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 10, rows
+for coding in ('absolute', 'relative'):
+    r = [x for x in rows if x['coding'] == coding]
+    bps = [float(x['bits_per_sample']) for x in r]
+    l2 = [float(x['relative_l2_percent']) for x in r]
+    assert bps == sorted(bps, reverse=True) and l2 == sorted(l2), (bps, l2)
+    assert all(int(x['bytes']) <= 4 * 16384 / float(x['ratio']) for x in r)
+PY
+PYTHONPATH=$T $PY -c "import png; assert png.read('$T/rd.png').shape == (560, 1100, 3)" && ok || bad "rd.png"
+"$BW" plot rd -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratios 32 -o "$T/rd1.png" >"$T/rd1.csv" &&
+    "$BW" encode -q -i "$T/p.f32" -o "$T/p32.bwv" --bands 1 --level 4 --incoming 16 --ratio 32 &&
+    grep -q "^32,$(stat -c %s "$T/p32.bwv")," "$T/rd1.csv" && ok ||
+    bad "plot rd: not the payload of encode --ratio 32 ($(cat "$T/rd1.csv"))"
+expect_status "rd: every budget too small" 1 "$BW" plot rd -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratios 100000 -o "$T/x.png"
+expect_status "rd --relative of integers" 2 "$BW" plot rd -i "$T/r.u16" --input-format u16 --bands 5 --level 3 --relative -o "$T/x.png"
+expect_status "rd: bad --ratios" 2 "$BW" plot rd -i "$T/p.f32" --bands 1 --ratios 4,x -o "$T/x.png"
+[ ! -e "$T/x.png" ] && ok || bad "a failed plot left a picture"
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

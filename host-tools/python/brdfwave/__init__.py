@@ -15,7 +15,7 @@ does not load numpy, so it starts fast on a small host.
 from ._lib import BrdfwaveError, header_of
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
-           "header_of"]
+           "header_of", "plot_hemisphere", "plot_spectra", "plot_rd"]
 
 
 def __getattr__(name):
@@ -23,4 +23,8 @@ def __getattr__(name):
     if name in ("Measurement", "decode", "decode_bytes", "encode", "grid"):
         from . import codec
         return getattr(codec, name)
+    # and matplotlib with the first picture (brdfwave.plot)
+    if name in ("plot_hemisphere", "plot_spectra", "plot_rd"):
+        from . import plot
+        return getattr(plot, name)
     raise AttributeError("module 'brdfwave' has no attribute %r" % name)
