@@ -96,6 +96,7 @@ $(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) $(BUILD
 	    $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
+include mk/install.mk
 include mk/ref.mk
 -include mk/bench.mk
 include mk/render.mk

@@ -57,7 +57,8 @@ for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh te
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
 # the product: licence lines, the command line's conventions, install, packages
-for s in tests/license/test_spdx.sh tests/cli/test_product.sh tests/python/test_plot.py; do
+for s in tests/license/test_spdx.sh tests/cli/test_product.sh tests/python/test_plot.py \
+    tests/install/test_install.sh; do
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
 
