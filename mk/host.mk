@@ -98,6 +98,7 @@ $(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) $(BUILD
 include mk/tests.mk
 include mk/install.mk
 include mk/pictures.mk
+include mk/conformance.mk
 include mk/ref.mk
 -include mk/bench.mk
 include mk/render.mk
