@@ -99,6 +99,7 @@ include mk/tests.mk
 include mk/install.mk
 include mk/pictures.mk
 include mk/conformance.mk
+include mk/deb.mk
 include mk/ref.mk
 -include mk/bench.mk
 include mk/render.mk

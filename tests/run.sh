@@ -58,7 +58,7 @@ for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh te
 done
 # the product: licence lines, the command line's conventions, install, packages
 for s in tests/license/test_spdx.sh tests/cli/test_product.sh tests/python/test_plot.py \
-    tests/install/test_install.sh tests/conformance/check.py; do
+    tests/install/test_install.sh tests/conformance/check.py tests/deb/test_deb.sh; do
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
 
