@@ -25,10 +25,13 @@ WARN := -std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes $(WERROR)
 
 CORE_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CORE_SRC))
 
-# the objects are rebuilt when -Werror comes or goes
+# the objects are rebuilt when -Werror comes or goes (a dry run, make -n,
+# leaves the stamp alone)
 FLAGS_STAMP := $(BUILD)/gen/werror
+ifeq ($(findstring n,$(firstword -$(MAKEFLAGS))),)
 $(shell mkdir -p $(BUILD)/gen && { [ -f $(FLAGS_STAMP) ] && [ "$$(cat $(FLAGS_STAMP))" = "$(WERROR)" ] || \
         echo "$(WERROR)" >$(FLAGS_STAMP); })
+endif
 
 include mk/$(TARGET).mk
 
