@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # brdfwave: one entry point (`make help` lists every goal).
 #   make                 host library and CLI (build/host)
 #   make check           every test (installs missing Debian packages first)

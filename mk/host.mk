@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g

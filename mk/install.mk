@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # make install / make uninstall (host build): the command line, the shared
 # library libbrdfwave.so.MAJOR with its SONAME (and the link
 # libbrdfwave.so, the static library libbrdfwave.a), the public headers

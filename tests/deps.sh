@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Installs the Debian packages a make goal needs, when they are missing.
 #   tests/deps.sh [check|hw|run|bench|fuzz|reproduce]   (default: check)
 set -eu

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Runs every test suite and ends with one summary line: "tests: N passed, M failed".
 # cmocka suites count their test cases; scripts count the cases they report
 # on a line "RESULT: N passed, M failed" (or 1 if they print none).

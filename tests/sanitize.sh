@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The unit tests (tests/unit/test_*.c) built with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round

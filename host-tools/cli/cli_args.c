@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The options of every command, from one table (cli_args.h). */
 #define _GNU_SOURCE /* getopt_long */
 #include "cli_args.h"

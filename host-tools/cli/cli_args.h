@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The options of every command, from one table: a wrapper around
  * getopt_long that fills the variables the table points to, checks every

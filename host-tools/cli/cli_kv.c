@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A command's report as key: value lines or one JSON object (cli_kv.h). */
 #include "cli_kv.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * A command's report as "key: value" lines, or with --json as one JSON
  * object (keys in the same order, numbers as numbers, a value that is not

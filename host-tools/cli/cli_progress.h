@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * A progress line on standard error while a command works, only when
  * standard error is a terminal (never in a pipe or a file): it appears once

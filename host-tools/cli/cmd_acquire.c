@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave acquire: payloads from the co-processor over I2C (docs/I2C.md),
  * woken by its data-ready line (libgpiod 1.6 edge events): the I2C client
  * of the library (bwh_i2c.h) over i2c-dev; `python3 -m brdfwave.acquire`

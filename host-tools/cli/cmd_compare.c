@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave compare: error metrics between two raw sample files. */
 #include <math.h>
 #include <stdio.h>

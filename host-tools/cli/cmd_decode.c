@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave decode: a payload to raw samples. */
 #include <stdint.h>
 #include <stdlib.h>

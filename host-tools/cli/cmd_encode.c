@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave encode: a measurement file to a payload. */
 #include <math.h>
 #include <stdint.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave info: a payload's header as key: value lines. */
 #include <stdint.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave plot: PNG pictures of a user's own data (host-tools/plot/plot.h):
  * a BRDF or reflectance as a hemisphere map, spectra before and after
  * compression with the error below, and a rate-distortion curve of one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave render: the path tracer's options (host-tools/render/render.h). */
 #define _POSIX_C_SOURCE 200809L /* sysconf */
 #include <stdint.h>

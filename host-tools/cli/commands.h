@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave: the commands. Each takes its own argv (argv[0] is the command's
  * name) and returns the exit status (cli_errors.h: 0, 1 or 2). */
 #ifndef BW_COMMANDS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave: the command line. Finds the command and runs it. */
 #define _DEFAULT_SOURCE /* readlink */
 #include <limits.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Encoding on a device (`brdfwave encode --device`): "qemu" starts the
  * emulated co-processor (QEMU mps2-an386) with its firmware image and talks

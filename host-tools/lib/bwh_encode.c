@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Measurements to payloads (bwh_encode.h). */
 #include "bwh_encode.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measurements to payloads: the codec core on the host (or on a device),
  * with float input mapped to integer samples (value = scale * sample, scale

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Spectral Evolution .sed files (bwh_sed.h). */
 #include "bwh_sed.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The library's version (brdfwave/brdfwave.h). */
 #include "brdfwave/brdfwave.h"
 

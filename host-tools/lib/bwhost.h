@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * libbrdfwave: the host side of the codec, one header for the whole of it.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Pictures of measurements for `brdfwave plot`: an RGB canvas with
  * anti-aliased lines, a built-in 5 x 7 bitmap font, axes with ticks

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Axes, ticks, series and legends (plot.h). */
 #include <math.h>
 #include <stdio.h>

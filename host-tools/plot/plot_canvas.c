@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The canvas, its shapes and the colour map (plot.h). */
 #include <math.h>
 #include <stdlib.h>

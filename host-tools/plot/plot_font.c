@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The built-in 5 x 7 bitmap font and text (plot.h). Each glyph is nine
  * rows of five pixels, '#' set: seven above the baseline, two for the
  * descenders. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The hemisphere of geodesic triangles in polar projection, and the colour
  * bar (plot.h). */
 #include <math.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """make reproduce: the experiments of Claustres, Paulin and Boucher (2003) with
 the float reference model (build/host/bwref), written to build/report/paper.md
 with the paper's numbers beside ours, plus build/report/figure5.png.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* `brdfwave render` from its options to the PNG and the report (render.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "render.h"

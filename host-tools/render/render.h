@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * `brdfwave render`: a small multithreaded path tracer comparing sampling
  * strategies (sec. 6.2). render_run builds the materials (render_material.h)

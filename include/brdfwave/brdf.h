@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Decoded BRDFs as functions, for renderers: the analytic Phong and Ward
  * models, evaluation of a decoded payload at any (wi, wo, lambda) with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The codec core's interface: dimensions, parameters, bw_encode, bw_decode,
  * bw_header_read, the streaming encoder bw_stream_* and the caller-owned

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The command line as people expect it of lz4, zstd and xz: --version, the
 # summary line of encode (measured: the numbers agree with info and compare),
 # a progress line on a terminal and never on a pipe, --json that parses,

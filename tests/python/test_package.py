@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """The Python package against the CLI: decode of codec payloads equals
 `brdfwave decode` bit for bit, encode equals `brdfwave encode` byte for byte,
 grid equals `brdfwave grid`; bad input raises a clear BrdfwaveError; the

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """brdfwave.plot (matplotlib) against `brdfwave plot`: the rate-distortion
 points are the command line's, the hemisphere map has its peak at the
 mirror direction, the spectra are drawn, bad input raises BrdfwaveError.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The I2C register window (firmware/link/bw_i2cwin.c) driven over a
  * simulated SMBus by the host's I2C client (host-tools/lib/bwh_i2c.c), as

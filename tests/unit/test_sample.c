@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Importance sampling from the triangle hierarchy (host-tools/lib/bw_sample.c)
  * tested as renderers test their BSDF samplers:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """brdfwave for Python: payloads to numpy arrays and back, the geodesic grid,
 and the acquisition service.
 

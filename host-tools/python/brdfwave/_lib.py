@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """ctypes view of libbrdfwave (build/host/libbrdfwave.so, `make pylib`)."""
 import ctypes
 import ctypes.util

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """brdfwave.plot: the pictures of `brdfwave plot` with matplotlib (when it is
 installed): a hemisphere map of a BRDF or reflectance, spectra before and
 after compression with the error below, and a rate-distortion curve.
