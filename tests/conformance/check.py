@@ -82,7 +82,8 @@ for k, want in need.items():
     check(want <= seen[k], "no vector with %s %s" % (k, sorted(want - seen[k])))
 # flag bits: 0 DECIMAL_SCALE, 1 STREAM_ORDER, 2 RICE, 3 LOG_VALUE, 4 MIRROR,
 # 5 RECIPROCAL; and the scale and offset fields
-for bit in (0, 1, 2, 3, 4, 5, 8, 9):
+# and the extension area (version 7)
+for bit in (0, 1, 2, 3, 4, 5, 6, 8, 9):
     check(flags & (1 << bit), "no vector with flag bit %d" % bit)
 
 # a damaged vector (one body bit, the length) is refused, nothing written
@@ -95,6 +96,25 @@ for what, bad in (("a flipped bit", data[:20] + bytes([data[20] ^ 4]) + data[21:
     r = run("decode", "-i", p, "-o", out)
     check(r.returncode == 1 and not os.path.exists(out) and len(r.stderr.splitlines()) == 1,
           "damaged vector (%s): exit %d, %s" % (what, r.returncode, r.stderr))
+
+# an extension record of a critical type no decoder knows (below 0x80) is
+# refused; the same record of an ancillary type is skipped
+sys.path.insert(0, DIR)
+from add_ext import with_ext  # noqa: E402
+base = os.path.join(DIR, "spectra_lossless_haar")
+for typ, ok_want in ((0x10, False), (0xF7, True)):
+    p = os.path.join(TMP, "ext.bwv")
+    open(p, "wb").write(with_ext(open(base + ".bwv", "rb").read(), typ, b"\x01\x02"))
+    out = os.path.join(TMP, "ext.i32")
+    if os.path.exists(out):
+        os.remove(out)
+    r = run("decode", "-i", p, "-o", out, "--output-format", "i32")
+    if ok_want:
+        check(r.returncode == 0 and open(out, "rb").read() == open(base + ".i32", "rb").read(),
+              "ancillary record 0x%02x: %s" % (typ, r.stderr))
+    else:
+        check(r.returncode == 1 and b"extension" in r.stderr and not os.path.exists(out),
+              "critical record 0x%02x: exit %d, %s" % (typ, r.returncode, r.stderr))
 
 print("RESULT: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)

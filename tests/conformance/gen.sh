@@ -66,4 +66,13 @@ full_maxerr_reciprocal       -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- 
 full_bytes_both              -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --bytes 200 --symmetry both
 full_maxerr_none_rice        -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.001 --symmetry none --coder rice
 EOF2
+# version 7: the first vector with an ancillary extension record (type 0xC3,
+# unassigned: a decoder skips it) in front of the same body
+ext() { # NAME BASE TYPE TEXT
+    $PY tests/conformance/add_ext.py "$OUT/$2.bwv" "$OUT/$1.bwv" "$3" "$(printf '%s' "$4" | od -An -tx1 | tr -d ' \n')"
+    "$BW" decode -i "$OUT/$1.bwv" -o "$OUT/$1.i32" --output-format i32
+    "$BW" decode -i "$OUT/$1.bwv" -o "$OUT/$1.f32"
+    "$BW" info --json "$OUT/$1.bwv" >"$OUT/$1.json"
+}
+ext v7_ext_ancillary spectra_lossless_haar 0xc3 conformance
 ls "$OUT"/*.bwv | wc -l
