@@ -18,6 +18,8 @@ fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 key() { sed -n "s/^$1: //p" "$2"; }
+# no command below may write into the tree's tracked files
+tracked_before=$(git status --porcelain --untracked-files=no 2>/dev/null)
 
 # expect_status NAME STATUS CMD...: that exit status, one line on stderr
 expect_status() {
@@ -342,6 +344,9 @@ expect_status "rd: every budget too small" 1 "$BW" plot rd -i "$T/p.f32" --bands
 expect_status "rd --relative of integers" 2 "$BW" plot rd -i "$T/r.u16" --input-format u16 --bands 5 --level 3 --relative -o "$T/x.png"
 expect_status "rd: bad --ratios" 2 "$BW" plot rd -i "$T/p.f32" --bands 1 --ratios 4,x -o "$T/x.png"
 [ ! -e "$T/x.png" ] && ok || bad "a failed plot left a picture"
+
+[ "$(git status --porcelain --untracked-files=no 2>/dev/null)" = "$tracked_before" ] && ok ||
+    bad "tracked files changed: $(git status --porcelain --untracked-files=no | head -5)"
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]
