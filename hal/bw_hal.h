@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Hardware abstraction of the on-device application. Each board backend
  * fills a bw_hal_t; an operation a board does not have is NULL and its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * A sensor that replays a file of little-endian int32 samples through the C
  * library: the emulated board (semihosting) and the Linux process use it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #ifndef BW_FILE_SENSOR_H
 #define BW_FILE_SENSOR_H
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Device benchmark: instructions per sample of the codec core on the emulated
 # Cortex-M4 (QEMU mps2-an386, -icount shift=0), next to memcpy, first
 # difference and table CRC-32 floors measured in the same image; flash, RAM

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Rate-distortion benchmark with targets: brdfwave against JPEG-LS (CharLS),
 # OpenJPEG, ZFP, libaec, xz and zstd on the synthetic, field, Spectralon and
 # RGL sets. Writes build/bench/rd.md, rd.csv and one rd_<set>.png per set.

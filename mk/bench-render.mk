@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # `make bench-render`: the paper's path-tracing comparison (sec. 6.2) with
 # brdfwave render, and the sampling throughput of the hierarchy against a
 # linear scan. Writes build/bench/render.md with the images beside it in

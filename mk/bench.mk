@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Codec benchmark: brdfwave against JPEG-LS (CharLS), OpenJPEG, ZFP, libaec,
 # xz and zstd on the field spectra and the paper's synthetic BRDF sets.
 # Writes build/bench/codec.md and build/bench/codec.csv.

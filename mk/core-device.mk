@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # The codec core's switches (firmware/codec/bw_config.h) for the device's
 # 16 KiB of flash: the small code forms (the same bytes), and the encoder
 # without prediction and without the byte budget's half-step search, and

@@ -1,7 +1,8 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Linux host: the codec core, libbrdfwave and the brdfwave CLI.
 CC ?= cc
 OPT ?= -O2 -g
-CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib $(EXTRA_CFLAGS)
+CFLAGS := $(WARN) $(OPT) $(CORE_INC) -Ifirmware/link -Ihost-tools/lib -Iinclude $(EXTRA_CFLAGS)
 LDLIBS := -lm
 
 # libbrdfwave: the codec core, the link frames and host-tools/lib, one list
@@ -22,9 +23,15 @@ $(patsubst %.c,$(BUILD)/%.o,$(LIB_REF_USERS)) $(patsubst %.c,$(BUILD)/pic/%.o,$(
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC))
 LIB_PIC_OBJ := $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_SRC))
 LIB := $(BUILD)/libbrdfwave.a
+# the shared library: libbrdfwave.so.MAJOR (its SONAME) and the link
+# libbrdfwave.so beside it, both from the version in include/brdfwave/brdfwave.h
+VERSION := $(shell sed -n 's/^\#define BRDFWAVE_VERSION_STRING "\(.*\)"/\1/p' include/brdfwave/brdfwave.h)
+SOVERSION := $(firstword $(subst ., ,$(VERSION)))
+SONAME := libbrdfwave.so.$(SOVERSION)
+SOLIB := $(BUILD)/$(SONAME)
 PYLIB := $(BUILD)/libbrdfwave.so
 
-$(BUILD)/pic/%.o: %.c
+$(BUILD)/pic/%.o: %.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(if $(Q),@echo "  CC-PIC  $<")
 	$(Q)$(CC) $(CFLAGS) -fPIC -MD -MP -c $< -o $@
@@ -32,7 +39,7 @@ $(BUILD)/pic/%.o: %.c
 # the command line's own modules: options, numbers, exit statuses, shape
 # options (also linked into bwref)
 CLIKIT_SRC := host-tools/cli/cli_args.c host-tools/cli/cli_num.c host-tools/cli/cli_errors.c \
-              host-tools/cli/cli_shape.c
+              host-tools/cli/cli_shape.c host-tools/cli/cli_progress.c host-tools/cli/cli_kv.c
 CLIKIT := $(BUILD)/libbwcli.a
 
 # the renderer of `brdfwave render` (scene, tracer, materials, meshes,
@@ -40,14 +47,24 @@ CLIKIT := $(BUILD)/libbwcli.a
 RENDER_SRC := $(wildcard host-tools/render/*.c)
 RENDER_LIB := $(BUILD)/librender.a
 
+# the pictures of `brdfwave plot` (canvas, font, axes, hemisphere; the
+# renderer's PNG writer): libplot
+PLOT_SRC := $(wildcard host-tools/plot/*.c)
+PLOT_LIB := $(BUILD)/libplot.a
+$(patsubst %.c,$(BUILD)/%.o,$(PLOT_SRC)): CFLAGS += -Ihost-tools/render
+
+$(PLOT_LIB): $(patsubst %.c,$(BUILD)/%.o,$(PLOT_SRC))
+	$(Q)rm -f $@ && $(AR) rcs $@ $^
+
 # brdfwave: main.c and one file per command (cmd_acquire.c: mk/hw.mk)
 CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
            host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
-           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c
+           host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c \
+           host-tools/cli/cmd_plot.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 $(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
-$(CLI_OBJ): CFLAGS += -Ihost-tools/render
+$(CLI_OBJ): CFLAGS += -Ihost-tools/render -Ihost-tools/plot
 
 BW_CLI := $(BUILD)/brdfwave
 
@@ -66,9 +83,12 @@ $(FWL): $(FWL_OBJ) $(LIB)
 $(LIB): $(LIB_OBJ)
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
 
-$(PYLIB): $(LIB_PIC_OBJ)
+$(SOLIB): $(LIB_PIC_OBJ)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) -shared -Wl,-soname,libbrdfwave.so $^ -lm -o $@
+	$(Q)$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) $^ -lm -o $@
+
+$(PYLIB): $(SOLIB)
+	$(Q)ln -sf $(SONAME) $@
 
 $(CLIKIT): $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC))
 	$(Q)rm -f $@ && $(AR) rcs $@ $^
@@ -79,12 +99,16 @@ $(RENDER_LIB): $(patsubst %.c,$(BUILD)/%.o,$(RENDER_SRC))
 # `brdfwave import-rgl` runs the reference model's importer (mk/ref.mk)
 CLI_REF_OBJ := $(BUILD)/host-tools/ref/cli/cmd_rgl.o $(BUILD)/host-tools/ref/cli/bwref_io.o
 
-$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
+$(BW_CLI): $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) $(BUILD)/libbwref.a $(LIB)
 	$(if $(Q),@echo "  LD      $@")
-	$(Q)$(CC) $(CFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(RENDER_LIB) $(BUILD)/libbwref.a \
-	    $(LIB) $(LDLIBS) -o $@
+	$(Q)$(CC) $(CFLAGS) $(LDFLAGS) $(CLI_OBJ) $(CLI_REF_OBJ) $(CLIKIT) $(PLOT_LIB) $(RENDER_LIB) \
+	    $(BUILD)/libbwref.a $(LIB) $(LDLIBS) -o $@
 
 include mk/tests.mk
+include mk/install.mk
+include mk/pictures.mk
+include mk/conformance.mk
+include mk/deb.mk
 include mk/ref.mk
 -include mk/bench.mk
 include mk/render.mk

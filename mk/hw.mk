@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Acquisition over I2C with a data-ready line (docs/I2C.md): `brdfwave
 # acquire` (libgpiod + i2c-dev), the Python package's tests (it loads
 # libbrdfwave.so, mk/host.mk) and the VM tests against the kernel's i2c-stub

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # A real MCU: STM32L476RG (Cortex-M4F, 1 MiB flash, 96 KiB SRAM1), build only:
 # the codec core as a static library and the firmware image on the
 # register-level board backend (hal/stm32l4).

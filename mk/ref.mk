@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Float reference model of the paper (host-tools/ref): libbwref, the bwref
 # tool, its tests and `make reproduce` (build/report/paper.md).
 # The model shares no code with firmware/codec or libbrdfwave, only the

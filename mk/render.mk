@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # `brdfwave render` (librender, mk/host.mk): its libraries, the mesh test,
 # the sampling unit test (it reads a measured RGL BRDF with the reference
 # model's loader, so it links libbwref too) and `make bench-render`

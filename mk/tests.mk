@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Tests (host). `make check` runs them all and ends with one summary line.
 TEST_CFLAGS := $(CFLAGS) -Itests/unit
 TEST_LIBS := -lcmocka -lm

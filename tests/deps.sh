@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Installs the Debian packages a make goal needs, when they are missing.
 #   tests/deps.sh [check|hw|run|bench|fuzz|reproduce]   (default: check)
 set -eu
@@ -9,7 +10,8 @@ hw="libgpiod-dev python3-libgpiod python3-smbus2 i2c-tools qemu-system-x86 linux
 case "$goal" in
 check) pkgs="gcc make libc6-dev libcmocka-dev zlib1g-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
              gcc-riscv64-unknown-elf binutils-riscv64-unknown-elf qemu-system-arm python3
-             python3-numpy python3-pywt python3-venv python3-pip $hw" ;;
+             python3-numpy python3-pywt python3-venv python3-pip python3-matplotlib pkg-config
+             man-db dpkg-dev debhelper dh-python fakeroot lintian $hw" ;;
 hw)    pkgs="$hw" ;;
 run)   pkgs="gcc make libc6-dev zlib1g-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
 bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp fpzip-utils libaec-tools xz-utils zstd

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Runs every test suite and ends with one summary line: "tests: N passed, M failed".
 # cmocka suites count their test cases; scripts count the cases they report
 # on a line "RESULT: N passed, M failed" (or 1 if they print none).
@@ -54,6 +55,11 @@ done
 for s in tests/ref/check_pywt.py tests/rd/check_rd.py tests/ref/test_bwref.sh tests/cli/test_cli.sh tests/cli/test_formats.sh tests/cli/test_render.sh tests/freestanding/check.sh tests/sanitize.sh tests/fuzz/replay.sh \
     tests/target/run.sh tests/target/test_e2e.sh tests/target/build_boards.sh \
     tests/python/test_package.py tests/python/test_install.sh tests/hw/run.sh; do
+    [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
+done
+# the product: licence lines, the command line's conventions, install, packages
+for s in tests/license/test_spdx.sh tests/cli/test_product.sh tests/python/test_plot.py \
+    tests/install/test_install.sh tests/conformance/check.py tests/deb/test_deb.sh; do
     [ -x "$s" ] && run "$(basename "$(dirname "$s")")/$(basename "$s")" "$s"
 done
 

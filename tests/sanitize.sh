@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The unit tests (tests/unit/test_*.c) built with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first finding
 # aborts) and run with BW_TEST_QUICK=1, which leaves out the largest round
@@ -24,7 +25,7 @@ OUT=${SANITIZE_BUILD:-build/sanitize}
 CC=${SANITIZE_CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror -O1 -g -fno-omit-frame-pointer
         -fsanitize=address,undefined -fno-sanitize-recover=all
-        -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
+        -Ifirmware/codec -Ifirmware/link -Ifirmware/app -Ihal -Ihost-tools/lib -Iinclude -Ihost-tools/render -Ihost-tools/ref -Itests/unit"
 DEVICE_CFG=$(sed -n 's/^BW_DEVICE_CFG := //p' mk/core-device.mk)
 LIB_SRC="$(ls firmware/codec/*.c) firmware/link/bw_frame.c firmware/link/bw_i2cwin.c $(ls host-tools/lib/*.c)
          host-tools/render/render_mesh.c host-tools/ref/bwr_rgl.c host-tools/ref/bwr_project.c

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The on-device application: wait for a job from the host, read the
  * measurement from the sensor, encode it with the codec core, send the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Scaling and overflow: s_P is a convex combination of its children, so
  * scaling coefficients stay within the sample range; details are differences

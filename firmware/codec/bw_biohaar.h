@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Integer Bio-Haar lifting on the geodesic hemisphere, on vectors.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The byte budget (BW_MODE_BYTES): the finest quantiser whose payload fits.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Types of the strip coder's state, so that callers can own it (bw_ctx_t
  * and the streaming encoder's context embed one). The functions are in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #include "bw_crc32.h"
 
 #include "bw_fixed.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* CRC-32 (IEEE 802.3, reflected 0xEDB88320, init and final xor 0xFFFFFFFF):
  * the CRC of "123456789" is 0xCBF43926. */
 #ifndef BW_CRC32_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The decoder: header and CRC, the body, then the quantiser, the transforms
  * and the symmetry steps backwards, or prediction. Every payload the format

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Dimensions and worst-case sizes: which shapes and sizes a measurement may
  * have (bw_dims_check), making them (bw_dims_make) and the buffer bounds of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The encoder: one pass at fixed settings (load, symmetry, transform or
  * prediction, quantise, code, header and CRC), the choice of the basis, and

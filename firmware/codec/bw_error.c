@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #include "bw_error.h"
 
 #include "bw_config.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave: one list of status codes. Success is >= 0, errors are < 0. */
 #ifndef BW_ERROR_H
 #define BW_ERROR_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Geodesic hemisphere numbering and Bio-Haar weights (integer tables).
  *

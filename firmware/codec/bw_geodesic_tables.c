@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * GENERATED FILE - DO NOT EDIT.
  * Written by host-tools/gen/gen_geodesic_tables.c. To regenerate, from the

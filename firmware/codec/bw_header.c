@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The payload header (docs/FORMAT.md, Header): written from a plan, read
  * and validated field by field, and the CRC-32 trailer checked.

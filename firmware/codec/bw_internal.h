@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * brdfwave codec core: what the core's modules share and callers do not see.
  *

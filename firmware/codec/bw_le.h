@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Little-endian fields of the wire formats (payload, link frames): explicit
  * byte shifts, never a struct written to the wire. */
 #ifndef BW_LE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Loads: the caller's samples into the work array, range-checked and
  * prequantised (MAX_ERROR: q = 2E + 1), and for the Haar basis the first

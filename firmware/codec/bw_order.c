@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The coding order (docs/FORMAT.md, Body): incoming coefficients coarse to
  * fine, then the outgoing ones, coarse to fine or in the order a streaming

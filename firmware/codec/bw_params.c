@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Which shapes, modes, bases and flags go together: one set of rules for the
  * encoder's parameters, the streaming encoder's and a payload's header

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The plan of one encode or decode: dims, basis, prequantiser, step and
  * flags, where the spectral tables and the lifting scratch live, and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Prediction (BW_BASIS_PRED, docs/FORMAT.md, Prediction): for sets of
  * spectra coded exactly or within a bound, in place of the prequantiser and

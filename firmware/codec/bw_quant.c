@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The quantiser (docs/FORMAT.md, Quantisation): thresholds per space, then a
  * dead-zone quantiser per element with a step per subband, scaled so that a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #include "bw_rc.h"
 
 void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Adaptive binary range coder (carry-less 32-bit range, LZMA style).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Adaptive Rice strip coder: see bw_rice.h for the bit stream.
  *

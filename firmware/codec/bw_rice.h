@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Adaptive Rice coding of strips of 32 coefficients (the fast coder).
  *

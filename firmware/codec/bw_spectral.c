@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Integer spectral lifting: S-transform (Haar), LeGall 5/3 and CDF 9/7.
  *

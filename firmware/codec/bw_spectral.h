@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Integer 1-D lifting on the spectral axis, any length.
  *

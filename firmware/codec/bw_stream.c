@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The streaming encoder: spectra as they arrive, each transformed on
  * arrival, the Bio-Haar lifting run up the triangle tree as soon as four

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #include "bw_strip.h"
 
 #include "bw_fixed.h"

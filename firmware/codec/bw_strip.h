@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Sparse array of strips (paper §4.3-4.4).
  *

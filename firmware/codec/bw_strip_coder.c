@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The strip coder, encoder and decoder side by side (docs/FORMAT.md, Body
  * and Body with RICE): each strip of 32 coefficients as a presence flag,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The strip coder: the coefficients, in coding order, as strips of 32
  * (docs/FORMAT.md, Body), with the context-adaptive range coder (a presence

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Symmetry steps before the transform (docs/FORMAT.md, Transform, steps 0):
  * the mirror image (x, -y, z) of the outgoing hemisphere (BW_FLAG_MIRROR)

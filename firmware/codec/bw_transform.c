@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The transform driver: the spectral lifting (bw_spectral.c) on every
  * spectrum, then Bio-Haar (bw_biohaar.c) on the outgoing hemisphere of every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Frames of the host link (UART or I2C), shared by the device and the host.
  * Freestanding, no heap. See docs/LINK.md.

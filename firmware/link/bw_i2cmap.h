@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The co-processor's I2C register map (docs/I2C.md), shared by the register
  * window the boards serve (bw_i2cwin.c) and the host's I2C client

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The I2C register window of docs/I2C.md (bw_i2cwin.h). */
 #include "bw_i2cwin.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The I2C register window of docs/I2C.md: the payload the application keeps
  * for the host, offered in 32-byte pages with a CRC-32 each, and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Cortex-M reset and vector table shared by the boards: copy .data, clear
  * .bss, enable the FPU's access (the C library may touch it), run the C

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Linux backend: the device application as a host process, for tests.
  * The host link is the process's standard input and output (the host runs

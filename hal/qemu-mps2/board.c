@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * QEMU mps2-an386 backend: SysTick as the instruction counter, the CMSDK
  * APB UART0 as the host link, a file read by semihosting as the sensor

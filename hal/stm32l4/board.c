@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * STM32L476RG backend (Cortex-M4F, 1 MiB flash, 96 KiB SRAM1), register level,
  * no vendor headers. Register addresses and bits are from the STM32L4x6

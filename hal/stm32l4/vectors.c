@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * STM32L476 device interrupt vectors, IRQ 0 to 81 (RM0351 §13.3, the
  * STM32L47x/L48x vector table), following the 16 system vectors of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The options of every command, from one table (cli_args.h). */
 #define _GNU_SOURCE /* getopt_long */
 #include "cli_args.h"
@@ -8,12 +9,22 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "brdfwave/brdfwave.h"
 #include "cli_errors.h"
 #include "cli_num.h"
 
 #define MAX_OPTS 60
 #define VAL_BASE 256 /* getopt_long's value of table entry i: VAL_BASE + i */
 #define HELP (VAL_BASE + MAX_OPTS)
+#define VERSION (HELP + 1)
+
+/* "PROG VERSION", the answer of --version */
+static void print_version(const char *prog)
+{
+    printf("%s %s (libbrdfwave %s)\n"
+           "Copyright the brdfwave authors; BSD-2-Clause licence (LICENSE).\n",
+           prog, BRDFWAVE_VERSION_STRING, bwh_version());
+}
 
 static int takes_value(const cli_opt_t *o) { return o->kind != CLI_FLAG; }
 
@@ -67,10 +78,13 @@ static const char *closest(const cli_opt_t *opts, const char *name)
             best = o->name;
         }
     }
-    int dh = distance(name, "help");
-    if (dh < bd) {
-        bd = dh;
-        best = "help";
+    static const char *const added[] = {"help", "version"};
+    for (size_t k = 0; k < sizeof added / sizeof *added; k++) {
+        int dh = distance(name, added[k]);
+        if (dh < bd) {
+            bd = dh;
+            best = added[k];
+        }
     }
     size_t len = strlen(name);
     return bd <= (len > 6 ? 2 : 1) ? best : NULL;
@@ -183,7 +197,7 @@ static int take(const cli_opt_t *o, const char *v)
 bool cli_parse(int argc, char **argv, const cli_opt_t *opts, const char *help, int *first,
                int *status)
 {
-    struct option lo[MAX_OPTS + 2];
+    struct option lo[MAX_OPTS + 3];
     char shorts[3 * MAX_OPTS + 8];
     size_t ns = 0, n = 0;
     shorts[ns++] = ':'; /* a missing value is reported as such */
@@ -202,7 +216,8 @@ bool cli_parse(int argc, char **argv, const cli_opt_t *opts, const char *help, i
         }
     }
     lo[n] = (struct option){"help", no_argument, NULL, HELP};
-    lo[n + 1] = (struct option){NULL, 0, NULL, 0};
+    lo[n + 1] = (struct option){"version", no_argument, NULL, VERSION};
+    lo[n + 2] = (struct option){NULL, 0, NULL, 0};
     shorts[ns++] = 'h';
     shorts[ns] = 0;
 
@@ -223,6 +238,11 @@ bool cli_parse(int argc, char **argv, const cli_opt_t *opts, const char *help, i
                     o = &opts[k];
         if (c == 'h' || c == HELP) {
             fputs(help, stdout);
+            *status = CLI_EXIT_OK;
+            return false;
+        }
+        if (c == VERSION) {
+            print_version(cli_prog());
             *status = CLI_EXIT_OK;
             return false;
         }
@@ -276,6 +296,10 @@ int cli_dispatch(const char *prog, const cli_command_t *cmds, size_t n, int argc
     }
     if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
         usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "-V") || !strcmp(argv[1], "--version")) {
+        print_version(prog);
         return CLI_EXIT_OK;
     }
     for (size_t i = 0; i < n; i++)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The options of every command, from one table: a wrapper around
  * getopt_long that fills the variables the table points to, checks every
@@ -6,7 +7,8 @@
  *
  *   brdfwave encode: unknown option '--levle' (did you mean '--level'?)
  *
- * --help and -h are added to every table: they print the command's help.
+ * --help and -h are added to every table: they print the command's help;
+ * --version the program's version.
  *
  *   uint32_t level = 4;
  *   const char *out = NULL;
@@ -79,8 +81,8 @@ typedef struct {
 
 /* Runs the command argv[1] of cmds[n] (cli_set_name(prog, its name) first)
  * and returns its status. "-h", "--help" and "help" print usage(stdout)
- * (status 0); no command prints usage(stderr) (status 2); an unknown one is
- * a usage error. */
+ * (status 0), "-V" and "--version" the version (status 0); no command prints
+ * usage(stderr) (status 2); an unknown one is a usage error. */
 int cli_dispatch(const char *prog, const cli_command_t *cmds, size_t n, int argc, char **argv,
                  void (*usage)(FILE *f));
 

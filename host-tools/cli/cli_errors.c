@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Exit statuses and error lines of the commands (cli_errors.h). */
 #include "cli_errors.h"
 

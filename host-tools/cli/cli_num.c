@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Strict numbers on the command line (cli_num.h). */
 #include "cli_num.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Numbers on the command line, strictly: the whole string, finite, in range;
  * nothing is guessed (no leading '+' or '-' for counts, no trailing text).

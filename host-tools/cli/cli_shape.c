@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Shape options to the library's shape (cli_shape.h). */
 #include "cli_shape.h"
 

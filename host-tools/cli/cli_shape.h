@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The shape options of the commands (--level L, --incoming N, --level-in Li,
  * --bands B) as table entries (cli_args.h), handed to the library's one rule

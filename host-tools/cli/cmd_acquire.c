@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave acquire: payloads from the co-processor over I2C (docs/I2C.md),
  * woken by its data-ready line (libgpiod 1.6 edge events): the I2C client
  * of the library (bwh_i2c.h) over i2c-dev; `python3 -m brdfwave.acquire`
@@ -22,6 +23,7 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_progress.h"
 #include "commands.h"
 
 #if BW_HAVE_GPIOD
@@ -44,7 +46,8 @@ static const char acquire_help[] =
     "  --timeout S         with --once: seconds to wait for data-ready (default: forever)\n"
     "  --retries R         reads of a bad page after the first (default 3)\n"
     "  --retry-interval S  seconds before a failed payload is tried again (default 5)\n"
-    "  --max-samples N     refuse payloads that decode to more samples (default 67108864)\n";
+    "  --max-samples N     refuse payloads that decode to more samples (default 67108864)\n"
+    "On a terminal a progress line shows how long it has waited for data-ready.\n";
 
 static volatile sig_atomic_t stop_now;
 static void on_signal(int sig) { (void)sig; stop_now = 1; }
@@ -60,6 +63,7 @@ static void logmsg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static void logmsg(const char *fmt, ...)
 {
     va_list ap;
+    cli_progress_end(); /* the waiting line, if shown, makes room */
     va_start(ap, fmt);
     fputs("brdfwave acquire: ", stderr);
     vfprintf(stderr, fmt, ap);
@@ -169,6 +173,7 @@ int bw_cmd_acquire(int argc, char **argv)
     double t_end = once && timeout > 0 ? now_s() + timeout : 0, holdoff = 0;
     int rc = CLI_EXIT_OK;
     unsigned stored = 0;
+    int waiting = 0;
     while (!stop_now) {
         int level = gpiod_line_get_value(gl);
         if (level < 0) {
@@ -177,6 +182,13 @@ int bw_cmd_acquire(int argc, char **argv)
             break;
         }
         if (level == 0 || now_s() < holdoff) {
+            if (!waiting) { /* a terminal shows how long it has waited */
+                cli_progress_start("waiting for data-ready on %s line %u (%u stored)", chip, line,
+                                   stored);
+                waiting = 1;
+            }
+            if (t_end > 0)
+                cli_progress_set(timeout - (t_end - now_s()), timeout);
             double step = 0.2;
             if (t_end > 0) {
                 double left = t_end - now_s();
@@ -201,6 +213,8 @@ int bw_cmd_acquire(int argc, char **argv)
             }
             continue;
         }
+        cli_progress_end();
+        waiting = 0;
         bwh_i2c_payload_t got;
         int r = bwh_i2c_read_payload(&dev, retries, max_samples, &got);
         if (r != 0) {
@@ -234,6 +248,7 @@ int bw_cmd_acquire(int argc, char **argv)
         if (once)
             break;
     }
+    cli_progress_end();
     if (stop_now)
         logmsg("stopped after %u payload(s)", stored);
     gpiod_line_release(gl);

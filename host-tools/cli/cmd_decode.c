@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave decode: a payload to samples, with its metadata where the output
  * format holds it. */
 #include <stdint.h>
@@ -9,6 +10,7 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_progress.h"
 #include "commands.h"
 
 static const char decode_help[] =
@@ -28,7 +30,8 @@ static const char decode_help[] =
     "                     OUT.json (not on standard output)\n"
     "  --max-samples N    refuse payloads that decode to more than N samples\n"
     "                     (default 67108864, 256 MiB of float32): a small payload\n"
-    "                     can describe gigabytes\n";
+    "                     can describe gigabytes\n"
+    "On a terminal a progress line shows while the work takes more than a second.\n";
 
 static int parse_format(const char *v, void *dest)
 {
@@ -89,11 +92,13 @@ int bw_cmd_decode(int argc, char **argv)
     /* the integer formats need no values (a scale can take the values
      * beyond float32 where the integers are fine) */
     int ints_only = fmt == BWH_OUT_I32 || fmt == BWH_OUT_U16;
+    cli_progress_start("%zu bytes", len);
     if (bwh_decode_limit(p, len, max_samples, &h, &s, ints_only ? NULL : &v) != 0 ||
         bwh_meta_of_payload(p, len, &h, &meta) != 0) {
         free(p);
         free(s);
         free(v);
+        cli_progress_end();
         return cli_fail("%s: %s", inp, bwh_last_error());
     }
     free(p);
@@ -109,9 +114,11 @@ int bw_cmd_decode(int argc, char **argv)
                         !(h.flags & (BW_FLAG_LOG_VALUE | BW_FLAG_DECIMAL_SCALE)) &&
                         !(meta.present & BWH_M_MISSING);
     d.meta = &meta;
+    cli_progress_text("%zu samples, writing", n);
     int rc = bwh_output_write(outp, fmt, &d);
     free(s);
     free(v);
     bwh_meta_free(&meta);
+    cli_progress_end();
     return rc ? cli_fail("%s", bwh_last_error()) : CLI_EXIT_OK;
 }

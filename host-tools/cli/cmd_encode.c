@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave encode: a measurement file to a payload. */
 #include <math.h>
 #include <stdint.h>
@@ -5,11 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_device.h"
 #include "bwh_input.h"
 #include "bwh_meta.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_progress.h"
 #include "cli_shape.h"
 #include "commands.h"
 
@@ -19,7 +22,7 @@ static const char encode_help[] =
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
-    "                       [--coder range|ms|rice]\n"
+    "                       [--coder range|ms|rice] [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
     "\n"
@@ -88,7 +91,15 @@ static const char encode_help[] =
     "                    f(wi, wo) as its difference from f(wo, wi) where that comes\n"
     "                    first, for reciprocal BRDFs; both; none; or auto (default:\n"
     "                    every one that applies, on the host, and the smallest\n"
-    "                    payload, or for a byte budget the smallest error)\n";
+    "                    payload, or for a byte budget the smallest error)\n"
+    "  -q, --quiet       no summary line\n"
+    "\n"
+    "Ends with one line on standard error, measured on the payload decoded again:\n"
+    "  OUT: N samples -> B bytes, X bits/sample, R:1 against float32, max error E,\n"
+    "  relative L2 P %\n"
+    "(the ratio against the input's own sample size: uint16 for u16, int32 for i32,\n"
+    "float32 for f32 and sed; the errors in the values' units). On a terminal a\n"
+    "progress line shows while the work takes more than a second.\n";
 
 static int parse_basis(const char *v, void *dest)
 {
@@ -114,6 +125,54 @@ static int parse_coder(const char *v, void *dest)
     if (f < 0)
         return -1;
     *(unsigned *)dest = (unsigned)f;
+    return 0;
+}
+
+/* The summary line: the payload decoded again and compared with the input
+ * values (floats, or ints of value iscale * sample). 0, or -1. */
+static int summary(const char *outp, const uint8_t *payload, size_t plen, size_t count,
+                   const float *floats, const int32_t *ints, float iscale, unsigned st)
+{
+    /* against the input's own sample type: integers as they came, else float32 */
+    static const char *const own[BWH_ST_COUNT] = {"float32", "uint8", "int16", "uint16",
+                                                  "int32", "float32", "float32"};
+    static const size_t own_bytes[BWH_ST_COUNT] = {4, 1, 2, 2, 4, 4, 4};
+    unsigned fmt = st < BWH_ST_COUNT ? st : 0u;
+    bw_header_t h;
+    float *dec = NULL, *ref = NULL;
+    const char *name = strcmp(outp, "-") ? outp : "(stdout)";
+    double bps = 8.0 * (double)plen / (double)count;
+    double ratio = (double)own_bytes[fmt] * (double)count / (double)plen;
+    if (bwh_decode_limit(payload, plen, count, &h, NULL, &dec) != 0) {
+        /* a valid payload whose values float32 cannot hold (decode says so) */
+        cli_progress_end();
+        fprintf(stderr,
+                "%s: %zu samples -> %zu bytes, %.4f bits/sample, %.2f:1 against %s, "
+                "errors not measured: %s\n",
+                name, count, plen, bps, ratio, own[fmt], bwh_last_error());
+        return 0;
+    }
+    if (!floats) {
+        ref = malloc(count * sizeof *ref);
+        if (!ref) {
+            free(dec);
+            return bwh_fail("out of memory");
+        }
+        bwh_value_map_t m = bwh_value_map(iscale, 0.0f, bwh_decimal_exponent(iscale)
+                                                            ? BW_FLAG_DECIMAL_SCALE
+                                                            : 0u);
+        for (size_t i = 0; i < count; i++)
+            ref[i] = bwh_value_of(&m, ints[i]);
+    }
+    bwh_metrics_t m;
+    bwh_metrics(floats ? floats : ref, dec, count, &m);
+    cli_progress_end();
+    fprintf(stderr,
+            "%s: %zu samples -> %zu bytes, %.4f bits/sample, %.2f:1 against %s, "
+            "max error %.6g, relative L2 %.6g %%\n",
+            name, count, plen, bps, ratio, own[fmt], m.max_abs, m.rel_l2);
+    free(dec);
+    free(ref);
     return 0;
 }
 
@@ -218,7 +277,7 @@ int bw_cmd_encode(int argc, char **argv)
     double max_error = 0, ratio = 0, scale = 0, max_rel = 0, rel_floor = 0;
     int n_max_rel = 0, n_rel_floor = 0;
     uint32_t bytes = 0, drop = 0;
-    int has_drop = 0;
+    int has_drop = 0, quiet = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = 0;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
@@ -256,6 +315,7 @@ int bw_cmd_encode(int argc, char **argv)
          .what = "--coder must be range, rice or ms"},
         {"symmetry", 0, CLI_CALL, .dest = &symmetry, .parse = parse_symmetry, .seen = &has_symmetry,
          .what = "--symmetry must be auto, mirror, reciprocal, both or none"},
+        {"quiet", 'q', CLI_FLAG, .dest = &quiet},
         {NULL}};
     int first, st;
     if (!cli_parse(argc, argv, opts, encode_help, &first, &st))
@@ -290,11 +350,10 @@ int bw_cmd_encode(int argc, char **argv)
     o.scale = scale;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
-    o.device = device == DEV_HOST ? NULL : devices[device];
-    o.firmware = firmware;
-    o.drop_chunk = has_drop ? (int)drop : -1;
     uint64_t device_instructions = 0;
-    o.device_instructions = &device_instructions;
+    struct bwh_device_job job = {devices[device], firmware, 0, has_drop ? (int)drop : -1,
+                                 &device_instructions};
+    o.device = device == DEV_HOST ? NULL : &job;
     if (o.basis == BW_BASIS_PRED &&
         (sh.has_level || o.mode > BW_MODE_MAX_ERROR || (o.flags & BW_FLAG_STREAM_ORDER)))
         return cli_usage("--basis pred codes sets of spectra (no --level) with --lossless "
@@ -372,18 +431,25 @@ int bw_cmd_encode(int argc, char **argv)
         for (size_t i = 0; i < count; i++)
             floats[i] = bwh_value_of(&vm, ints[i]);
     }
+    cli_progress_start("%zu samples", count);
     if ((floats ? bwh_encode_f32(&d, floats, &o, &payload, &plen)
                 : bwh_encode_scaled(&d, ints, &o, iscale, &payload, &plen)) != 0 ||
         bwh_write_file(outp, payload, plen) != 0)
         goto fail;
+    cli_progress_text("%zu samples, measuring the payload", count);
+    if (!quiet && summary(outp, payload, plen, count, floats, ints, iscale,
+                          (m.meta.present & BWH_M_SAMPLE_TYPE) ? (unsigned)m.meta.sample_type : 0u) != 0)
+        goto fail;
+    cli_progress_end();
     if (o.device)
-        printf("device %s: %zu samples -> %zu bytes, %llu %s (%.1f per sample)\n", o.device,
+        printf("device %s: %zu samples -> %zu bytes, %llu %s (%.1f per sample)\n", job.device,
                count, plen, (unsigned long long)device_instructions,
                device == DEV_LINUX ? "ns" : "instructions",
                (double)device_instructions / (double)count);
     rc = CLI_EXIT_OK;
     goto out;
 fail:
+    cli_progress_end();
     cli_fail("%s", bwh_last_error());
 out:
     free(ints);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave grid: the geodesic triangles of one level as CSV. */
 #include <math.h>
 #include <stdint.h>

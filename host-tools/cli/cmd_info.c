@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave info: a payload's header as key: value lines. */
 #include <stdint.h>
 #include <stdio.h>
@@ -10,15 +11,17 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_kv.h"
 #include "commands.h"
 
 static const char info_help[] =
-    "usage: brdfwave info IN.bwv [--json]\n"
+    "usage: brdfwave info [--json] IN.bwv\n"
     "\n"
-    "Prints the payload header as 'key: value' lines, then its metadata\n"
-    "(wavelengths, quantity and unit, incidence angles, instrument, time,\n"
-    "location, free fields) and the bytes it takes. '-' is standard input.\n"
-    "  --json  the metadata alone as JSON (what 'encode --metadata' reads)\n";
+    "Prints the payload header as 'key: value' lines, then its guarantee and\n"
+    "metadata (wavelengths, quantity and unit, incidence angles, instrument,\n"
+    "time, location, free fields) and the bytes it takes. '-' is standard input.\n"
+    "  --json  as one JSON object instead (the same keys; the metadata as the\n"
+    "          object \"metadata\", what 'encode --metadata' reads)\n";
 
 /* The bytes the payload would be smaller without its metadata: the record
  * and, when it is the only one, the extension area's length field. */
@@ -79,65 +82,71 @@ int bw_cmd_info(int argc, char **argv)
     free(p);
     if (ms != 0)
         return cli_fail("%s: %s", path, bwh_last_error());
-    if (json) {
-        char *j;
-        if (bwh_meta_to_json(&meta, &j) != 0) {
-            bwh_meta_free(&meta);
-            return cli_fail("%s", bwh_last_error());
-        }
-        printf("%s\n", j);
-        free(j);
+    char *mj = NULL;
+    if (json && bwh_meta_to_json(&meta, &mj) != 0) {
         bwh_meta_free(&meta);
-        return CLI_EXIT_OK;
+        return cli_fail("%s", bwh_last_error());
     }
     size_t n = bw_dims_samples(&h.dims);
     double scale = bwh_bits_to_float(h.scale_bits);
-    printf("version: %u\n", h.version);
-    printf("shape: %s\n", bwh_shape_name(h.dims.shape));
-    printf("level_out: %u\n", h.dims.level_out);
-    printf("level_in: %u\n", h.dims.level_in);
-    printf("incoming: %u\n", h.dims.n_in);
-    printf("outgoing: %u\n", h.dims.n_out);
-    printf("bands: %u\n", h.dims.bands);
-    printf("samples: %zu\n", n);
-    printf("basis: %s\n", bwh_basis_name(h.basis));
-    printf("spectral_levels: %u\n", h.spectral_levels);
-    printf("mode: %s\n", bwh_mode_name(h.mode));
-    printf("order: %s\n", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
-    printf("coder: %s\n", bwh_coder_name(h.flags));
-    printf("symmetry: %s\n", bwh_symmetry_name(h.flags));
+    cli_kv_t kv;
+    char crc[16];
+    snprintf(crc, sizeof crc, "0x%08x", h.crc);
+    cli_kv_begin(&kv, stdout, json);
+    cli_kv_uint(&kv, "version", h.version);
+    cli_kv_str(&kv, "shape", bwh_shape_name(h.dims.shape));
+    cli_kv_uint(&kv, "level_out", h.dims.level_out);
+    cli_kv_uint(&kv, "level_in", h.dims.level_in);
+    cli_kv_uint(&kv, "incoming", h.dims.n_in);
+    cli_kv_uint(&kv, "outgoing", h.dims.n_out);
+    cli_kv_uint(&kv, "bands", h.dims.bands);
+    cli_kv_uint(&kv, "samples", n);
+    cli_kv_str(&kv, "basis", bwh_basis_name(h.basis));
+    cli_kv_uint(&kv, "spectral_levels", h.spectral_levels);
+    cli_kv_str(&kv, "mode", bwh_mode_name(h.mode));
+    cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    cli_kv_str(&kv, "coder", bwh_coder_name(h.flags));
+    cli_kv_str(&kv, "symmetry", bwh_symmetry_name(h.flags));
+    char values[96];
     if (map == BWH_EXACT_PLANES)
-        printf("values: float32 bits: the samples their high plane, %u low bits raw\n", low);
-    else if (fl == 1)
-        printf("values: the signed log map of record 0x02\n");
+        snprintf(values, sizeof values,
+                 "float32 bits: the samples their high plane, %u low bits raw", low);
     else
-        printf("values: %s\n", h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
-                                                           : "offset + scale * sample");
+        snprintf(values, sizeof values, "%s",
+                 fl == 1                        ? "the signed log map of record 0x02"
+                 : h.flags & BW_FLAG_LOG_VALUE ? "exp(offset + scale * sample)"
+                                               : "offset + scale * sample");
+    cli_kv_str(&kv, "values", values);
     if (fx == 1)
-        printf("exceptions: %u\n", n_exc);
-    printf("max_error: %.9g\n", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
-    printf("prequant: %u\n", h.prequant);
-    printf("step: %.4f\n", h.step_q8 / 256.0);
-    printf("scale: %.9g\n", scale);
-    printf("offset: %.9g\n", (double)bwh_bits_to_float(h.offset_bits));
-    printf("payload_bytes: %u\n", h.payload_len);
-    printf("bits_per_sample: %.6f\n", 8.0 * h.payload_len / (double)n);
-    printf("ratio_vs_float32: %.3f\n", 4.0 * (double)n / h.payload_len);
-    printf("crc32: 0x%08x\n", h.crc);
-    char rule[160];
+        cli_kv_uint(&kv, "exceptions", n_exc);
+    cli_kv_num(&kv, "max_error", "%.9g", h.mode == BW_MODE_MAX_ERROR ? h.max_error * scale : 0.0);
+    cli_kv_uint(&kv, "prequant", h.prequant);
+    cli_kv_num(&kv, "step", "%.4f", h.step_q8 / 256.0);
+    cli_kv_num(&kv, "scale", "%.9g", scale);
+    cli_kv_num(&kv, "offset", "%.9g", (double)bwh_bits_to_float(h.offset_bits));
+    cli_kv_uint(&kv, "payload_bytes", h.payload_len);
+    cli_kv_num(&kv, "bits_per_sample", "%.6f", 8.0 * h.payload_len / (double)n);
+    cli_kv_num(&kv, "ratio_vs_float32", "%.3f", 4.0 * (double)n / h.payload_len);
+    cli_kv_str(&kv, "crc32", crc);
+    char rule[160], num[32];
     bwh_guarantee_rule(&g, rule, sizeof rule);
-    printf("guarantee: %s\n", bwh_guarantee_name(g.kind));
-    printf("guarantee_rule: %s\n", rule);
-    printf("guarantee_recorded: %s\n", g.recorded ? "yes" : "no (from the header)");
-    char num[32];
+    cli_kv_str(&kv, "guarantee", bwh_guarantee_name(g.kind));
+    cli_kv_str(&kv, "guarantee_rule", rule);
+    cli_kv_str(&kv, "guarantee_recorded", g.recorded ? "yes" : "no (from the header)");
     bwh_shortest(g.max_error, num, sizeof num);
-    printf("guarantee_max_error: %s\n", num);
+    cli_kv_numtext(&kv, "guarantee_max_error", num);
     bwh_shortest(g.max_rel_error, num, sizeof num);
-    printf("guarantee_max_rel_error: %s\n", num);
+    cli_kv_numtext(&kv, "guarantee_max_rel_error", num);
     bwh_shortest(g.rel_floor, num, sizeof num);
-    printf("guarantee_rel_floor: %s\n", num);
-    printf("metadata_bytes: %zu\n", meta_bytes);
-    bwh_meta_print(&meta, stdout);
+    cli_kv_numtext(&kv, "guarantee_rel_floor", num);
+    cli_kv_uint(&kv, "metadata_bytes", meta_bytes);
+    if (json) {
+        cli_kv_json(&kv, "metadata", mj);
+        free(mj);
+    }
+    cli_kv_end(&kv);
+    if (!json)
+        bwh_meta_print(&meta, stdout);
     bwh_meta_free(&meta);
     return CLI_EXIT_OK;
 }

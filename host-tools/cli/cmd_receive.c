@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave receive: payloads from a serial port (hardware or the emulator). */
 #include <stdint.h>
 #include <stdio.h>

@@ -1,7 +1,9 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave render: the path tracer's options (host-tools/render/render.h). */
 #define _POSIX_C_SOURCE 200809L /* sysconf */
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -9,6 +11,7 @@
 #include "cli_args.h"
 #include "cli_errors.h"
 #include "cli_num.h"
+#include "cli_progress.h"
 #include "commands.h"
 #include "render.h"
 
@@ -68,7 +71,8 @@ static const char render_help[] =
     "intensity), and\n"
     "variance: the image variance of sec. 6.2 (per pixel the variance over its\n"
     "3 x 3 block of displayed intensities, mean of R, G, B clamped to [0, 1];\n"
-    "averaged over the interior pixels). A progress line goes to a terminal.\n";
+    "averaged over the interior pixels). On a terminal a progress line shows while\n"
+    "the work takes more than a second.\n";
 
 /* comma-separated numbers in [0, 1e6]; exactly n of them */
 static int number_list(const char *s, double *v, size_t n)
@@ -134,6 +138,13 @@ static int parse_size(const char *v, void *dest)
     return cli_size2(v, 3, 8192, &wh[0], &wh[1]);
 }
 
+static void progress(void *ctx, const char *what, double done, double total)
+{
+    (void)ctx;
+    cli_progress_text("%s", what);
+    cli_progress_set(done, total);
+}
+
 int bw_cmd_render(int argc, char **argv)
 {
     static const char *const scenes[] = {"sphereflake", "room", NULL};
@@ -185,5 +196,19 @@ int bw_cmd_render(int argc, char **argv)
     o.depth = depth;
     o.threads = threads ? threads : (unsigned)sysconf(_SC_NPROCESSORS_ONLN);
     o.seed = seed;
-    return render_run(&o, stdout) != 0 ? cli_fail("%s", bwh_last_error()) : CLI_EXIT_OK;
+    o.progress = progress;
+    /* the report is held until the progress line is gone, so that the two
+     * never share a terminal line */
+    char *report = NULL;
+    size_t report_len = 0;
+    FILE *rf = cli_progress_enabled() ? open_memstream(&report, &report_len) : NULL;
+    cli_progress_start("building the materials");
+    int rc = render_run(&o, rf ? rf : stdout);
+    cli_progress_end();
+    if (rf) {
+        fclose(rf);
+        fwrite(report, 1, report_len, stdout);
+        free(report);
+    }
+    return rc != 0 ? cli_fail("%s", bwh_last_error()) : CLI_EXIT_OK;
 }

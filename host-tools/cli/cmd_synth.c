@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * brdfwave synth: virtual goniometer data sets from analytic BRDF models.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* brdfwave: the command line. Finds the command and runs it. */
 #define _DEFAULT_SOURCE /* readlink */
 #include <limits.h>
@@ -22,11 +23,14 @@ static const cli_command_t commands[] = {
     /* the reference model's importer (host-tools/ref/cli/cmd_rgl.c), also `bwref import-rgl` */
     {"import-rgl", bwref_cmd_import_rgl, "sample a measured RGL BRDF on the grid"},
     {"render", bw_cmd_render, "path-trace a scene, comparing sampling strategies"},
+    {"plot", bw_cmd_plot, "PNG pictures: hemisphere map, spectra, rate-distortion curve"},
 };
 
 static void usage(FILE *f)
 {
-    fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n\ncommands:\n", f);
+    fputs("usage: brdfwave COMMAND [options]   (brdfwave COMMAND --help)\n"
+          "       brdfwave --version\n\ncommands:\n",
+          f);
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].what);
     fputs("\nexit status: 0 success; 1 the command failed (one line on standard error says\n"

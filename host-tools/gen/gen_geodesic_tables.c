@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #define _DEFAULT_SOURCE
 /*
  * Prints firmware/codec/bw_geodesic_tables.c: the Bio-Haar weight tables
@@ -102,7 +103,8 @@ out:
 
 static int emit(void)
 {
-    printf("/*\n"
+    printf("/* SPDX-License-Identifier: BSD-2-Clause */\n"
+           "/*\n"
            " * GENERATED FILE - DO NOT EDIT.\n"
            " * Written by host-tools/gen/gen_geodesic_tables.c. To regenerate, from the\n"
            " * repository root: make tables\n"
@@ -201,7 +203,8 @@ static int emit_areas(void)
         fprintf(stderr, "gen_geodesic_tables: out of memory\n");
         return -1;
     }
-    printf("/*\n"
+    printf("/* SPDX-License-Identifier: BSD-2-Clause */\n"
+           "/*\n"
            " * GENERATED FILE - DO NOT EDIT.\n"
            " * Written by host-tools/gen/gen_geodesic_tables.c --areas (see that file).\n"
            " *\n"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A sampled or decoded BRDF as a function (brdf_eval.h). */
 #include "brdf_eval.h"
 

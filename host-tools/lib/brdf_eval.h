@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * A sampled or decoded BRDF as a function (libbrdfwave): f(wi, wo, lambda)
  * at any directions and wavelength, with the interpolants of sec. 4.5

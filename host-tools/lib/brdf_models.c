@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Analytic BRDF models of the virtual goniometer (brdf_models.h). */
 #include "brdf_models.h"
 

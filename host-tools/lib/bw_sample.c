@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Importance sampling of a BRDF from the triangle hierarchy (bw_sample.h). */
 #include "bw_sample.h"
 

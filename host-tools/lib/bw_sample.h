@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Importance sampling of a BRDF from the triangle hierarchy (sec. 6.1).
  *

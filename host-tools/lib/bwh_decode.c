@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Payloads to samples (bwh_decode.h). */
 #include "bwh_decode.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Payloads to samples: the checks every reader makes, and the integer
  * samples or their float values.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Encoding on a device: the emulated co-processor or its application as a
  * host process (bwh_device.h). */
 #define _GNU_SOURCE

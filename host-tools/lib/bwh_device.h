@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Encoding on a device (`brdfwave encode --device`): "qemu" starts the
  * emulated co-processor (QEMU mps2-an386) with its firmware image and talks
@@ -19,6 +20,17 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* An encode on a device (bwh_encode_opts_t.device): where, and what the
+ * command line wants to know of it. */
+struct bwh_device_job {
+    const char *device;     /* "qemu" (the emulated co-processor) or "linux"
+                             * (its application as a host process) */
+    const char *firmware;   /* NULL: bwh_device_firmware's search */
+    double timeout;         /* seconds, 0: 120 */
+    int drop_chunk;         /* tests: lose the first copy of a chunk, -1: none */
+    uint64_t *instructions; /* out (may be NULL): the device's count for the encode */
+};
 
 /* The directory of the program that uses the library (the command line
  * passes its own): device images are looked for beside it. NULL: none. The

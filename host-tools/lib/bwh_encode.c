@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Measurements to payloads (bwh_encode.h). */
 #include "bwh_encode.h"
 
@@ -98,7 +99,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     /* a device is asked first what it takes: a job it cannot take is
      * refused before the host spends any work on it */
     bwh_device_t dv;
-    if (o->device && (bwh_device_open(&dv, o->device, o->firmware) != 0))
+    if (o->device && (bwh_device_open(&dv, o->device->device, o->device->firmware) != 0))
         return -1;
     if (o->device && bwh_device_admit(&dv, dims, &p) != 0) {
         bwh_device_close(&dv);
@@ -135,8 +136,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     }
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */
-        bwh_rx_opts_t ro = {o->device_timeout > 0 ? o->device_timeout : 120.0, o->drop_chunk, 0,
-                            SIZE_MAX};
+        bwh_rx_opts_t ro = {o->device->timeout > 0 ? o->device->timeout : 120.0,
+                            o->device->drop_chunk, 0, SIZE_MAX};
         bwh_received_t r;
         int drc = bwh_device_run(&dv, dims, &p, x, &ro, &r);
         bwh_device_close(&dv);
@@ -149,8 +150,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         free(buf);
         buf = r.payload;
         len = r.len;
-        if (o->device_instructions)
-            *o->device_instructions = r.instructions;
+        if (o->device->instructions)
+            *o->device->instructions = r.instructions;
         st = bw_decode(buf, len, ver, wb, ver, wb, NULL);
         for (size_t i = 0; st == BW_OK && i < n; i++) {
             int64_t e = (int64_t)ver[i] - x[i];

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measurements to payloads: the codec core on the host (or on a device),
  * with float input mapped to integer samples (value = scale * sample, scale
@@ -15,6 +16,8 @@
 extern "C" {
 #endif
 
+struct bwh_device_job;
+
 /* Encoder options' flags beside the header's: without BW_FLAG_MIRROR,
  * BW_FLAG_RECIPROCAL or this, a host encode of directional data also tries
  * BW_FLAG_MIRROR (and for a full BRDF on one grid level BW_FLAG_RECIPROCAL
@@ -30,14 +33,10 @@ typedef struct {
     double scale;       /* > 0: force the integer step of float input */
     unsigned flags;     /* header flags (BW_FLAG_DECIMAL_SCALE, BW_FLAG_MIRROR and
                          * BW_FLAG_RECIPROCAL: always), and BWH_NO_MIRROR */
-    /* encode on a device instead of the host: NULL or "qemu" (the emulated
-     * co-processor) or "linux" (its application as a host process); the
-     * host then decodes and checks the payload */
-    const char *device;
-    const char *firmware;          /* NULL: bwh_device_firmware's search */
-    double device_timeout;         /* seconds, 0: 120 */
-    int drop_chunk;                /* tests: lose the first copy of a chunk, -1: none */
-    uint64_t *device_instructions; /* out: the device's count for the encode */
+    /* NULL: encode on the host. Otherwise the encode runs on a device (the
+     * command line's `encode --device`; bwh_device.h, not part of the
+     * installed interface) and the host decodes and checks its payload. */
+    const struct bwh_device_job *device;
     /* float input: R > 0 bounds every value relatively, |x' - x| <= max(R |x|, F)
      * with F = rel_floor (0: none); with mode MAX_ERROR as well the tighter
      * of the two, |x' - x| <= min(E, max(R |x|, F)) (bwh_guarantee.h) */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The library's last error (bwh_error.h). */
 #include "bwh_error.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The last error of the library: every failing bwh_* call leaves one line
  * of text here (per thread) and returns -1; the tools print it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Whole files in and out (bwh_file.h). */
 #define _DEFAULT_SOURCE
 #include "bwh_file.h"

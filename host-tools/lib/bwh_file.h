@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Whole files in and out. "-" is standard input or output; a path that is
  * not a regular file (a device, a pipe) is written to directly; a regular

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The host end of the I2C link (bwh_i2c.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "bwh_i2c.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The host end of the I2C link (docs/I2C.md): reading the payload the
  * co-processor offers in its register window, page by page, with a CRC-32

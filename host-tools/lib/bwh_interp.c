@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Interpolation of decoded samples (bwh_interp.h). */
 #include "bwh_interp.h"
 

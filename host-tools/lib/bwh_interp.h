@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Interpolation of decoded samples (sec. 4.5), for evaluating a decoded BRDF
  * at any directions and wavelength (brdf_eval.h).

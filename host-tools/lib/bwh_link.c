@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The host end of the device link (bwh_link.h). */
 #define _GNU_SOURCE
 #include "bwh_link.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The host end of the device link (docs/LINK.md): serial ports, frames, and
  * payload reception with resend requests and the receiver's checks.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Error metrics (bwh_metrics.h). */
 #include "bwh_metrics.h"
 

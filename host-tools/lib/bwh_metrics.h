@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Error metrics between a reference and a test signal (`brdfwave compare`). */
 #ifndef BWH_METRICS_H
 #define BWH_METRICS_H

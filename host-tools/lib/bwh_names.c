@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Names of header fields and encoder choices (bwh_names.h). */
 #include "bwh_names.h"
 

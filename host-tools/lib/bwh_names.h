@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The words for the payload header's fields and the encoder's choices, both
  * ways: what `brdfwave info` prints and what `brdfwave encode` and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Raw sample files (bwh_raw.h). */
 #include "bwh_raw.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Raw sample files: little-endian float32, uint16 or int32, row-major
  * [incoming][outgoing][band], the layout `brdfwave encode` reads and

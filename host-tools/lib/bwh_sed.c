@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Spectral Evolution .sed files (bwh_sed.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "bwh_sed.h"

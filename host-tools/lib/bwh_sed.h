@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Spectral Evolution .sed files (PSR-3500 and alike) as codec samples. */
 #ifndef BWH_SED_H
 #define BWH_SED_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Shape options to dimensions (bwh_shape.h). */
 #include "bwh_shape.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The shape of a measurement from the options every tool takes
  * (--level L, --incoming N, --level-in Li, --bands B): `brdfwave encode`,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Storing received payloads (bwh_store.h). */
 #define _DEFAULT_SOURCE
 #include "bwh_store.h"

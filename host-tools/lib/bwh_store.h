@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Storing received payloads: what `brdfwave receive`, `brdfwave acquire`
  * and the Python acquisition service do once a payload has been checked and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Float values and integer samples (bwh_values.h). */
 #include "bwh_values.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Float values and the codec's integer samples: value = offset + scale *
  * sample (or exp of that for a payload with BW_FLAG_LOG_VALUE), scale and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Geodesic hemisphere grid in double precision (host side). */
 #include "geodesic.h"
 

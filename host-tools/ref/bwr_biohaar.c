@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Generic spherical Bio-Haar transform in double precision. */
 #include "bwr_biohaar.h"
 

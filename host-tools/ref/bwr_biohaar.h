@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Spherical Bio-Haar wavelets on the geodesic hemisphere, in double precision
  * (Schroeder and Sweldens 1995, as used in sec. 3.1 and 4 of the paper),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Thresholds per space, keep-count selection, error metrics, best basis. */
 #include "bwr_compress.h"
 

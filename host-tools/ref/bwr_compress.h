@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Compression of the dense model (sec. 4.1, 4.3) and the error metrics of
  * sec. 5 (eq. 7, 8).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Generic 1-D periodized DWT. */
 #include "bwr_dwt.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Generic 1-D discrete wavelet transform (the Spectrum transform of sec. 4.2),
  * written once over an element type (bwr_type.h).

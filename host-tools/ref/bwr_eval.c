@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #include "bwr_eval.h"
 
 #define EVAL_PI 3.14159265358979323846

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Evaluation of a sampled (or decoded) BRDF at any incoming and outgoing
  * direction and wavelength (sec. 4.5): the interpolants of bwr_interp.h on

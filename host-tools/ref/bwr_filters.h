@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * 1-D wavelet filters of the reference model: 54 bases (haar, db2-db10,
  * sym2-sym10, coif1-coif5, bior1.1-bior6.8, rbio1.1-rbio6.8), with the

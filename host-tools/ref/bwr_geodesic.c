@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The reference model's geodesic hemisphere (bwr_geodesic.h). */
 #include "bwr_geodesic.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The reference model's geodesic hemisphere, in double precision, computed
  * on its own: the model shares with the codec only the numbering convention

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Cubic B-spline interpolation and interpolation on the geodesic sphere. */
 #include "bwr_interp.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Continuous reconstruction (sec. 4.5): the wavelet model gives the discrete
  * samples back; these interpolants turn them into functions.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The objects of sec. 4.2 on top of the generic transforms. */
 #include "bwr_model.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The objects of sec. 4.2 as one dense model: a Signal with up to three
  * atomic transforms, applied as in the paper (analysis: incoming sphere,

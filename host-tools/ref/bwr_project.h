@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Projection of scattered measured directions onto the geodesic grid
  * (sec. 5: the goniometer's 474 measured directions are projected on the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* RGL measured BRDFs: tensor files, the 2-D warp and its inverse, evaluation. */
 #include "bwr_rgl.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measured BRDFs of the EPFL RGL database (Dupuy and Jakob 2018, "An
  * Adaptive Parameterization for Efficient Material Acquisition and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Sparse arrays of 32-element strips and their algebra. */
 #include "bwr_sparse.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Sparse arrays of strips (sec. 4.3) and their algebra (sec. 4.4).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Element types: reals and dense vectors. */
 #include "bwr_type.h"
 

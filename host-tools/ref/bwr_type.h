@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Element types of the generic wavelet transform (paper sec. 4.1-4.2).
  *

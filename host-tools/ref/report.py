@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """make reproduce: the experiments of Claustres, Paulin and Boucher (2003) with
 the float reference model (build/host/bwref), written to build/report/paper.md
 with the paper's numbers beside ours, plus build/report/figure5.png.
@@ -11,6 +12,7 @@ import glob
 import io
 import math
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -52,9 +54,33 @@ PAPER_T4 = {
 }
 
 
+# a progress line on standard error, only when it is a terminal: the
+# commands run so far, the time spent and the one running now
+_PROGRESS = {'n': 0, 't0': time.time(), 'shown': 0}
+
+
+def progress(text=None):
+    if not sys.stderr.isatty():
+        return
+    if text is None:  # cleared
+        line = ''
+    else:
+        _PROGRESS['n'] += 1
+        line = 'reproduce: command %d, %.0f s: %s' % (_PROGRESS['n'],
+                                                       time.time() - _PROGRESS['t0'], text)
+        line = line[:max(20, shutil.get_terminal_size().columns - 1)]
+    sys.stderr.write('\r' + line + ' ' * max(0, _PROGRESS['shown'] - len(line)) +
+                     ('\r' if text is None else ''))
+    sys.stderr.flush()
+    _PROGRESS['shown'] = len(line)
+
+
 def sh(*args):
+    progress(' '.join(os.path.basename(str(a)) if k == 0 else str(a)
+                      for k, a in enumerate(args[:4])))
     r = subprocess.run([str(a) for a in args], capture_output=True, text=True)
     if r.returncode != 0:
+        progress()
         raise SystemExit('failed: %s\n%s' % (' '.join(map(str, args)), r.stderr.strip()))
     return r.stdout
 
@@ -630,6 +656,7 @@ def main():
     R.add('---\nGenerated in %.0f s.\n' % (time.time() - t0))
     with open(os.path.join(OUT, 'paper.md'), 'w') as f:
         f.write(''.join(R.parts))
+    progress()
     print('wrote %s (%.0f s)' % (os.path.join(OUT, 'paper.md'), time.time() - t0))
 
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* `brdfwave render` from its options to the PNG and the report (render.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "render.h"
@@ -74,7 +75,6 @@ int render_run(const render_opts_t *o, FILE *report)
     }
     fprintf(report, "size: %ux%u\ndirect: %s\nbuild_seconds: %.3f\n", w, h,
             o->direct ? "mis" : "off", t_build);
-    int tty = isatty(2);
     for (int si = 0; si < n_strat; si++) {
         enum strategy strat = o->strategies[si];
         memset(sum, 0, npx * 3 * sizeof *sum);
@@ -90,19 +90,16 @@ int render_run(const render_opts_t *o, FILE *report)
                 break;
             render_pass(&job, pass, threads, tid);
             pass++;
-            if (tty) {
+            if (o->progress) {
+                char what[64];
+                snprintf(what, sizeof what, "%s (%d of %d), %ld spp", render_strategy_names[strat],
+                         si + 1, n_strat, pass);
                 if (o->time_budget > 0.0)
-                    fprintf(stderr, "\rrender %s: %ld spp, %.1f / %.1f s CPU ",
-                            render_strategy_names[strat], pass, cpu_seconds() - c0,
-                            o->time_budget);
+                    o->progress(o->progress_ctx, what, cpu_seconds() - c0, o->time_budget);
                 else
-                    fprintf(stderr, "\rrender %s: %ld / %lu spp (%3.0f%%) ",
-                            render_strategy_names[strat], pass, o->spp,
-                            100.0 * pass / (double)o->spp);
+                    o->progress(o->progress_ctx, what, (double)pass, (double)o->spp);
             }
         }
-        if (tty)
-            fputc('\n', stderr);
         double cpu = cpu_seconds() - c0, wall = wall_seconds() - w0;
         pthread_mutex_destroy(&job.lock);
         double mean = 0.0, radiance = 0.0;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * `brdfwave render`: a small multithreaded path tracer comparing sampling
  * strategies (sec. 6.2). render_run builds the materials (render_material.h)
@@ -30,10 +31,14 @@ typedef struct {
     uint64_t seed;
     double exposure;
     const char *output;                       /* the PNG */
+    /* after every pass (may be NULL): what is rendered, and done of total
+     * (passes, or CPU seconds of a time budget) */
+    void (*progress)(void *ctx, const char *what, double done, double total);
+    void *progress_ctx;
 } render_opts_t;
 
-/* Renders and writes the PNG, the key: value lines to `report` and a
- * progress line to standard error when it is a terminal. 0, or -1
+/* Renders and writes the PNG, the key: value lines to `report`, and
+ * tells o->progress how far it is. 0, or -1
  * (bwh_last_error(): a material that does not load, out of memory, the PNG
  * not written). */
 int render_run(const render_opts_t *o, FILE *report);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Displayed intensity, image variance, sRGB (render_image.h). */
 #include "render_image.h"
 

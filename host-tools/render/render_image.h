@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * What an image shows and how noisy it is: the displayed intensity, the image
  * variance of sec. 6.2 (per interior pixel the variance of the displayed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Materials of the renderer (render_material.h). */
 #include "render_material.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Materials of the renderer: diffuse walls, the light, and the materials of
  * the objects (analytic Phong or Ward, or a decoded payload), each with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Triangle meshes and their bounding volume hierarchy (bw_mesh.h). */
 #include "render_mesh.h"
 

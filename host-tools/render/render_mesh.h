@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Triangle meshes for `brdfwave render`: a bounding volume hierarchy over the
  * triangles and the nearest hit of a ray (Moller-Trumbore, both faces).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A small PNG writer (render_png.h): signature, IHDR, one IDAT of the
  * zlib-compressed rows (filter type 0 on every row), IEND. */
 #include "render_png.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A small PNG writer (8-bit RGB, zlib). */
 #ifndef RENDER_PNG_H
 #define RENDER_PNG_H

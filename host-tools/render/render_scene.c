@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The scenes of the renderer (render_scene.h). */
 #include "render_scene.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The scenes of the renderer: a closed room (x in [-1, 1] left to right,
  * y in [-1, 1] front to back, z in [0, 2] up) with diffuse walls and a light

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The path tracer (render_tracer.h). */
 #include "render_tracer.h"
 

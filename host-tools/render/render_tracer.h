@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The path tracer of `brdfwave render` (sec. 6.2, Tables 5 and 6). At every
  * hit on an object the next direction comes from the chosen strategy

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Vectors and the random numbers of the renderer (inline, header only). */
 #ifndef RENDER_VEC_H
 #define RENDER_VEC_H

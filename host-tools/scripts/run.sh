@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The main job end to end: the firmware on the emulated co-processor (QEMU
 # mps2-an386, Cortex-M4) reads each measurement as its sensor input, encodes
 # it and sends the payload over its UART to the host, which checks, stores,

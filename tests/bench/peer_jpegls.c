@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * JPEG-LS reference point for the codec benchmark (CharLS C API).
  *

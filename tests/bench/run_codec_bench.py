@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Codec benchmark: brdfwave against standard compressors.
 
 Writes build/bench/codec.md (one table per data set) and build/bench/codec.csv

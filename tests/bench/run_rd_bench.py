@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Rate-distortion benchmark: brdfwave against the standard codecs, with targets.
 
 Writes build/bench/rd.md (targets met / missed, one table and one plot per data

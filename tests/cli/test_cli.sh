@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The brdfwave command line as a user meets it: round trips, guarantees,
 # and one clear line plus a non-zero exit for every kind of bad input.
 set -u

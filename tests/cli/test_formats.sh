@@ -38,11 +38,16 @@ expect_error() {
     grep -qF -- "$word" "$T/err" && ok || bad "$name: '$word' not in: $(cat "$T/err")"
 }
 
+# metajson PAYLOAD: the "metadata" object of 'info --json'
+metajson() {
+    "$BW" info --json "$1" | $PY -c 'import json, sys; print(json.dumps(json.load(sys.stdin)["metadata"]))'
+}
+
 # check NAME PYTHON-EXPRESSION: true, with m the metadata JSON of $T/x.bwv and
 # a the decoded samples (numpy, the payload's shape)
 check() {
     local name=$1 expr=$2
-    "$BW" info --json "$T/x.bwv" >"$T/m.json" && "$BW" decode -i "$T/x.bwv" -o "$T/x.npy" ||
+    metajson "$T/x.bwv" >"$T/m.json" && "$BW" decode -i "$T/x.bwv" -o "$T/x.npy" ||
         { bad "$name: info/decode failed"; return; }
     if $PY - "$T/m.json" "$T/x.npy" "$expr" <<'EOF'; then ok; else bad "$name: $expr"; fi
 import json, sys
@@ -63,7 +68,7 @@ EOF
 roundtrip() {
     local name=$1 p=$2 fmt out in
     shift 2
-    "$BW" info --json "$p" >"$T/rt0.json" && "$BW" decode -i "$p" -o "$T/rt0.f32" ||
+    metajson "$p" >"$T/rt0.json" && "$BW" decode -i "$p" -o "$T/rt0.f32" ||
         { bad "$name: decode"; return; }
     # the decoded values are whole multiples of the payload's scale: coded
     # again with it, without loss, they come back bit for bit
@@ -77,7 +82,7 @@ roundtrip() {
         in=$out
         [ "$fmt" = envi ] && in=$T/rt.hdr
         expect_ok "$name: encode from $fmt" "$BW" encode -i "$in" -o "$T/rt.bwv" "$@"
-        "$BW" info --json "$T/rt.bwv" >"$T/rt1.json" 2>&1
+        metajson "$T/rt.bwv" >"$T/rt1.json" 2>&1
         cmp -s "$T/rt0.json" "$T/rt1.json" && ok ||
             bad "$name via $fmt: metadata differs: $(diff <(tr ',' '\n' <"$T/rt0.json") \
                 <(tr ',' '\n' <"$T/rt1.json") | head -6)"
@@ -196,7 +201,7 @@ cp "$T/x.bwv" "$T/envi.bwv"
 roundtrip "envi cube" "$T/envi.bwv" --max-error 1e-4
 # the same cube as BSQ, as BIL, and big-endian: the same samples and metadata
 "$BW" decode -i "$T/envi.bwv" -o "$T/cube0.f32" 2>/dev/null
-"$BW" info --json "$T/envi.bwv" >"$T/cube0.json"
+metajson "$T/envi.bwv" >"$T/cube0.json"
 $PY - $I/envi/ang20150420t182808_corr_v1e_img_4200-4210_70-80 "$T" <<'EOF'
 import re, sys
 import numpy as np
@@ -214,7 +219,7 @@ EOF
 for v in bsq bil be; do
     expect_ok "envi cube $v" "$BW" encode -i "$T/c_$v.hdr" -o "$T/c.bwv" --max-error 1e-4
     "$BW" decode -i "$T/c.bwv" -o "$T/c.f32" 2>/dev/null
-    "$BW" info --json "$T/c.bwv" >"$T/c.json"
+    metajson "$T/c.bwv" >"$T/c.json"
     cmp -s "$T/c.f32" "$T/cube0.f32" && cmp -s "$T/c.json" "$T/cube0.json" && ok ||
         bad "envi cube $v: other samples or metadata than the BIP file's"
 done

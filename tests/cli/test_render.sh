@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # brdfwave render: a tiny render with every strategy (valid PNG, strategies
 # agree on the mean, wavelet sampling below uniform in image variance,
 # images independent of the thread count), a decoded measured BRDF as a

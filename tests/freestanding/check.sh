@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The codec core builds and links freestanding, for Cortex-M4 (arm-none-eabi-gcc)
 # and RV32IMAC (riscv64-unknown-elf-gcc), without a C library:
 #   1. every firmware/codec/*.c compiles with -Wall -Wextra -Werror;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Entry of the freestanding test images (tests/freestanding/check.sh).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Seed corpus for the fuzz targets:
  *   gen_corpus DIR   writes DIR/decode/<name>.bwv    valid payloads (every shape,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The replay main of a fuzz target, for builds without libFuzzer: runs
  * LLVMFuzzerTestOneInput once on every file named on the command line, or

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Fuzzing of the codec core: tests/fuzz/fuzz_decode.c (the decoder on arbitrary
 # bytes) and tests/fuzz/fuzz_roundtrip.c (encode, decode, check the guarantee).
 #

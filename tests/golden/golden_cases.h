@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The fixed inputs whose payload checksums are recorded in
  * tests/golden/payload_crc.txt. Shared by the host unit test and the target

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """VM tests of the acquirers against the kernel's i2c-stub and gpio-sim
 (run by tests/hw/init inside the VM that tests/hw/run.sh boots).
 

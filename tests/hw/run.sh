@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # VM tests of the I2C acquirers against real kernel drivers (make check-hw).
 #
 # Boots Debian 12's kernel (linux-image-amd64, 6.1) in qemu-system-x86_64

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The co-processor's side of docs/I2C.md, played on Linux's i2c-stub and gpio-sim.
 
 i2c-stub (bank_reg=0x10 bank_mask=0xff bank_start=0x40 bank_end=0x53) holds

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """The Python package against the CLI: decode of codec payloads equals
 `brdfwave decode` bit for bit, encode equals `brdfwave encode` byte for byte,
 grid equals `brdfwave grid`; metadata and the readers as the CLI has them;
@@ -328,7 +329,7 @@ def metadata_travels_with_the_array():
     # the CLI reads the same metadata
     with open(tmp("meta.bwv"), "wb") as f:
         f.write(p)
-    assert json.loads(bw("info", "--json", tmp("meta.bwv"))) == m.metadata
+    assert json.loads(bw("info", "--json", tmp("meta.bwv")))["metadata"] == m.metadata
     # a decoded measurement encodes again with its metadata and layout
     assert brdfwave.decode(brdfwave.encode(m, max_error=1e-4)).metadata == m.metadata
     # without metadata: no metadata record

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Rate regression and guarantee checks of the codec on a fixed small set.
 
 Every case encodes a fixed input with the brdfwave CLI, decodes it and checks:

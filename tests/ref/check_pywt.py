@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Checks the reference model's 1-D wavelets against PyWavelets.
 
 For every basis bwref ships: the four filters, and the multi-level transform

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Helpers shared by the reference-model tests. */
 #ifndef REF_TEST_UTIL_H
 #define REF_TEST_UTIL_H

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The bwref command line: help, errors (one line, non-zero exit), and the
 # ratios it reports on a synthetic set (counts, exactness at 1:1, byte budgets).
 set -u

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The codec core's integer transforms (firmware/codec) against the float
  * reference model (host-tools/ref) on the same integer data, in LSB of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Two geodesic grids computed apart: the codec's host grid
  * (host-tools/lib/geodesic.c, solid angles by Van Oosterom and Strackee),

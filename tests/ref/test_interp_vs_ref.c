@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The product's interpolation of decoded samples (host-tools/lib/bwh_interp.c,
  * on the codec's host grid) against the reference model's own

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Float spherical Bio-Haar of the reference model (host-tools/ref): the
  * weights, the exact inverse at every level, constants, the area-weighted

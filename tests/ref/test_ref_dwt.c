@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * 1-D wavelets of the reference model: filter identities of every shipped
  * basis (independent of any other implementation: normalisation, perfect

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Evaluation of a sampled BRDF at any directions and wavelength. */
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Interpolation (sec. 4.5): cubic B-spline on the spectral axis, barycentric
  * (C0) and modified Shepard (C1) on the geodesic sphere: exact at the

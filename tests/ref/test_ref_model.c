@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The objects of sec. 4.2 (Spectrum sets, Reflectance, Spectral Reflectance,
  * BRDF full and isotropic, Spectral BRDF): exact round trips, the structure

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Projection of scattered measurements onto the geodesic grid
  * (bwr_project.h): the paper's 474 goniometer directions, imitated by a

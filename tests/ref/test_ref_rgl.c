@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measured RGL BRDFs (host-tools/ref/bwr_rgl.c): the 2-D warp and its
  * inverse on synthetic tables, then the three files of tests/data/rgl:

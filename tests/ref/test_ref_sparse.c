@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Sparse arrays of 32-element strips (sec. 4.3) and the algebra on
  * compressed arrays (sec. 4.4), against dense arithmetic.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Builds the firmware for every board and checks the images (nothing runs the
 # STM32 image here):
 #   1. `make TARGET=qemu all` and `make TARGET=mcu all` succeed and link

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """A scripted device on a pseudo-terminal, for `brdfwave receive`.
 
     fake_device.py PAYLOAD PTY_FILE LOG_FILE [MODE [PAYLOAD2]]

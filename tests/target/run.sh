@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Target tests: the codec core built for the Cortex-M4 and run on the emulated
 # board (QEMU mps2-an386), deterministic instruction counting (-icount shift=0),
 # output and exit status through semihosting. Run from anywhere.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # End to end: the firmware in QEMU reads the measurement as its sensor input,
 # encodes it on the emulated Cortex-M4 and sends the payload over its UART
 # (a pseudo-terminal) to the host, which checks the frames, asks for resends,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The codec core on the emulated Cortex-M4 (QEMU mps2-an386, semihosting):
  * every golden case encodes to the very payload the host produces (CRC and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The device application against a scripted host: every byte the link
  * delivers is heard, however the bytes are cut into reads (several frames
  * in one read, or one byte at a time), and a job the device cannot take is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The analytic BRDFs of the virtual goniometer (host-tools/lib/brdf_models.c,
  * the models of `brdfwave synth`): reciprocity, energy conservation over the

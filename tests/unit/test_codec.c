@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Codec core (firmware/codec): lossless round trips on every shape, the
  * spectral and Bio-Haar liftings and the range coder on their own, the

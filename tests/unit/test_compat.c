@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Archived payloads keep decoding: every payload under tests/golden/v<N>/,
  * written by the encoder of format version N, decodes to the samples and
  * values its MANIFEST records (CRC-32 of the little-endian int32 samples and

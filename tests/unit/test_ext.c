@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Extension records after the header (docs/FORMAT.md, Extensions): written
  * by the batch and the streaming encoder alike, covered by the CRC, walked
  * by readers; a payload with records is version 7, one without stays 6;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Link frames: packing, byte-at-a-time reception with resynchronisation,
  * and the job record. */
 #include <setjmp.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Geodesic grid (host-tools/lib/geodesic.c) and the firmware weight table
  * (firmware/codec/bw_geodesic_tables.c).

@@ -119,7 +119,6 @@ static void check_case(const bw_dims_t *d, const float *x, const rule_t *r, unsi
     size_t n = bw_dims_samples(d);
     bwh_encode_opts_t o;
     memset(&o, 0, sizeof o);
-    o.drop_chunk = -1;
     o.basis = basis;
     o.flags = flags;
     o.mode = r->kind == BWH_GUARANTEE_EXACT      ? BW_MODE_LOSSLESS

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The I2C register window (firmware/link/bw_i2cwin.c) driven over a
  * simulated SMBus by the host's I2C client (host-tools/lib/bwh_i2c.c), as
@@ -131,7 +132,7 @@ static uint8_t *make_payload(size_t n, size_t *len)
         x[i] = (int32_t)(test_uniform(&rng) * 65536.0);
     bw_dims_t d;
     assert_int_equal(bw_dims_make(&d, BW_SHAPE_SPECTRA, 0, 0, (uint32_t)(n / 64), 64), BW_OK);
-    bwh_encode_opts_t o = {.mode = BW_MODE_LOSSLESS, .basis = BW_BASIS_53, .drop_chunk = -1};
+    bwh_encode_opts_t o = {.mode = BW_MODE_LOSSLESS, .basis = BW_BASIS_53};
     uint8_t *p;
     assert_int_equal(bwh_encode_i32(&d, x, &o, 1.0f, 0.0f, &p, len), 0);
     free(x);

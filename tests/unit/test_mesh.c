@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Triangle meshes of `brdfwave render` (host-tools/render/render_mesh.c):
  *

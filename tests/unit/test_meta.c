@@ -330,7 +330,6 @@ static void payload_should_carry_the_metadata(void **state)
     o.basis = BW_BASIS_53;
     o.ext = area;
     o.ext_len = len;
-    o.drop_chunk = -1;
     int rc = bwh_encode_f32(&d, x, &o, &p, &plen);
     if (rc)
         print_error("%s\n", bwh_last_error());
@@ -402,7 +401,6 @@ static double value_at_30_degrees(int with_angles)
     memset(&o, 0, sizeof o);
     o.mode = BW_MODE_LOSSLESS;
     o.basis = BW_BASIS_HAAR;
-    o.drop_chunk = -1;
     o.ext = area;
     o.ext_len = len;
     assert_int_equal(bwh_encode_f32(&d, x, &o, &p, &plen), 0);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The Rice strip coder (bw_rice.h) on its own, and the codec with
  * BW_FLAG_RICE: strips of every kind round-trip, the encoder's bytes are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Uniform random numbers for the host tests and benches: xorshift64*, the
  * top 53 bits of each output, in [0, 1). Each program keeps its own state,
  * so its numbers do not depend on what other programs draw. */

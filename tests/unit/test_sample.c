@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Importance sampling from the triangle hierarchy (host-tools/lib/bw_sample.c)
  * tested as renderers test their BSDF samplers:
@@ -224,7 +225,6 @@ static int load_measured(void)
     o.mode = BW_MODE_BYTES;
     o.basis = BW_BASIS_AUTO;
     o.byte_budget = 4 * n_in * n_out * bands / 20;
-    o.drop_chunk = -1;
     uint8_t *payload;
     size_t len;
     int rc = bwh_encode_f32(&dims, x, &o, &payload, &len);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Sparse strip arrays: the operators on the compressed form agree with the
  * same arithmetic on dense arrays. */
 #include <setjmp.h>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """brdfwave for Python: payloads to numpy arrays and back, the geodesic grid,
 and the acquisition service.
 
@@ -19,8 +20,8 @@ from ._version import __version__
 _ARRAY_API = ("Measurement", "decode", "decode_bytes", "encode", "grid", "read", "read_sed",
               "read_sig", "read_asd", "read_usgs", "read_envi", "read_csv", "read_npy",
               "read_bsdf", "read_gonio")
-__all__ = ["BrdfwaveError", "check_guarantee", "guarantee", "header_of",
-           "__version__"] + list(_ARRAY_API)
+__all__ = ["BrdfwaveError", "check_guarantee", "guarantee", "header_of", "plot_hemisphere",
+           "plot_spectra", "plot_rd", "__version__"] + list(_ARRAY_API)
 
 
 def __getattr__(name):
@@ -28,4 +29,8 @@ def __getattr__(name):
     if name in _ARRAY_API:
         from . import codec
         return getattr(codec, name)
+    # and matplotlib with the first picture (brdfwave.plot)
+    if name in ("plot_hemisphere", "plot_spectra", "plot_rd"):
+        from . import plot
+        return getattr(plot, name)
     raise AttributeError("module 'brdfwave' has no attribute %r" % name)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """ctypes view of libbrdfwave (build/host/libbrdfwave.so, `make pylib`)."""
 import ctypes
 import ctypes.util
@@ -34,14 +35,19 @@ class Shape(ctypes.Structure):
                 ("incoming", ctypes.c_uint32), ("bands", ctypes.c_uint32)]
 
 
+class DeviceJob(ctypes.Structure):
+    """struct bwh_device_job (host-tools/lib/bwh_device.h): an encode on a device."""
+    _fields_ = [("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
+                ("timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
+                ("instructions", ctypes.POINTER(ctypes.c_uint64))]
+
+
 class EncodeOpts(ctypes.Structure):
     """bwh_encode_opts_t (host-tools/lib/bwh_encode.h)."""
     _fields_ = [("mode", ctypes.c_int), ("max_error", ctypes.c_double),
                 ("byte_budget", ctypes.c_size_t), ("basis", ctypes.c_uint),
                 ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
-                ("device", ctypes.c_char_p), ("firmware", ctypes.c_char_p),
-                ("device_timeout", ctypes.c_double), ("drop_chunk", ctypes.c_int),
-                ("device_instructions", ctypes.POINTER(ctypes.c_uint64)),
+                ("device", ctypes.POINTER(DeviceJob)),
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
                 ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t)]
 
@@ -83,6 +89,13 @@ def _find():
     cand = os.path.join(_HERE, "..", "..", "..", "build", "host", "libbrdfwave.so")
     if os.path.exists(cand):
         return os.path.normpath(cand)
+    # installed by `make install` (or the Debian package): the library it
+    # installed, by path or by SONAME
+    try:
+        from ._libpath import LIBRARY
+        return LIBRARY
+    except ImportError:
+        pass
     found = ctypes.util.find_library("brdfwave")
     if found:
         return found

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Acquisition service: payloads from the co-processor over I2C/SMBus.
 
     python3 -m brdfwave.acquire --bus 1 --addr 0x42 --chip gpiochip0 --line 17 --out DIR

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """brdfwave.codec: numpy arrays to payloads and back, with their metadata;
 the measurement files of the field read to arrays; the geodesic grid.
 
@@ -21,8 +22,8 @@ import tempfile
 
 import numpy as np
 
-from ._lib import (BrdfwaveError, Dims, EncodeOpts, Header, Shape, _header_dict, free,
-                   last_error, lib)
+from ._lib import (BrdfwaveError, DeviceJob, Dims, EncodeOpts, Header, Shape, _header_dict,
+                   free, last_error, lib)
 from .guarantee import guarantee
 
 __all__ = ["BrdfwaveError", "Measurement", "decode", "decode_bytes", "encode", "grid",
@@ -374,7 +375,6 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         raise _error()
     need = d.n_in * d.n_out * d.bands
     o = EncodeOpts()
-    o.drop_chunk = -1
     modes = [m for m in (lossless, max_error, nbytes, ratio) if m not in (None, False)]
     if len(modes) > 1:
         raise BrdfwaveError("give only one of lossless, max_error, nbytes, ratio")
@@ -428,9 +428,9 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     if device is not None:
         if device not in ("linux", "qemu"):
             raise BrdfwaveError("device must be None, 'linux' or 'qemu'")
-        o.device = device.encode()
-        if firmware is not None:
-            o.firmware = os.fsencode(firmware)
+        job = DeviceJob(device.encode(), None if firmware is None else os.fsencode(firmware),
+                        0.0, -1, None)
+        o.device = ctypes.pointer(job)
     merged = dict(src_meta)
     merged.update(metadata or {})
     mj = _metadata_json(merged, wavelengths, wavelength_unit, incidence, incidence_unit,

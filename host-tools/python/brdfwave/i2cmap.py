@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The co-processor's I2C register map (docs/I2C.md; firmware/link/bw_i2cmap.h)."""
 ADDR = 0x42
 

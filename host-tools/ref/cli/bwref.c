@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * bwref: the float reference model of Claustres, Paulin and Boucher (2003)
  * on the host: coefficient dumps for cross-checks and the paper's tables.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* bwref: command line of the float reference model. */
 #ifndef BWREF_H
 #define BWREF_H

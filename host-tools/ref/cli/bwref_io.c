@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Readers and a writer of numbers shared by the bwref commands. */
 #include "bwref.h"
 

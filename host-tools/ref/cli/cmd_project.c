@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * bwref project: scattered measurements (CSV theta_deg,phi_deg,value[,...])
  * onto the geodesic grid (bwr_project.h), raw float32 in grid order.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * bwref ratios: compress a data set with the reference model at given
  * compression ratios (coefficients kept, the paper's r_c) or byte budgets

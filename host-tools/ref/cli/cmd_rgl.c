@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * bwref import-rgl: samples a measured RGL BRDF (RGB tensor file) on the
  * geodesic grid, as raw float32 [incoming][outgoing][band] like

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * bwref wavedec -i SIGNAL [--basis NAME|all] [--levels J|deep]
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Device benchmark image: the codec core on the emulated Cortex-M4 (QEMU
  * mps2-an386, semihosting I/O), instructions counted with -icount shift=0

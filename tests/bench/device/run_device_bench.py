@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Device benchmark: the codec core on the emulated Cortex-M4.
 
 Prepares the data sets as 16-bit sample files under build/bench/device/data/,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Sampling throughput of the triangle hierarchy (bwh_sampler_sample: a
  * descent of O(level) steps) against a linear scan of the same leaves

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """make bench-render: the path-tracing comparison of sec. 6.2 with brdfwave render.
 
 Writes build/bench/render.md and the images in build/bench/render/:

@@ -1,0 +1,24 @@
+# SPDX-License-Identifier: BSD-2-Clause
+# make pictures: the README's pictures of `brdfwave plot`, from the shared
+# data (writes the tracked docs/img/plot_*.png; the work in build/pictures)
+PIC_DIR := $(BUILD)/pictures
+FIELD_SED := $(sort $(wildcard tests/data/field_psr3500/*.sed))
+
+pictures: $(BW_CLI)
+	@mkdir -p $(PIC_DIR) docs/img
+	$(Q)$(BW_CLI) import-rgl -i tests/data/rgl/satin_rosaline_rgb.bsdf -o $(PIC_DIR)/satin.f32 \
+	    --channel g --incoming 16 >/dev/null
+	$(Q)$(BW_CLI) encode -q -i $(PIC_DIR)/satin.f32 -o $(PIC_DIR)/satin.bwv --bands 1 --level 4 \
+	    --incoming 16 --ratio 20
+	$(Q)$(BW_CLI) plot hemisphere -i $(PIC_DIR)/satin.bwv --theta-in 45 --log \
+	    --title "RGL satin_rosaline (green), ratio 20: incoming theta 42.2 deg" \
+	    -o docs/img/plot_hemisphere.png
+	$(Q)$(BW_CLI) encode -q --input-format sed -i $(FIELD_SED) -o $(PIC_DIR)/field.bwv \
+	    --max-error 0.0005
+	$(Q)$(BW_CLI) plot spectra --input-format sed -i $(FIELD_SED) --payload $(PIC_DIR)/field.bwv \
+	    --spectrum 0 --spectrum 30 -o docs/img/plot_spectra.png
+	$(Q)$(BW_CLI) plot rd --input-format sed -i $(FIELD_SED) \
+	    --title "60 field spectra (PSR-3500), 1024 bands: byte budgets of ratio 2 to 256" \
+	    -o docs/img/plot_rd.png >$(PIC_DIR)/rd.csv
+
+.PHONY: pictures
