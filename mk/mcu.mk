@@ -28,8 +28,9 @@ $(FW_OBJ): mk/mcu.mk
 # The application's buffers in 96 KiB of SRAM1: a whole measurement of up to
 # 4096 samples and 1024 bands encoded at once (4 spectra of 1024 bands, or a
 # level-4 reflectance of 4 bands), a streamed job of up to level 4 and 128
-# bands encoded spectrum by spectrum, payloads of up to 16 KiB, and the
-# coder's state (bw_ctx_t, 7.5 KiB). That leaves about 9 KiB below .bss for
+# bands encoded spectrum by spectrum, payloads of up to 16 KiB, the
+# coder's state (bw_ctx_t, 7.5 KiB) and 2 KiB of a job's extension records
+# (the host's metadata, APP_EXT_MAX). That leaves about 7 KiB below .bss for
 # the stack: linker/stm32l476.ld reserves 4 KiB, and the deepest call chain
 # with the application's frames takes about 1.7 KiB (-fstack-usage;
 # build/bench/device.md).

@@ -22,6 +22,7 @@
  */
 #include "app.h"
 
+#include <string.h>
 
 #include "bw_codec.h"
 #include "bw_crc32.h"
@@ -40,6 +41,12 @@
 #define ACK_WAIT 4000000000ull
 #define MAX_SENDS 8u
 
+/* the extension records (the host's metadata) a job can bring in JOB_EXT
+ * frames before its JOB, beyond what the JOB frame holds */
+#ifndef APP_EXT_MAX
+#define APP_EXT_MAX 2048u
+#endif
+
 #ifndef APP_STREAM_LEVEL
 #define APP_STREAM_LEVEL 6u
 #endif
@@ -54,6 +61,9 @@ static int32_t samples[APP_MAX_SAMPLES];
 static int32_t work[BW_WORK_BOUND(APP_MAX_SAMPLES, APP_MAX_BANDS)];
 static bw_ctx_t ctx; /* the coder's state, off the stack */
 static uint8_t payload[APP_PAYLOAD_CAP];
+static uint8_t job_ext[APP_EXT_MAX];
+static uint32_t job_ext_len;
+static bool job_ext_over; /* more JOB_EXT bytes came than job_ext holds */
 static uint8_t txbuf[BW_FRAME_MAX];
 static bw_frame_rx_t rx;
 static bw_frame_t frame;
@@ -244,10 +254,29 @@ int bw_app_run(const bw_hal_t *hal)
             send(hal, BW_FT_HELLO, 0, d, (uint16_t)bw_hello_pack(&limits, d));
             continue;
         }
+        if (frame.type == BW_FT_JOB_EXT) {
+            if (frame.len > APP_EXT_MAX - job_ext_len)
+                job_ext_over = true;
+            else
+                memcpy(job_ext + job_ext_len, frame.data, frame.len);
+            job_ext_len += job_ext_over ? 0u : frame.len;
+            continue;
+        }
         if (frame.type != BW_FT_JOB)
             continue;
         bw_job_t job;
-        if (!bw_job_unpack(frame.data, frame.len, &job)) {
+        bool ok = bw_job_unpack(frame.data, frame.len, &job);
+        /* records from JOB_EXT frames come first, the JOB's own after them */
+        if (ok && (job_ext_len || job_ext_over)) {
+            ok = !job_ext_over && job.ext_len <= APP_EXT_MAX - job_ext_len;
+            if (ok && job.ext_len)
+                memcpy(job_ext + job_ext_len, job.ext, job.ext_len);
+            job.ext = job_ext;
+            job.ext_len += job_ext_len;
+        }
+        job_ext_len = 0;
+        job_ext_over = false;
+        if (!ok) {
             send_error(hal, BW_ERR_ARG);
             continue;
         }

@@ -39,6 +39,8 @@ typedef enum {
                            * (bw_limits_t)                                    */
     BW_FT_JOB = 0x02,     /* host -> device: encode request (bw_job_t)         */
     BW_FT_QUIT = 0x03,    /* host -> device: stop                              */
+    BW_FT_JOB_EXT = 0x04, /* host -> device: extension records for the next JOB,
+                           * more than its frame holds (appended in order)   */
     BW_FT_START = 0x10,   /* device -> host: payload id u32, length u32,
                            * chunks u16, CRC-32 of the payload u32, then
                            * instructions spent encoding u64                   */

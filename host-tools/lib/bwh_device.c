@@ -264,10 +264,6 @@ int bwh_device_open(bwh_device_t *dv, const char *device, const char *firmware)
 
 int bwh_device_admit(const bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p)
 {
-    if (p->ext_len > BW_JOB_EXT_MAX)
-        return bwh_fail("the metadata takes %u bytes; a device job carries at most %u: "
-                        "encode with --no-metadata, or on the host",
-                        (unsigned)p->ext_len, (unsigned)BW_JOB_EXT_MAX);
     bool streamed;
     if (!dv->have_limits || bw_limits_admit(&dv->limits, dims, p, &streamed) == BW_OK)
         return 0;
@@ -301,12 +297,26 @@ int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p
     bw_job_t job;
     bw_job_make(&job, dims, p);
     strcpy(job.source, input); /* shorter than the field */
+    if (job.ext_len > BW_JOB_EXT_MAX) {
+        /* more records than the JOB frame holds: JOB_EXT frames first */
+        for (uint32_t at = 0; at < job.ext_len; at += BW_FRAME_MAX_DATA) {
+            uint32_t k = job.ext_len - at < BW_FRAME_MAX_DATA ? job.ext_len - at
+                                                              : BW_FRAME_MAX_DATA;
+            if (bwh_send_frame(dv->fd, BW_FT_JOB_EXT, 0, job.ext + at, (uint16_t)k) != 0)
+                goto out;
+        }
+        job.ext = NULL;
+        job.ext_len = 0;
+    }
     uint8_t jb[BW_FRAME_MAX_DATA];
     size_t jn = bw_job_pack(&job, jb);
     if (bwh_send_frame(dv->fd, BW_FT_JOB, 0, jb, (uint16_t)jn) != 0)
         goto out;
     if (bwh_receive_payload(&dv->link, o, r) != 0) {
-        if (r->device_error)
+        if (r->device_error && r->device_status == BW_ERR_ARG && p->ext_len > BW_JOB_EXT_MAX)
+            bwh_fail("the device refused the job's %u bytes of metadata (more than it holds): "
+                     "encode with --no-metadata, or on the host", (unsigned)p->ext_len);
+        else if (r->device_error)
             explain_device_error(dims, r->device_status, &r->limits);
         goto out;
     }

@@ -39,26 +39,22 @@ row() { # label payload reference decoded
     echo "|---|---|---|---|---|---|---|---|"
 } >"$S"
 
-# field spectra, exact on the file's 5 decimals. The set's metadata (1289
-# bytes: wavelengths, file names, times, GPS) is more than a job frame
-# carries to the device (864, docs/LINK.md): the samples alone here
+# field spectra, exact on the file's 5 decimals
 : >"$OUT/device.out"
-enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field.bwv" --lossless --no-metadata
+enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field.bwv" --lossless
 "$BW" decode -i "$OUT/field.bwv" -o "$OUT/field.f32"
 "$BW" info "$OUT/field.bwv" >"$OUT/info"
 cp "$OUT/field.f32" "$OUT/field_ref.f32"
 row "field spectra, lossless" "$OUT/field.bwv" "$OUT/field_ref.f32" "$OUT/field.f32"
 for E in 0.0005 0.002; do
-    enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field_e.bwv" --max-error $E \
-        --no-metadata
+    enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field_e.bwv" --max-error $E
     "$BW" decode -i "$OUT/field_e.bwv" -o "$OUT/field_e.f32"
     "$BW" info "$OUT/field_e.bwv" >"$OUT/info"
     row "field spectra, max-error $E" "$OUT/field_e.bwv" "$OUT/field_ref.f32" "$OUT/field_e.f32"
 done
 
 # the device's bounded-RAM path: spectrum by spectrum, coded as produced
-enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field_s.bwv" --stream --basis 97 --max-error 0.0005 \
-    --no-metadata
+enc --input-format sed -i tests/data/field_psr3500/*.sed -o "$OUT/field_s.bwv" --stream --basis 97 --max-error 0.0005
 "$BW" decode -i "$OUT/field_s.bwv" -o "$OUT/field_s.f32"
 "$BW" info "$OUT/field_s.bwv" >"$OUT/info"
 row "field spectra, streamed, max-error 0.0005" "$OUT/field_s.bwv" "$OUT/field_ref.f32" "$OUT/field_s.f32"

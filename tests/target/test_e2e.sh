@@ -38,14 +38,16 @@ same_payload() {
     "$BW" decode -i "$T/dev.bwv" -o "$T/dev.f32" && ok || bad "$name: decode"
 }
 
-# the 60 files' metadata (1289 bytes) is more than a job frame carries
-same_payload "field spectra lossless" --input-format sed -i $DATA/*.sed --lossless --no-metadata
+# the 60 files' metadata (1289 bytes) goes to the device in a JOB_EXT frame
+# and the JOB's own (docs/LINK.md)
+same_payload "field spectra lossless" --input-format sed -i $DATA/*.sed --lossless
+"$BW" info "$T/dev.bwv" | grep -q '^metadata_bytes: 1291$' && ok || bad "device payload without the set's metadata"
 "$BW" decode -i "$T/dev.bwv" -o "$T/dev.i32" --output-format i32
 "$BW" encode --input-format sed -i $DATA/*.sed -o "$T/ref.bwv" --basis haar >/dev/null
 "$BW" decode -i "$T/ref.bwv" -o "$T/ref.i32" --output-format i32
 cmp -s "$T/dev.i32" "$T/ref.i32" && ok || bad "field spectra: device decode not bit-exact"
 
-same_payload "field spectra max-error" --input-format sed -i $DATA/*.sed --max-error 0.001 --no-metadata
+same_payload "field spectra max-error" --input-format sed -i $DATA/*.sed --max-error 0.001
 "$BW" decode -i "$T/ref.bwv" -o "$T/ref.f32"
 "$BW" compare "$T/ref.f32" "$T/dev.f32" >"$T/cmp"
 $PY -c "import sys; sys.exit(0 if float('$(sed -n 's/^max_abs_error: //p' "$T/cmp")') <= 0.001 else 1)" && ok ||
@@ -76,22 +78,21 @@ same_payload "level-3 x 81 reflectance lossless" -i "$T/r.i32" --input-format i3
 
 # streamed: the device encodes spectrum by spectrum in bounded RAM, even a
 # measurement larger than it could hold (256 x 1024 directions)
-same_payload "field spectra streamed" --input-format sed -i $DATA/*.sed --stream --basis 97 --max-error 0.0005 --no-metadata
+same_payload "field spectra streamed" --input-format sed -i $DATA/*.sed --stream --basis 97 --max-error 0.0005
 "$BW" synth --model phong --kd 0.5 --ks 0.5 --n 50 --level 4 --incoming 256 -o "$T/p256.f32"
 same_payload "phong 256 x 1024 streamed" -i "$T/p256.f32" --bands 1 --level 4 --incoming 256 --stream --basis haar --max-error 0.002
 # the Rice coder: whole-measurement and streamed device paths
-same_payload "field spectra lossless, rice" --input-format sed -i $DATA/*.sed --lossless --basis 53 --coder rice --no-metadata
+same_payload "field spectra lossless, rice" --input-format sed -i $DATA/*.sed --lossless --basis 53 --coder rice
 same_payload "reflectance streamed, rice" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --coder rice
 "$BW" info "$T/dev.bwv" | grep -q "^order: streamed" && ok || bad "streamed payload not marked in info"
 
 # resend: the host loses a chunk and asks for it again
-"$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 --no-metadata >/dev/null 2>"$T/err" &&
-    "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 -o "$T/host.bwv" --no-metadata &&
+"$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&
+    "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 -o "$T/host.bwv" &&
     cmp -s "$T/dev.bwv" "$T/host.bwv" && ok || bad "resend of a lost chunk: $(cat "$T/err")"
 
 # the same application as a host process (hal/linux) gives the same payloads
-for args in "--basis 53 --lossless --no-metadata" "--stream --basis 97 --max-error 0.001 --no-metadata" \
-    "--ratio 32 --basis haar --no-metadata"; do
+for args in "--basis 53 --lossless" "--stream --basis 97 --max-error 0.001" "--ratio 32 --basis haar"; do
     # shellcheck disable=SC2086
     if "$BW" encode --device linux --input-format sed -i $DATA/*.sed $args -o "$T/lin.bwv" >/dev/null 2>"$T/err" &&
         "$BW" encode --input-format sed -i $DATA/*.sed $args -o "$T/host.bwv" 2>>"$T/err"; then

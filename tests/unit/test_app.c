@@ -17,7 +17,7 @@
 #define SPECTRA 4u
 #define BANDS 8u
 
-static uint8_t to_device[4096];
+static uint8_t to_device[8192];
 static size_t to_len, to_pos, read_size;
 static unsigned idle_reads;
 static uint64_t now;
@@ -180,6 +180,81 @@ static void a_job_too_large_is_answered_with_the_device_limits(void **state)
     assert_false(bw_error_unpack(sent[0].data, 3, &st, &lim));
 }
 
+/* A job whose extension records (1403 bytes) come partly in a JOB_EXT frame
+ * and partly after the JOB's fixed part: the payload carries them whole. */
+static void extension_records_in_job_ext_frames_reach_the_payload(void **state)
+{
+    (void)state;
+    static uint8_t area[1403];
+    area[0] = BW_EXT_METADATA;
+    area[1] = 0x80 | (1400 & 0x7F);
+    area[2] = 1400 >> 7;
+    for (size_t i = 3; i < sizeof area; i++)
+        area[i] = (uint8_t)(i * 13 + 5);
+    memset(sent, 0, sizeof sent);
+    n_sent = 0;
+    to_len = to_pos = 0;
+    idle_reads = 0;
+    sensor_pos = 0;
+    bw_frame_rx_init(&host_rx);
+    host_sends(BW_FT_JOB_EXT, area, 1000);
+    bw_job_t job;
+    memset(&job, 0, sizeof job);
+    job.shape = BW_SHAPE_SPECTRA;
+    job.n_in = SPECTRA;
+    job.bands = BANDS;
+    job.mode = BW_MODE_LOSSLESS;
+    job.basis = BW_BASIS_HAAR;
+    strcpy(job.source, "scripted");
+    job.ext = area + 1000;
+    job.ext_len = sizeof area - 1000;
+    uint8_t jb[BW_FRAME_MAX_DATA];
+    host_sends(BW_FT_JOB, jb, (uint16_t)bw_job_pack(&job, jb));
+    uint8_t id[4];
+    bw_put_u32(id, 1);
+    host_sends(BW_FT_ACK, id, 4);
+    host_sends(BW_FT_QUIT, NULL, 0);
+    read_size = sizeof to_device;
+    if (setjmp(hung))
+        fail_msg("the device did not finish the job");
+    assert_int_equal(bw_app_run(&hal), 0);
+    assert_int_equal(count_sent(BW_FT_ERROR), 0);
+    assert_int_equal(count_sent(BW_FT_START), 1);
+    static uint8_t p[64 * BW_FRAME_MAX_DATA];
+    size_t n = 0;
+    for (unsigned i = 0; i < n_sent; i++)
+        if (sent[i].type == BW_FT_DATA) {
+            memcpy(p + n, sent[i].data, sent[i].len);
+            n += sent[i].len;
+        }
+    bw_header_t h;
+    assert_int_equal(bw_header_read(p, n, &h), BW_OK);
+    assert_int_equal(h.version, 7);
+    assert_int_equal(h.ext_len, sizeof area);
+    assert_memory_equal(p + h.ext_off, area, sizeof area);
+
+    /* more than the device holds: refused with BW_ERR_ARG, and the next
+     * job starts afresh */
+    memset(sent, 0, sizeof sent);
+    n_sent = 0;
+    to_len = to_pos = 0;
+    bw_frame_rx_init(&host_rx);
+    for (unsigned k = 0; k * 1000u <= APP_EXT_MAX; k++)
+        host_sends(BW_FT_JOB_EXT, area, 1000);
+    job.ext = NULL;
+    job.ext_len = 0;
+    host_sends(BW_FT_JOB, jb, (uint16_t)bw_job_pack(&job, jb));
+    host_sends(BW_FT_QUIT, NULL, 0);
+    if (setjmp(hung))
+        fail_msg("the device did not stop after refusing the job");
+    assert_int_equal(bw_app_run(&hal), 0);
+    assert_int_equal(count_sent(BW_FT_ERROR), 1);
+    int32_t st;
+    bw_limits_t lim;
+    assert_true(bw_error_unpack(sent[0].data, sent[0].len, &st, &lim));
+    assert_int_equal(st, BW_ERR_ARG);
+}
+
 static void hello_is_answered_with_the_link_version_and_the_limits(void **state)
 {
     (void)state;
@@ -221,6 +296,7 @@ int main(void)
         cmocka_unit_test(frames_cut_at_any_point_are_all_heard),
         cmocka_unit_test(a_job_too_large_is_answered_with_the_device_limits),
         cmocka_unit_test(hello_is_answered_with_the_link_version_and_the_limits),
+        cmocka_unit_test(extension_records_in_job_ext_frames_reach_the_payload),
     };
     return cmocka_run_group_tests_name("app", tests, NULL, NULL);
 }
