@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * ASD FieldSpec / Indico binary files, every version: the old format
  * (magic "ASD": a 484-byte header and the spectrum), and "as6", "as7" and

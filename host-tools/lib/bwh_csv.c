@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * CSV, both ways. Lines "# key: value" before the table carry the metadata
  * (the keys of the metadata's JSON, each value in JSON); then a title row

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Float input under a per-sample guarantee (bwh_encode_bound.h). */
 #include "bwh_encode_bound.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Float input under a per-sample guarantee, for bwh_encode_f32: lossless bit
  * for bit (bwh_exact.h), the relative bound alone or with the absolute one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * ENVI files, both ways: a text header (first line "ENVI", then "key =
  * value" lines; a value in braces may span lines; keys are compared without

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Float32 values kept bit for bit (bwh_exact.h). */
 #include "bwh_exact.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Float32 values kept bit for bit (record 0x01, BW_EXT_FLOAT_EXACT; docs/
  * FORMAT.md): the integer samples the core codes exactly, and what the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Extension records on the host (bwh_ext.h). */
 #include "bwh_ext.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Extension records on the host (docs/FORMAT.md, Extensions): records added
  * to a finished payload, the one record of a type found, and the tail that

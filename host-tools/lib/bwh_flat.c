@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Flat calls for bindings (bwh_flat.h). */
 #include "bwh_flat.h"
 

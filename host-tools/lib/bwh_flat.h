@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Flat calls for bindings (the Python package's ctypes layer): the sizes of
  * the structures a binding lays out itself, and the metadata and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Goniometer measurements at scattered directions (the University of Bern's
  * PHIRE-2 CSV, as in shared/data/brdf/goniometer): a "# 'counter',

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The guarantee a payload was made under (bwh_guarantee.h). */
 #include "bwh_guarantee.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The guarantee a payload was made under (docs/FORMAT.md, record 0x82):
  * what every decoded value x' promises about its input value x, in the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Measurement files in: format names, detection, sets of files (bwh_input.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "bwh_input.h"

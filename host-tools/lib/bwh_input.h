@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measurement files in: the formats of the field and the lab read to samples
  * and metadata (bwh_meta.h), each by a reader of its own, and one call that

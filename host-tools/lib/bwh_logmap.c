@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The relative bound's map of values to samples (bwh_logmap.h). */
 #include "bwh_logmap.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The relative bound's map of values to samples (record 0x02,
  * BW_EXT_LOG_MAP; docs/FORMAT.md): y is linear in x near zero, logarithmic

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A measurement's metadata: the model, its names and checks (bwh_meta.h). */
 #define _POSIX_C_SOURCE 200809L /* strdup */
 #include "bwh_meta.h"

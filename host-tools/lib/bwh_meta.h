@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * A measurement's metadata: its physical axes and context, carried in the
  * payload as an ancillary extension record of type BW_EXT_METADATA

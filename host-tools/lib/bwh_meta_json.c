@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The metadata as JSON, both ways (bwh_meta.h): the text form the command
  * line's sidecars and the Python package exchange. Numbers are written as

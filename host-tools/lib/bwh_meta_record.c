@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The metadata record's bytes (docs/FORMAT.md, Metadata), both ways: fields
  * of tag, varint length and data; numbers as decimal integers (an arithmetic

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * The metadata as "key: value" lines, for 'brdfwave info' (bwh_meta.h):
  * one line per part, lists in full (numbers space-separated as JSON writes

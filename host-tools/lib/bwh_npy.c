@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * numpy .npy files (format versions 1.0, 2.0 and 3.0): the magic, the
  * version, the header's length and the header, a Python dict literal with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Decoded measurements out (bwh_output.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "bwh_output.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Scattered directions onto the grid (bwh_project.h). */
 #include "bwh_project.h"
 

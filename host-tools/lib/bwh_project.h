@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Measurements at scattered directions onto the geodesic grid: the
  * reference model's projection (host-tools/ref/bwr_project.h: each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * RGL .bsdf files (Dupuy and Jakob's RGB tensor files) sampled on the grid:
  * the reference model's loader (host-tools/ref/bwr_rgl.h) evaluated at the

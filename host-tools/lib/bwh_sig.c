@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Spectra Vista (SVC) .sig text files (HR-1024i and alike): the magic line
  * "Spectra Vista SIG Data" between its stars (or the older HR-1024 one), "key=

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Text files line by line (bwh_text.h). */
 #include "bwh_text.h"
 

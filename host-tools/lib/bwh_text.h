@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * Text files line by line, for the readers of the text formats (.sed,
  * .sig, USGS ASCII, ENVI headers, CSV): the whole file in memory ("-" is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /*
  * USGS spectral library (splib07) ASCII spectra: a title line ("splib07a
  * Record=18377: Brick GDS355 ... ASDFRa AREF"), then one value per line.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """The per-sample guarantees of float input against ZFP, with targets.
 
 Float lossless: brdfwave --lossless (every float32 bit kept) against ZFP's

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # Measurements in and out with their metadata, on the real files of
 # tests/data: every reader gives the wavelengths, units, instrument, time,
 # location and angles its file holds (the values of

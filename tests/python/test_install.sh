@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The Python package as a user installs it: a clean virtual environment
 # (Debian's numpy through --system-site-packages), `pip install
 # ./host-tools/python` with no index, then, from a directory outside the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Archived payloads of float input keep decoding: every payload under
  * tests/golden/v7_values/ (written by tests/golden/v7_values/make.py with
  * the records 0x01, 0x02 and 0x82) decodes on the host to the samples and

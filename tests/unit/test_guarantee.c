@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The guarantees of float input, held on every sample: lossless bit for bit,
  * the absolute bound E, the relative bound R (with and without a floor F),
  * and both at once, on random and adversarial values (extreme magnitudes,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The metadata record (docs/FORMAT.md, Metadata, type 0x81) and its JSON
  * form: every field comes back bit for bit, through the record, through
  * JSON and through a payload; an empty set writes no record (version 6);

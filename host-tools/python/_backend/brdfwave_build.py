@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A PEP 517 build backend for the brdfwave package that needs nothing but
 the standard library: `pip install ./host-tools/python` builds
 libbrdfwave.so from the checkout around it (`make pylib`; or takes the one

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The ctypes layer against the library it loaded: every structure this
 package lays out itself (_lib.py) must have the size the library was built
 with (bwh_abi_size, host-tools/lib/bwh_flat.h), checked once at load. A

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The guarantee a payload was made under (record 0x82, docs/FORMAT.md), and
 a decoded file checked against it.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Writes the archived version-7 payloads of float input: the records 0x01
 (float exact: scales, bit planes, exceptions), 0x02 (log map) and 0x82
 (guarantee), and their MANIFEST. Run once, by hand, when the archive is made;
