@@ -49,7 +49,7 @@ static const char encode_help[] =
     "  --ignore-value V  samples equal to V are missing (ENVI files name theirs):\n"
     "                    coded as their neighbours, given back as V\n"
     "  --wavelength-table FILE  usgs: the wavelength table to use\n"
-    "  --metadata FILE   JSON metadata (the keys of 'brdfwave info --json') to add to\n"
+    "  --metadata FILE   JSON metadata (info --json's \"metadata\" object) to add to\n"
     "                    or replace the input's\n"
     "  --field KEY=VALUE a free field to add (repeatable)\n"
     "  --no-metadata     no metadata record in the payload\n"

@@ -62,7 +62,7 @@ class Measurement(np.ndarray):
 
     Shape: spectra (n_spectra, bands); reflectance (n_out, bands); BRDF
     (n_in, n_out, bands), directions in grid order.
-      metadata         the metadata as a dict (the keys of 'brdfwave info --json')
+      metadata         the metadata as a dict ('brdfwave info --json' "metadata")
       wavelengths      (bands,) array in wavelength_unit ("nm", "um", "cm-1"), or None
       quantity, unit   what the values are ("reflectance factor", "1"; "brdf",
                        "sr^-1"; ...), or None
@@ -315,7 +315,7 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
       level=L, incoming=True     an isotropic BRDF, values (n_in, 4*4^L, bands)
       level=L, level_in=Li       a full BRDF, values (4*4^Li, 4*4^L, bands)
     Metadata (merged over a Measurement's and `metadata`, a dict with the
-    keys of 'brdfwave info --json'): wavelengths (one per band) in
+    keys of the "metadata" object of 'brdfwave info --json'): wavelengths (one per band) in
     wavelength_unit ("nm" default, "um", "cm-1"); incidence (one zenith angle
     per incoming direction of an isotropic BRDF) in incidence_unit ("deg"
     default, "rad"); quantity ("reflectance factor", "radiance", "brdf",
