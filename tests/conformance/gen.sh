@@ -48,7 +48,7 @@ while read -r name rest; do
     "$BW" decode -i "$OUT/$name.bwv" -o "$OUT/$name.f32"
     "$BW" info --json "$OUT/$name.bwv" >"$OUT/$name.json"
 done <<EOF2
-spectra_lossless_haar        -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis haar --symmetry none
+spectra_lossless_haar        -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis haar --symmetry none --no-metadata
 spectra_lossless_53_rice     -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 53 --coder rice
 spectra_lossless_97          -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 97
 spectra_lossless_pred_rice   -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis pred --coder rice
@@ -65,6 +65,10 @@ iso_maxerr_stream            -i $T/iso.f32 --bands 1 --level 2 --incoming 8 -- -
 full_maxerr_reciprocal       -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.005 --symmetry reciprocal
 full_bytes_both              -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --bytes 200 --symmetry both
 full_maxerr_none_rice        -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.001 --symmetry none --coder rice
+spectra_lossless_53_ms       -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 53 --coder ms
+refl_maxerr_haar_stream_ms   -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis haar --stream --coder ms --symmetry none
+iso_maxerr_mirror_ms         -i $T/iso.f32 --bands 1 --level 2 --incoming 8 -- --max-error 0.01 --symmetry mirror --coder ms
+full_bytes_both_ms           -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --bytes 200 --symmetry both --coder ms
 EOF2
 # version 7: the first vector with an ancillary extension record (type 0xC3,
 # unassigned: a decoder skips it) in front of the same body

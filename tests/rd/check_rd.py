@@ -137,8 +137,10 @@ def main():
                 else:
                     src, fmt = os.path.join(tmp, "in.u16"), "u16"
                     q.astype("<u2").tofile(src)
-                run([bw, "encode", "-i", src, "-o", enc, "--input-format", fmt] + layout +
-                    mode + extra)
+                # the codec's bytes: no metadata record (a u16 input would
+                # otherwise record its sample type)
+                run([bw, "encode", "-i", src, "-o", enc, "--input-format", fmt, "--no-metadata"] +
+                    layout + mode + extra)
                 nbytes = os.path.getsize(enc)
                 dec = os.path.join(tmp, "c.out")
                 if floats:
