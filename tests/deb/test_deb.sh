@@ -6,8 +6,9 @@
 # install with dpkg into a root of their own (its own dpkg database, so
 # the machine's /usr is not touched) and work from there: a C program
 # built with pkg-config alone, the command line, the Python package.
-# BRDFWAVE_DEB_SYSTEM=1 (as root) also installs them on the machine with
-# apt-get, checks them there and purges them.
+# Then, as root and with none of the four packages installed already, they
+# install on the machine itself with apt-get, work there and are purged
+# (BRDFWAVE_DEB_SYSTEM=0 leaves that out, =1 asks for it).
 set -u
 cd "$(dirname "$0")/../.."
 T=$(mktemp -d)
@@ -102,7 +103,18 @@ x = np.linspace(0.1, 0.9, 64, dtype=np.float32).reshape(2, 32)
 assert np.abs(np.asarray(brdfwave.decode_bytes(brdfwave.encode(x, max_error=1e-3))) - x).max() <= 1e-3
 ") && ok || bad "the packaged Python module"
 
-if [ "${BRDFWAVE_DEB_SYSTEM:-0}" = 1 ]; then
+system=${BRDFWAVE_DEB_SYSTEM:-auto}
+if [ "$system" = auto ]; then
+    system=0
+    if [ "$(id -u)" = 0 ]; then
+        system=1
+        for p in libbrdfwave1 libbrdfwave-dev brdfwave python3-brdfwave; do
+            dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" && system=0
+        done
+    fi
+    [ "$system" = 1 ] || echo "note: the packages are not installed on this machine (not root, or installed already)"
+fi
+if [ "$system" = 1 ]; then
     # shellcheck disable=SC2086
     apt-get install -y -q $(printf './%s ' $debs) >"$T/apt.log" 2>&1 && ok || bad "apt-get install: $(tail -5 "$T/apt.log")"
     [ "$(/usr/bin/brdfwave --version | head -1)" = "brdfwave $V (libbrdfwave $V)" ] && ok || bad "/usr/bin/brdfwave"
