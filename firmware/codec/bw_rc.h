@@ -68,20 +68,34 @@ size_t bw_rc_enc_finish(bw_rc_enc_t *e);
 
 void bw_rc_dec_init(bw_rc_dec_t *d, const uint8_t *in, size_t len);
 
-static inline void bw_rc_enc_bit(bw_rc_enc_t *e, bw_prob_t *p, unsigned bit)
+static inline void bw_rc_enc_renorm(bw_rc_enc_t *e)
 {
-    uint32_t bound = (e->range >> BW_PROB_BITS) * bw_prob_p0(p);
+    while (e->range < BW_RC_TOP) {
+        e->range <<= 8;
+        bw_rc_enc_shift_low(e);
+    }
+}
+
+/* One bit whose probability of a 0 is p0 (BW_PROB_BITS bits), before the
+ * renormalisation: the coding step of every binary model, whatever its
+ * adaptation (its model is updated before the renormalisation, whose call
+ * to bw_rc_enc_shift_low need not keep the model live). */
+static inline void bw_rc_enc_p0(bw_rc_enc_t *e, uint32_t p0, unsigned bit)
+{
+    uint32_t bound = (e->range >> BW_PROB_BITS) * p0;
     if (!bit) {
         e->range = bound;
     } else {
         e->low += bound;
         e->range -= bound;
     }
+}
+
+static inline void bw_rc_enc_bit(bw_rc_enc_t *e, bw_prob_t *p, unsigned bit)
+{
+    bw_rc_enc_p0(e, bw_prob_p0(p), bit);
     bw_prob_update(p, bit);
-    while (e->range < BW_RC_TOP) {
-        e->range <<= 8;
-        bw_rc_enc_shift_low(e);
-    }
+    bw_rc_enc_renorm(e);
 }
 
 static inline void bw_rc_enc_direct(bw_rc_enc_t *e, uint32_t value, unsigned nbits)
@@ -90,10 +104,7 @@ static inline void bw_rc_enc_direct(bw_rc_enc_t *e, uint32_t value, unsigned nbi
         e->range >>= 1;
         if ((value >> nbits) & 1u)
             e->low += e->range;
-        while (e->range < BW_RC_TOP) {
-            e->range <<= 8;
-            bw_rc_enc_shift_low(e);
-        }
+        bw_rc_enc_renorm(e);
     }
 }
 
@@ -106,23 +117,32 @@ static inline uint8_t bw_rc_dec_byte(bw_rc_dec_t *d)
     return b;
 }
 
-static inline unsigned bw_rc_dec_bit(bw_rc_dec_t *d, bw_prob_t *p)
+static inline void bw_rc_dec_renorm(bw_rc_dec_t *d)
 {
-    uint32_t bound = (d->range >> BW_PROB_BITS) * bw_prob_p0(p);
-    unsigned bit;
-    if (d->code < bound) {
-        d->range = bound;
-        bit = 0;
-    } else {
-        d->code -= bound;
-        d->range -= bound;
-        bit = 1;
-    }
-    bw_prob_update(p, bit);
     while (d->range < BW_RC_TOP) {
         d->range <<= 8;
         d->code = (d->code << 8) | bw_rc_dec_byte(d);
     }
+}
+
+/* bw_rc_enc_p0's twin: the bit, before the renormalisation */
+static inline unsigned bw_rc_dec_p0(bw_rc_dec_t *d, uint32_t p0)
+{
+    uint32_t bound = (d->range >> BW_PROB_BITS) * p0;
+    if (d->code < bound) {
+        d->range = bound;
+        return 0;
+    }
+    d->code -= bound;
+    d->range -= bound;
+    return 1;
+}
+
+static inline unsigned bw_rc_dec_bit(bw_rc_dec_t *d, bw_prob_t *p)
+{
+    unsigned bit = bw_rc_dec_p0(d, bw_prob_p0(p));
+    bw_prob_update(p, bit);
+    bw_rc_dec_renorm(d);
     return bit;
 }
 
@@ -135,10 +155,7 @@ static inline uint32_t bw_rc_dec_direct(bw_rc_dec_t *d, unsigned nbits)
         if (t)
             d->code -= d->range;
         v = (v << 1) | t;
-        while (d->range < BW_RC_TOP) {
-            d->range <<= 8;
-            d->code = (d->code << 8) | bw_rc_dec_byte(d);
-        }
+        bw_rc_dec_renorm(d);
     }
     return v;
 }
@@ -161,37 +178,16 @@ static inline void bw_ms_prob_update(bw_prob_t *p, unsigned bit)
 
 static inline void bw_rc_enc_msbit(bw_rc_enc_t *e, bw_prob_t *p, unsigned bit)
 {
-    uint32_t bound = (e->range >> BW_PROB_BITS) * *p;
-    if (!bit) {
-        e->range = bound;
-    } else {
-        e->low += bound;
-        e->range -= bound;
-    }
+    bw_rc_enc_p0(e, *p, bit);
     bw_ms_prob_update(p, bit);
-    while (e->range < BW_RC_TOP) {
-        e->range <<= 8;
-        bw_rc_enc_shift_low(e);
-    }
+    bw_rc_enc_renorm(e);
 }
 
 static inline unsigned bw_rc_dec_msbit(bw_rc_dec_t *d, bw_prob_t *p)
 {
-    uint32_t bound = (d->range >> BW_PROB_BITS) * *p;
-    unsigned bit;
-    if (d->code < bound) {
-        d->range = bound;
-        bit = 0;
-    } else {
-        d->code -= bound;
-        d->range -= bound;
-        bit = 1;
-    }
+    unsigned bit = bw_rc_dec_p0(d, *p);
     bw_ms_prob_update(p, bit);
-    while (d->range < BW_RC_TOP) {
-        d->range <<= 8;
-        d->code = (d->code << 8) | bw_rc_dec_byte(d);
-    }
+    bw_rc_dec_renorm(d);
     return bit;
 }
 
@@ -237,14 +233,6 @@ static inline void bw_ms_update(bw_ms_model_t *m, unsigned s)
         bw_ms_model_refresh(m);
 }
 
-static inline void bw_rc_enc_renorm(bw_rc_enc_t *e)
-{
-    while (e->range < BW_RC_TOP) {
-        e->range <<= 8;
-        bw_rc_enc_shift_low(e);
-    }
-}
-
 static inline void bw_rc_enc_sym(bw_rc_enc_t *e, bw_ms_model_t *m, unsigned s)
 {
     uint32_t r = e->range / m->cum[BW_MS_SYMS];
@@ -252,14 +240,6 @@ static inline void bw_rc_enc_sym(bw_rc_enc_t *e, bw_ms_model_t *m, unsigned s)
     e->range = r * (uint32_t)(m->cum[s + 1u] - m->cum[s]);
     bw_ms_update(m, s);
     bw_rc_enc_renorm(e);
-}
-
-static inline void bw_rc_dec_renorm(bw_rc_dec_t *d)
-{
-    while (d->range < BW_RC_TOP) {
-        d->range <<= 8;
-        d->code = (d->code << 8) | bw_rc_dec_byte(d);
-    }
 }
 
 static inline unsigned bw_rc_dec_sym(bw_rc_dec_t *d, bw_ms_model_t *m)
