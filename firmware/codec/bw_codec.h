@@ -97,7 +97,8 @@ typedef enum {
      * quantised in the loop. Every decoder decodes it; an encoder built
      * without BW_CFG_ENCODE_PRED (bw_config.h) does not offer it. */
     BW_BASIS_PRED = 3,
-    BW_BASIS_AUTO = 255 /* encoder option: try all, keep the smallest payload */
+    /* Encoder option: choose the basis (bw_effort_t says how) */
+    BW_BASIS_AUTO = 255
 } bw_basis_t;
 
 typedef enum {
@@ -116,9 +117,25 @@ typedef struct {
     uint32_t bands;
 } bw_dims_t;
 
+/* How much an encode may spend on its choices (bw_params_t.effort). */
+typedef enum {
+    /* BW_BASIS_AUTO codes the measurement with every basis and keeps the
+     * smallest payload; a byte budget searches the finest step that fits,
+     * coding the measurement once per try */
+    BW_EFFORT_BEST = 0,
+    /* for a device, where every try costs an encode: BW_BASIS_AUTO codes
+     * parts of the measurement (an eighth of it) with every basis, then the
+     * whole once with the basis that coded them smallest (for a byte budget,
+     * the smallest exact coding of the parts); a byte budget estimates its
+     * step from the coefficients and corrects it by the size of each encode
+     * until one lands within 1 % under the budget (one to four encodes) */
+    BW_EFFORT_FAST = 1
+} bw_effort_t;
+
 typedef struct {
     uint8_t mode;          /* bw_mode_t                                     */
     uint8_t basis;         /* bw_basis_t, or BW_BASIS_AUTO                  */
+    uint8_t effort;        /* bw_effort_t; 0 (BEST) in a zeroed struct     */
     uint32_t max_error;    /* MAX_ERROR: bound in sample units              */
     uint32_t byte_budget;  /* BYTES: upper bound on the payload size        */
     uint32_t step_q8;      /* STEP: quantiser step, Q24.8                   */

@@ -16,6 +16,15 @@
  *   BW_CFG_BUDGET_FILL_HALF   1        the byte budget's last search: where a
  *                                      rounding offset of 1/8 of a step still
  *                                      leaves the budget short, offsets up to 1/2
+ *   BW_CFG_FAST_BASIS         1        BW_EFFORT_FAST: BW_BASIS_AUTO chooses on
+ *                                      parts of the measurement (0.4 KiB of
+ *                                      flash); 0: it chooses as BW_EFFORT_BEST
+ *                                      (every basis on the whole), the same
+ *                                      payload or a smaller one
+ *   BW_CFG_FAST_BUDGET        1        BW_EFFORT_FAST: a byte budget estimates
+ *                                      its step and corrects it by the size of
+ *                                      each encode (bw_budget.c); 0: it
+ *                                      searches as BW_EFFORT_BEST
  *
  * Coders:
  *
@@ -63,16 +72,18 @@
  *   the MCU build (make TARGET=mcu, -Os with link-time optimisation), the
  *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
  *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
- *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0, BW_CFG_STATUS_TEXT=0 and
- *   BW_CFG_CODER_MS=0, which keep encoder, decoder and streaming encoder
- *   within 16 KiB of flash.
+ *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0, BW_CFG_FAST_BASIS=0,
+ *   BW_CFG_FAST_BUDGET=0, BW_CFG_STATUS_TEXT=0 and BW_CFG_CODER_MS=0, which
+ *   keep encoder, decoder and streaming encoder within 16 KiB of flash.
  *
  * Two builds write byte-identical payloads for the same input and options
  * exactly when their encoder features match; the code forms never matter.
  * A build without BW_CFG_ENCODE_PRED differs only where BW_BASIS_AUTO would
  * have chosen prediction (sets of spectra, LOSSLESS or MAX_ERROR) and refuses
  * BW_BASIS_PRED; one without BW_CFG_BUDGET_FILL_HALF only in BYTES payloads
- * whose search reaches that last step. A host that must reproduce a device's
+ * whose search reaches that last step; one without BW_CFG_FAST_BASIS only
+ * in BW_EFFORT_FAST encodes with BW_BASIS_AUTO; one without
+ * BW_CFG_FAST_BUDGET only in BW_EFFORT_FAST byte budgets. A host that must reproduce a device's
  * payload byte for byte builds its library with the device's encoder features
  * (make EXTRA_CFLAGS="-DBW_CFG_ENCODE_PRED=0 -DBW_CFG_BUDGET_FILL_HALF=0"), or
  * asks the device for options that use neither (an explicit transform basis,
@@ -86,6 +97,13 @@
 #endif
 #ifndef BW_CFG_BUDGET_FILL_HALF
 #define BW_CFG_BUDGET_FILL_HALF 1
+#endif
+
+#ifndef BW_CFG_FAST_BASIS
+#define BW_CFG_FAST_BASIS 1
+#endif
+#ifndef BW_CFG_FAST_BUDGET
+#define BW_CFG_FAST_BUDGET 1
 #endif
 
 #ifndef BW_CFG_STATUS_TEXT

@@ -13,6 +13,16 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
                            const int32_t *samples, int32_t *work, bw_ctx_t *ctx, uint8_t *out,
                            size_t cap, size_t *len)
 {
+    bw_status_t st = bw_encode_prepare(pl, samples, work);
+    if (st != BW_OK)
+        return st;
+    if (pl->step_q8 > BW_STEP_ONE_Q8)
+        bw_quantise(pl, work, true);
+    return bw_encode_code(pl, pa, mode, work, ctx, out, cap, len);
+}
+
+bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *work)
+{
     unsigned done;
     bw_status_t st = bw_load(pl, work, samples, &done);
     if (st == BW_OK && (pl->mirror || pl->recip))
@@ -24,9 +34,12 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
     else
         bw_transform_fwd(pl, work, done);
     bw_plan_tables(pl);
-    if (pl->step_q8 > BW_STEP_ONE_Q8)
-        bw_quantise(pl, work, true);
+    return BW_OK;
+}
 
+bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
+                           int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
+{
     bw_strip_enc_t *se = &ctx->enc;
     bool counting = out == NULL;
     size_t body_cap = 0, hl = bw_header_write(NULL, pl, pa, mode);
@@ -100,7 +113,93 @@ static bw_status_t encode_basis(bw_ctx_t *ctx, bw_plan_t *pl, const bw_params_t 
 {
     if (pa->mode != BW_MODE_BYTES)
         return bw_encode_pass(pl, pa, pa->mode, samples, work, ctx, out, cap, len);
+    if (BW_CFG_FAST_BUDGET && pa->effort == BW_EFFORT_FAST)
+        return bw_budget_encode_fast(pl, pa, samples, work, ctx, out, cap, len);
     return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
+}
+
+/* The parts of the measurement that a fast BW_BASIS_AUTO codes with every
+ * basis: ones that the same transforms code alike, each contiguous in the
+ * samples, together about an eighth of the measurement: a block of whole
+ * spectra (of 16 or more; or of one long spectrum's bands), a block of
+ * incoming directions (of 16 or more), or two outgoing subtrees two levels
+ * below the base triangles (hemispheres two levels coarser: the centre ones
+ * of bases 0 and 2). Returns how many (their offsets in first[]); 0: too
+ * small to take a part of, every basis codes the whole. */
+static unsigned quick_parts(const bw_dims_t *d, bw_dims_t *part, size_t first[2])
+{
+    uint32_t bands = d->bands;
+    *part = *d;
+    if (d->shape == BW_SHAPE_SPECTRA) {
+        if (d->n_in >= 16u) {
+            part->n_in = (d->n_in + 7u) / 8u;
+            first[0] = (size_t)((d->n_in - part->n_in) / 2u) * bands;
+            return 1u;
+        }
+        if (d->n_in > 1u || bands < 512u)
+            return 0u; /* a few spectra: the spectrum before counts */
+        /* one long spectrum: the middle eighth of its bands */
+        part->bands = bands / 8u;
+        first[0] = (bands - part->bands) / 2u;
+        return 1u;
+    }
+    if (d->shape != BW_SHAPE_REFLECTANCE && d->n_in >= 16u) {
+        part->shape = BW_SHAPE_BRDF_ISO;
+        part->level_in = 0u;
+        part->n_in = d->n_in / 8u;
+        first[0] = (size_t)((d->n_in - part->n_in) / 2u) * d->n_out * bands;
+        return 1u;
+    }
+    if (d->level_out < 2u)
+        return 0u;
+    /* of the middle incoming direction */
+    uint32_t leaves = d->n_out / 16u;
+    part->shape = BW_SHAPE_REFLECTANCE;
+    part->level_out = (uint8_t)(d->level_out - 2u);
+    part->level_in = 0u;
+    part->n_in = 1u;
+    part->n_out = leaves;
+    first[0] = (size_t)(d->n_in / 2u) * d->n_out * bands;
+    first[1] = first[0] + (size_t)8u * leaves * bands;
+    return 2u;
+}
+
+/* A fast BW_BASIS_AUTO: the basis first..last that codes the parts smallest
+ * (lossless for a byte budget). false: no parts, or no basis codes them. */
+static bool quick_choice(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
+                         const int32_t *samples, int32_t *work, unsigned first, unsigned last,
+                         unsigned *best)
+{
+    bw_dims_t part;
+    size_t at[2], best_sz = SIZE_MAX;
+    unsigned parts = quick_parts(dims, &part, at);
+    if (parts == 0u)
+        return false;
+    bw_params_t pq = *pa;
+    pq.flags &= (uint8_t) ~(BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL);
+    pq.ext = NULL;
+    pq.ext_len = 0;
+    if (pq.mode == BW_MODE_BYTES)
+        pq.mode = BW_MODE_LOSSLESS;
+    for (unsigned b = first; b <= last; b++) {
+        bw_plan_t pl;
+        size_t sz, total = 0;
+        if (bw_params_check(&part, pq.mode, b, pq.flags, mode_param(&pq), BW_FOR_ENCODE) != BW_OK)
+            continue;
+        unsigned k;
+        for (k = 0; k < parts; k++) {
+            plan_for(&pl, &part, b, &pq, work);
+            if (bw_encode_pass(&pl, &pq, pq.mode, samples + at[k], work, ctx, NULL, 0, &sz) !=
+                BW_OK)
+                break;
+            total += sz;
+        }
+        if (k == parts && total < best_sz) {
+            best_sz = total;
+            *best = b;
+        }
+    }
+    return best_sz != SIZE_MAX;
 }
 
 bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
@@ -114,7 +213,7 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
                                      BW_FOR_ENCODE);
     if (st != BW_OK)
         return st;
-    if (!bw_ext_valid(pa->ext, pa->ext_len))
+    if (!bw_ext_valid(pa->ext, pa->ext_len) || pa->effort > BW_EFFORT_FAST)
         return BW_ERR_ARG;
     bool pred = BW_CFG_ENCODE_PRED && bw_pred_applies(dims, pa->mode, pa->flags);
 
@@ -130,6 +229,9 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
     if (one_transform && last < BW_BASIS_COUNT)
         last = first;
     unsigned best = first;
+    if (BW_CFG_FAST_BASIS && first != last && pa->effort == BW_EFFORT_FAST &&
+        quick_choice(ctx, dims, pa, samples, work, first, last, &best))
+        first = last = best;
     if (first != last) {
         /* keep the smallest payload, or for BYTES the smallest error (the
          * smallest step when there is no room to decode) */

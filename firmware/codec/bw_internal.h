@@ -166,6 +166,15 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);
  * bw_quantise does where there is no incoming transform (the streaming
  * encoder's shapes; no rounding offsets). */
 void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
+/* The histogram of the coefficients' magnitudes against their steps, for a
+ * byte budget's estimate: hist[0] counts the zeros; a coefficient c whose
+ * step is st at a base step of 1 (Q8 256) counts in bin
+ * 4 log2(256 |c| / st) + BW_HIST_ZERO_BIN - 32 (quarter octaves, rounded
+ * down; the last bin takes everything above), so that the base step
+ * 2^(t / 4) codes it as non-zero about from bin BW_HIST_ZERO_BIN + t on. */
+#define BW_HIST_BINS 192u
+#define BW_HIST_ZERO_BIN 48u
+void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist);
 
 /* ---- coding order (bw_order.c) ------------------------------------------- */
 
@@ -246,10 +255,23 @@ bool bw_ext_valid(const uint8_t *area, size_t len);
 bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
                            const int32_t *samples, int32_t *work, bw_ctx_t *ctx, uint8_t *out,
                            size_t cap, size_t *len);
+/* Its two halves: the coefficients in work (load, symmetry, transform or
+ * prediction) and the plan's tables; then code the coefficients (quantised
+ * by the caller) with the header and the CRC, *len the size even when it
+ * does not fit cap (BW_ERR_OUTPUT_FULL). */
+bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *work);
+bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
+                           int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len);
 /* BYTES: the payload of at most min(byte_budget, cap) bytes with the finest
  * quantiser the plan's basis reaches; BW_ERR_BUDGET if none fits. */
 bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                              int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
                              size_t *len);
+/* The same with BW_EFFORT_FAST: the step estimated from the coefficients,
+ * corrected by the size of each encode, until one lands within 1 % under
+ * the budget (else the search above). */
+bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                                  int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
+                                  size_t *len);
 
 #endif

@@ -190,6 +190,21 @@ static void vec_quant(const spec_bands_t *sb, const uq56_8_t *st_q8, int32_t *v,
     }
 }
 
+/* The next outgoing vector in the coder's walk: its position, and *gio_q16
+ * the incoming x outgoing inverse gain of its subband. */
+static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq16_t *gio_q16)
+{
+    uint32_t pos = 0;
+    uq16_t g_out_q16 = 65536u;
+    if (bw_has_out(d)) {
+        int j;
+        pos = bw_walk_next(w, d->level_out, &j);
+        g_out_q16 = bw_biohaar_inv_gain_q16(d->level_out, j);
+    }
+    *gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+    return pos;
+}
+
 /* The step of every vector, walking the outgoing hemisphere as the coder
  * does; the subband steps are recomputed only when the vector's gain
  * changes (once per level). */
@@ -197,7 +212,6 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
-    unsigned L = d->level_out;
     uint64_t thr = vec_thr(pl);
     spec_bands_t sb;
     uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
@@ -214,14 +228,8 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
             bw_walk_t w;
             bw_walk_init(&w);
             for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
-                uint32_t pos = 0;
-                uq16_t g_out_q16 = 65536u;
-                if (bw_has_out(d)) {
-                    int j;
-                    pos = bw_walk_next(&w, L, &j);
-                    g_out_q16 = bw_biohaar_inv_gain_q16(L, j);
-                }
-                uq16_t gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+                uq16_t gio_q16;
+                uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
                 if (gio_q16 != steps_gio_q16) {
                     vec_steps(pl, &sb, gio_q16, steps_q8);
                     steps_gio_q16 = gio_q16;
@@ -263,4 +271,58 @@ void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j)
         memset(v, 0, (size_t)b * sizeof *v);
     else
         vec_quant(&sb, steps_q8, v, true, 0u, 0u);
+}
+
+/* 4 log2(v), rounded down to a quarter octave (v >= 1): the leading one's
+ * position and the two bits below it (quarters at 1, 1.25, 1.5, 1.75) */
+static inline unsigned log4(uint64_t v)
+{
+    unsigned e = 0;
+    if (v >> 32) {
+        v >>= 32;
+        e = 32;
+    }
+    e += bw_bitlen((uint32_t)v) - 1u;
+    uint32_t top = e >= 2u ? (uint32_t)(v >> ((e & 31u) - 2u)) : (uint32_t)(v << (2u - e));
+    return 4u * e + (top & 3u);
+}
+
+void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    spec_bands_t sb;
+    unsigned lst[BW_SPEC_MAX_LEVELS + 1u];
+    uq16_t lst_gio_q16 = 0;
+    memset(hist, 0, BW_HIST_BINS * sizeof *hist);
+    spec_bands(pl, &sb);
+    for (uint32_t i = 0; i < d->n_in; i++) {
+        uq16_t gi_q16 = bw_in_gain_q16(pl, i);
+        const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+        bw_walk_t w;
+        bw_walk_init(&w);
+        for (uint32_t o = 0; o < d->n_out; o++) {
+            uq16_t gio_q16;
+            uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
+            if (gio_q16 != lst_gio_q16) {
+                /* the quarter octave of each subband's step at step 1 */
+                for (unsigned s = 0; s < sb.count; s++) {
+                    uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gio_q16, 65536u, sb.gain_q16[s]);
+                    lst[s] = log4(st ? st : 1u);
+                }
+                lst_gio_q16 = gio_q16;
+            }
+            const int32_t *v = blk + (size_t)pos * b;
+            for (unsigned s = 0; s < sb.count; s++) {
+                /* bin 4 log2(256 |c| / st) + BW_HIST_ZERO_BIN - 32: below
+                 * BW_HIST_ZERO_BIN the step 1 codes c as 0 */
+                unsigned off = BW_HIST_ZERO_BIN + 32u - lst[s];
+                for (uint32_t k = sb.lo[s]; k < sb.lo[s + 1u]; k++) {
+                    uint32_t a = bw_abs32(v[k]);
+                    unsigned bin = a ? log4(a) + off : 0u;
+                    hist[bin < BW_HIST_BINS ? bin : BW_HIST_BINS - 1u]++;
+                }
+            }
+        }
+    }
 }

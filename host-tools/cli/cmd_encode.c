@@ -21,7 +21,8 @@ static const char encode_help[] =
     "                       [--incoming N | --level-in Li] [--input-format F]\n"
     "                       [--lossless | --max-error E | --bytes N | --ratio R]\n"
     "                       [--max-rel-error R [--rel-floor F]]\n"
-    "                       [--basis haar|53|97|pred|auto] [--scale S] [--relative]\n"
+    "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
+    "                       [--scale S] [--relative]\n"
     "                       [--coder range|ms|rice] [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
@@ -66,6 +67,11 @@ static const char encode_help[] =
     "  --ratio R         the payload is at most 4*samples/R bytes (R:1 against float32)\n"
     "  --basis B         spectral wavelet (default auto: the smallest payload); pred:\n"
     "                    prediction instead, for spectra with --lossless or --max-error\n"
+    "  --effort E        best (the default on the host): auto codes the data with\n"
+    "                    each basis, --bytes searches the step; fast (the default\n"
+    "                    with --device): auto codes an eighth of it with each, then\n"
+    "                    the whole once with the best, --bytes estimates the step and\n"
+    "                    corrects it by each encode's size (1 to 4 encodes)\n"
     "  --scale S         float input: value of one integer step\n"
     "  --device D        where to encode: host (default); qemu, the emulated\n"
     "                    Cortex-M4 co-processor (its payload comes back over the\n"
@@ -178,6 +184,7 @@ static int summary(const char *outp, const uint8_t *payload, size_t plen, size_t
 
 enum { DEV_HOST, DEV_QEMU, DEV_LINUX };
 static const char *const devices[] = {"host", "qemu", "linux", NULL};
+static const char *const efforts[] = {"best", "fast", NULL}; /* bw_effort_t */
 static const char *const channels[] = {"rgb", "r", "g", "b", NULL};
 static const char *const columns[] = {"reflectance", "target", "reference", NULL};
 
@@ -277,7 +284,7 @@ int bw_cmd_encode(int argc, char **argv)
     double max_error = 0, ratio = 0, scale = 0, max_rel = 0, rel_floor = 0;
     int n_max_rel = 0, n_rel_floor = 0;
     uint32_t bytes = 0, drop = 0;
-    int has_drop = 0, quiet = 0;
+    int has_drop = 0, quiet = 0, has_effort = 0, effort = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = 0;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
@@ -305,6 +312,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"ratio", 0, CLI_POSITIVE, .dest = &ratio, .seen = &n_ratio},
         {"basis", 0, CLI_CALL, .dest = &basis, .parse = parse_basis,
          .what = "--basis must be haar, 53, 97, pred or auto"},
+        {"effort", 0, CLI_CHOICE, .dest = &effort, .choices = efforts, .seen = &has_effort},
         {"scale", 0, CLI_POSITIVE, .dest = &scale},
         {"device", 0, CLI_CHOICE, .dest = &device, .choices = devices},
         {"firmware", 0, CLI_STRING, .dest = &firmware},
@@ -347,6 +355,9 @@ int bw_cmd_encode(int argc, char **argv)
     o.rel_floor = rel_floor;
     o.byte_budget = bytes;
     o.basis = basis;
+    /* on a device every try costs an encode */
+    o.effort = has_effort ? (unsigned)effort : device != DEV_HOST ? BW_EFFORT_FAST
+                                                                  : BW_EFFORT_BEST;
     o.scale = scale;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);

@@ -75,6 +75,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     memset(&p, 0, sizeof p);
     p.mode = (uint8_t)o->mode;
     p.basis = (uint8_t)o->basis;
+    p.effort = (uint8_t)o->effort;
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
     p.flags = (uint8_t)(o->flags & BW_FLAGS_KNOWN);

@@ -46,6 +46,8 @@ typedef struct {
      * record of bwh_meta_encode), ext_len bytes; none when 0 */
     const uint8_t *ext;
     size_t ext_len;
+    /* bw_effort_t: BW_EFFORT_BEST (0) or BW_EFFORT_FAST (bw_codec.h) */
+    unsigned effort;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

@@ -390,9 +390,10 @@ for set in "fs.f32 --bands 1024" "rgl.f32 --bands 1 --level 4 --incoming $nrgl" 
     check_bound "$f both bounds" "$T/$f" "$T/rb.bwv" 0.001 1e-5 0.0003
 done
 # on the device the core codes the samples, the host maps the floats: the same payload
+# (the host with the device's default effort)
 for m in "--lossless" "--max-rel-error 0.001" "--max-rel-error 0.01 --max-error 0.5"; do
     "$BW" encode --device linux -i "$T/sg.f32" -o "$T/dev.bwv" --bands 33 $m >/dev/null 2>"$T/err" &&
-        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
+        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m --effort fast && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
         ok || bad "device linux $m: $(cat "$T/err")"
 done
 # usage and refusals

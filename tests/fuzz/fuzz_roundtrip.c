@@ -106,6 +106,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&pa, 0, sizeof pa);
     pa.mode = (uint8_t)mode;
     pa.basis = (uint8_t)basis;
+    /* the device's cheap choices: the basis on parts, the budget's step
+     * estimated */
+    pa.effort = (data[0] & 0x80u) ? BW_EFFORT_FAST : BW_EFFORT_BEST;
     pa.vec_thresh_q8 = (uint32_t)(data[8] >> 2) * 16u;
     pa.scale_bits = 0x3F800000u;
     /* the mirror of directional data (bit 7 of the n_in byte) */

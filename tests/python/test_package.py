@@ -284,7 +284,15 @@ def encode_on_the_linux_device_from_outside_the_checkout_equals_the_host_payload
     assert r.returncode == 0, r.stderr
     with open(tmp("dev.bwv"), "rb") as f:
         on_device = f.read()
-    assert on_device == brdfwave.encode(x, level=3, incoming=True, max_error=0.002)
+    # the device's default effort is "fast"; the host's, "best"
+    assert on_device == brdfwave.encode(x, level=3, incoming=True, max_error=0.002,
+                                        effort="fast")
+    try:
+        brdfwave.encode(x, level=3, incoming=True, max_error=0.002, effort="slow")
+    except brdfwave.BrdfwaveError as e:
+        assert "effort" in str(e)
+    else:
+        raise AssertionError("effort='slow' was taken")
 
 
 @case

@@ -3154,6 +3154,192 @@ static void streaming_encoder_refuses_what_it_cannot_do(void **state)
     free(out);
 }
 
+/* ---- the fast basis choice (BW_EFFORT_FAST) ------------------------------- */
+
+/* One case of the fast choice against trying every basis: both decode within
+ * the mode's bound, the fast payload is the one its basis gives when named,
+ * and it is at most `slack` times the best (exactly the best where the
+ * measurement is too small to take a part of). */
+static void fast_case(const bw_dims_t *d, const int32_t *x, unsigned mode, uint32_t E, double slack,
+                      const char *what)
+{
+    size_t n = bw_dims_samples(d);
+    if (!BW_CFG_FAST_BASIS)
+        slack = 1.0; /* built without it: fast chooses as best */
+    bw_params_t best = params_of(mode, BW_BASIS_AUTO), fast = best;
+    best.max_error = fast.max_error = E;
+    fast.effort = BW_EFFORT_FAST;
+    uint8_t *pb, *pf, *pn;
+    size_t lb, lf, ln;
+    assert_int_equal(encode_new(d, &best, x, true, &pb, &lb), BW_OK);
+    bw_status_t st = encode_new(d, &fast, x, true, &pf, &lf);
+    if (st != BW_OK)
+        fail_msg("%s: fast: %s", what, bw_strerror(st));
+    int32_t *y;
+    bw_header_t h;
+    assert_int_equal(decode_new(pf, lf, &y, &h), BW_OK);
+    for (size_t i = 0; i < n; i++) {
+        int64_t e = (int64_t)y[i] - x[i];
+        if ((e < 0 ? -e : e) > (int64_t)(mode == BW_MODE_LOSSLESS ? 0u : E))
+            fail_msg("%s: sample %zu decodes to %d, input %d", what, i, y[i], x[i]);
+    }
+    bw_params_t named = params_of(mode, h.basis);
+    named.max_error = E;
+    assert_int_equal(encode_new(d, &named, x, false, &pn, &ln), BW_OK);
+    if (ln != lf || memcmp(pn, pf, lf) != 0)
+        fail_msg("%s: fast payload (%zu bytes) is not the one basis %u gives (%zu)", what, lf,
+                 h.basis, ln);
+    if ((double)lf > slack * (double)lb)
+        fail_msg("%s: fast %zu bytes, every basis %zu (more than %.3f x)", what, lf, lb, slack);
+    if (slack == 1.0 && (lf != lb || memcmp(pf, pb, lf) != 0))
+        fail_msg("%s: no part to choose on, yet the payload differs from trying every basis",
+                 what);
+    free(y);
+    free(pb);
+    free(pf);
+    free(pn);
+}
+
+/* BW_EFFORT_FAST codes parts of the measurement with each basis: on the
+ * field spectra within 1 % of trying every basis in every mode; on every
+ * shape it codes, within the mode's bound; measurements too small for a
+ * part get the exhaustive choice; and an unknown effort is refused. */
+static void fast_basis_choice_stays_close_to_trying_every_basis(void **state)
+{
+    (void)state;
+    uint32_t count, bands;
+    const int32_t *field = field_spectra(&count, &bands);
+    if (field) {
+        bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, count, bands);
+        fast_case(&d, field, BW_MODE_LOSSLESS, 0, 1.01, "field spectra lossless");
+        for (uint32_t E = 1; E <= 1000; E *= 10) {
+            char what[64];
+            snprintf(what, sizeof what, "field spectra max-error %u", E);
+            fast_case(&d, field, BW_MODE_MAX_ERROR, E, 1.01, what);
+        }
+    }
+    static const struct {
+        unsigned shape, lo, li;
+        uint32_t n_in, bands;
+        double slack;
+    } cases[] = {
+        {BW_SHAPE_SPECTRA, 0, 0, 24, 96, 1.05},     /* a block of spectra         */
+        {BW_SHAPE_SPECTRA, 0, 0, 1, 1024, 1.05},    /* an eighth of its bands     */
+        {BW_SHAPE_SPECTRA, 0, 0, 3, 1024, 1.0},     /* few spectra: every basis   */
+        {BW_SHAPE_SPECTRA, 0, 0, 5, 64, 1.0},       /* no part: every basis       */
+        {BW_SHAPE_REFLECTANCE, 3, 0, 1, 24, 1.05},  /* two subtrees               */
+        {BW_SHAPE_REFLECTANCE, 1, 0, 1, 24, 1.0},   /* too coarse for subtrees    */
+        {BW_SHAPE_BRDF_ISO, 2, 0, 16, 12, 1.05},    /* a block of incoming ones   */
+        {BW_SHAPE_BRDF_ISO, 2, 0, 3, 12, 1.05},     /* subtrees of the middle one */
+        {BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, 1.05},     /* a block of incoming ones   */
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        bw_dims_t d = dims_of(cases[c].shape, cases[c].lo, cases[c].li, cases[c].n_in,
+                              cases[c].bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        fill_smooth(x, n / d.bands, d.bands, 900u + c, 30);
+        char what[64];
+        snprintf(what, sizeof what, "case %zu lossless", c);
+        fast_case(&d, x, BW_MODE_LOSSLESS, 0, cases[c].slack, what);
+        snprintf(what, sizeof what, "case %zu max-error 8", c);
+        fast_case(&d, x, BW_MODE_MAX_ERROR, 8, cases[c].slack, what);
+        free(x);
+    }
+    bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 4, 16);
+    int32_t x[64] = {0};
+    bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_AUTO);
+    p.effort = BW_EFFORT_FAST + 1;
+    uint8_t *out;
+    size_t len;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_ERR_ARG);
+    free(out);
+}
+
+/* The squared error of a payload against x. */
+static double payload_sse(const uint8_t *p, size_t len, const int32_t *x, size_t n)
+{
+    int32_t *y;
+    bw_header_t h;
+    assert_int_equal(decode_new(p, len, &y, &h), BW_OK);
+    double sse = 0;
+    for (size_t i = 0; i < n; i++)
+        sse += ((double)y[i] - x[i]) * ((double)y[i] - x[i]);
+    free(y);
+    return sse;
+}
+
+/* One byte budget, fast against the search: within the budget, within 1 %
+ * under it (or the exact coding, or the search's own payload where the fast
+ * steps gave up), and a squared error at most 1.5 times the search's. */
+static void fast_budget_case(const bw_dims_t *d, const int32_t *x, unsigned basis, size_t budget,
+                             const char *what)
+{
+    size_t n = bw_dims_samples(d);
+    bw_params_t best = params_of(BW_MODE_BYTES, basis), fast = best;
+    best.byte_budget = fast.byte_budget = (uint32_t)budget;
+    fast.effort = BW_EFFORT_FAST;
+    uint8_t *pb, *pf;
+    size_t lb, lf;
+    assert_int_equal(encode_new(d, &best, x, true, &pb, &lb), BW_OK);
+    bw_status_t st = encode_new(d, &fast, x, true, &pf, &lf);
+    if (st != BW_OK)
+        fail_msg("%s: fast: %s", what, bw_strerror(st));
+    bw_header_t h;
+    assert_int_equal(bw_header_read(pf, lf, &h), BW_OK);
+    bool same = lf == lb && memcmp(pf, pb, lf) == 0;
+    if (lf > budget || (lf < budget - budget / 100u && h.mode != BW_MODE_LOSSLESS && !same))
+        fail_msg("%s: fast payload %zu bytes for a budget of %zu", what, lf, budget);
+    double eb = payload_sse(pb, lb, x, n), ef = payload_sse(pf, lf, x, n);
+    if (ef > 1.5 * eb + n)
+        fail_msg("%s: fast squared error %.4g, the search's %.4g", what, ef, eb);
+    if (!BW_CFG_FAST_BUDGET && !same)
+        fail_msg("%s: built without the fast budget, yet not the search's payload", what);
+    free(pb);
+    free(pf);
+}
+
+/* BW_EFFORT_FAST with a byte budget: the step estimated and corrected by
+ * each encode's size lands within 1 % under the budget, near the search's
+ * error, on every shape, at budgets from near the exact coding down. */
+static void fast_byte_budget_lands_close_to_the_search(void **state)
+{
+    (void)state;
+    uint32_t count, bands;
+    const int32_t *field = field_spectra(&count, &bands);
+    if (field) {
+        bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, count, bands);
+        size_t exact = check_lossless(&d, BW_BASIS_97, field, false, "field spectra exact");
+        for (unsigned k = 2; k <= 64; k *= 2) {
+            char what[64];
+            snprintf(what, sizeof what, "field spectra, exact / %u", k);
+            fast_budget_case(&d, field, BW_BASIS_97, exact / k, what);
+        }
+    }
+    static const struct {
+        unsigned shape, lo, li;
+        uint32_t n_in, bands;
+    } cases[] = {
+        {BW_SHAPE_SPECTRA, 0, 0, 24, 96},   {BW_SHAPE_REFLECTANCE, 3, 0, 1, 24},
+        {BW_SHAPE_BRDF_ISO, 3, 0, 8, 1},    {BW_SHAPE_BRDF_ISO, 2, 0, 6, 12},
+        {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        bw_dims_t d = dims_of(cases[c].shape, cases[c].lo, cases[c].li, cases[c].n_in,
+                              cases[c].bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        fill_smooth(x, n / d.bands, d.bands, 700u + c, 40);
+        size_t exact = check_lossless(&d, BW_BASIS_53, x, false, "fast budget case");
+        for (unsigned k = 2; k <= 16; k *= 2) {
+            char what[64];
+            snprintf(what, sizeof what, "case %zu, exact / %u", c, k);
+            fast_budget_case(&d, x, BW_BASIS_53, exact / k, what);
+        }
+        free(x);
+    }
+}
+
 /* ---- prediction (BW_BASIS_PRED) ------------------------------------------ */
 
 /* The predictor of docs/FORMAT.md written from its formulas: the decoded
@@ -3577,6 +3763,8 @@ int main(void)
         cmocka_unit_test(streaming_encoder_matches_the_stream_order_payload_byte_for_byte),
         cmocka_unit_test(streaming_encoder_refuses_what_it_cannot_do),
         cmocka_unit_test(encoder_offers_prediction_exactly_when_built_with_it),
+        cmocka_unit_test(fast_basis_choice_stays_close_to_trying_every_basis),
+        cmocka_unit_test(fast_byte_budget_lands_close_to_the_search),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
         cmocka_unit_test(every_decoder_decodes_prediction_payloads),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),

@@ -154,6 +154,7 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     j.mode = 2;
     j.basis = 255;
     j.flags = 1;
+    j.effort = BW_EFFORT_FAST;
     j.n_in = 256;
     j.bands = 2151;
     j.max_error = 7;
@@ -166,9 +167,13 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     assert_true(bw_job_unpack(b, sizeof b, &k));
     assert_memory_equal(&j, &k, sizeof j);
     assert_false(bw_job_unpack(b, sizeof b - 1, &k));
-    b[6] = 1; /* reserved */
+    assert_int_equal(b[6], BW_EFFORT_FAST);
+    b[6] = BW_EFFORT_FAST + 1; /* no such effort */
     assert_false(bw_job_unpack(b, sizeof b, &k));
-    b[6] = 0;
+    b[6] = BW_EFFORT_FAST;
+    b[7] = 1; /* reserved */
+    assert_false(bw_job_unpack(b, sizeof b, &k));
+    b[7] = 0;
     memset(b + 32, 'x', 128); /* no terminating NUL */
     assert_false(bw_job_unpack(b, sizeof b, &k));
 
@@ -190,6 +195,7 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     assert_false(bw_job_unpack(big, BW_FRAME_MAX_DATA + 1, &k));
     bw_params_t p;
     bw_job_params(&k, &p);
+    assert_int_equal(p.effort, BW_EFFORT_FAST);
     assert_ptr_equal(p.ext, k.ext);
     assert_int_equal(p.ext_len, BW_JOB_EXT_MAX);
 }

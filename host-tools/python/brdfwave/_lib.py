@@ -49,7 +49,8 @@ class EncodeOpts(ctypes.Structure):
                 ("scale", ctypes.c_double), ("flags", ctypes.c_uint),
                 ("device", ctypes.POINTER(DeviceJob)),
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
-                ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t)]
+                ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t),
+                ("effort", ctypes.c_uint)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)

@@ -305,7 +305,7 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder="range",
            stream=False, symmetry="auto", path=None, device=None, firmware=None,
-           max_rel_error=None, rel_floor=None):
+           max_rel_error=None, rel_floor=None, effort=None):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
     given), as `brdfwave encode` does, with its metadata.
 
@@ -329,6 +329,10 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     The payload records its guarantee (brdfwave.guarantee). Integer arrays (uint8, int16, uint16, int32) are coded
     as they are (never through float32) and decode as those integers; their
     max_error is in their units. basis: "haar", "53", "97", "pred" or "auto";
+    effort: "best" (basis="auto" codes the data with each basis, a byte
+    budget searches its step) or "fast" (an eighth of it with each, then the
+    whole once with the best; the budget's step estimated and corrected by
+    each encode's size); None: "best" on this host, "fast" with device;
     coder: "range", "ms" or "rice"; stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
@@ -408,6 +412,11 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     b = L.bwh_basis_from_name(basis.encode()) if isinstance(basis, str) else -1
     if b < 0:
         raise BrdfwaveError("basis must be haar, 53, 97, pred or auto")
+    if effort is None:
+        effort = "best" if device is None else "fast"
+    if effort not in ("best", "fast"):
+        raise BrdfwaveError("effort must be best or fast")
+    o.effort = 0 if effort == "best" else 1
     o.basis = b
     if coder not in ("range", "rice", "ms"):
         raise BrdfwaveError("coder must be range, ms or rice")

@@ -387,13 +387,50 @@ static void run_mode(set_t *s, const bench_mode_t *m)
     if (m->mode == BW_MODE_LOSSLESS)
         lossless_basis = (int)basis;
 
+    /* BW_EFFORT_FAST: the basis chosen on parts of the measurement, then one
+     * encode (a byte budget: its step estimated and corrected by each
+     * encode); its payload decoded and checked, and the same with the basis
+     * it chose named (for a byte budget always: the figure of its search) */
+    uint64_t t_encq = 0, t_encqf = t_encf, sse_q = 0;
+    size_t len_q = 0, len_qf = 0;
+    unsigned basis_q = basis;
+    uint32_t worst_q = 0;
+    if (levels > 0u || basis == BW_BASIS_PRED || m->mode == BW_MODE_BYTES) {
+        bw_params_t pq = params_of(m, s, BW_BASIS_AUTO);
+        pq.effort = BW_EFFORT_FAST;
+        bw_status_t st_q, st_qd;
+        uint32_t stk_q;
+        bw_header_t hq;
+        t_encq = timed_encode(s, &pq, NULL, &len_q, &st_q, &stk_q);
+        max_stack(&stack_enc_max, stk_q);
+        if (st_q == BW_OK) {
+            (void)timed_decode(s, len_q, &hq, &st_qd, &stk_q);
+            basis_q = hq.basis;
+            worst_q = st_qd == BW_OK ? decoded_error(s, &sse_q) : 0u;
+            if (st_qd != BW_OK || !bound_held(m->mode, m->max_error, worst_q) ||
+                (m->mode == BW_MODE_BYTES && len_q > p.byte_budget))
+                ok = 0;
+            if (basis_q != basis || m->mode == BW_MODE_BYTES) {
+                bw_params_t pf = params_of(m, s, (uint8_t)basis_q);
+                pf.effort = BW_EFFORT_FAST;
+                t_encqf = timed_encode(s, &pf, NULL, &len_qf, &st_q, &stk_q);
+                if (st_q != BW_OK || len_qf != len_q)
+                    ok = 0;
+            }
+        } else {
+            ok = 0;
+        }
+    }
+
     printf("ROW mode=%s max_error=%lu budget=%lu samples=%lu bytes=%lu "
            "bytes_verify=%lu same_payload=%d basis=%u step_q8=%lu enc=%llu"
            " enc_verify=%llu enc_fixed=%llu dec=%llu worst=%lu"
-           " sse=%llu status=%s\n",
+           " sse=%llu enc_quick=%llu enc_quick_fixed=%llu bytes_quick=%lu basis_quick=%u"
+           " worst_quick=%lu sse_quick=%llu status=%s\n",
            m->name, m->max_error, p.byte_budget, (unsigned long)s->n, (unsigned long)len,
            (unsigned long)len_v, len == len_v && crc_e == crc_v, basis, h.step_q8, t_enc, t_encv,
-           t_encf, t_dec, worst, sse, ok ? "ok" : "FAIL");
+           t_encf, t_dec, worst, sse, t_encq, t_encqf, (unsigned long)len_q, basis_q,
+           (unsigned long)worst_q, sse_q, ok ? "ok" : "FAIL");
     if (!ok) {
         printf("ERROR mode=%s encv=%d dec=%d fixed=%d\n", m->name, (int)st_v, (int)st_d,
                (int)st_f);
