@@ -205,6 +205,36 @@ static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq1
     return pos;
 }
 
+#if BW_CFG_FAST_QUANT
+/* One band: every vector is one coefficient whose step depends only on its
+ * level, so the block is taken in memory order, the level of position t
+ * that of its lowest non-zero base-4 digit (bw_walk_next); without a
+ * rounding cut, the order does not matter. */
+static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t *blk,
+                           uq16_t gi_q16, bool forward)
+{
+    const bw_dims_t *d = &pl->dims;
+    unsigned L = bw_has_out(d) ? d->level_out : 0u;
+    uq56_8_t st[BW_MAX_LEVEL + 1u], off[BW_MAX_LEVEL + 1u];
+    for (unsigned k = 0; k <= L; k++) {
+        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
+        uq16_t gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+        st[k] = elem_step(pl->step_q8, gio_q16, 65536u, sb->gain_q16[0]);
+        off[k] = (st[k] * pl->round_q8) >> 8;
+    }
+    uint32_t mask = (1u << (2u * L)) - 1u;
+    for (uint32_t t = 0; t < d->n_out; t++) {
+        uint32_t low = t & mask;
+        /* k = level + 1: 0 for the scaling coefficients, else L less the
+         * index of the lowest non-zero digit */
+        unsigned k = low ? L - (bw_bitlen(low & (0u - low)) - 1u) / 2u : 0u;
+        uq56_8_t s = st[k];
+        if (s > BW_STEP_ONE_Q8)
+            blk[t] = forward ? quant(blk[t], s, off[k]) : dequant(blk[t], s);
+    }
+}
+#endif
+
 /* The step of every vector, walking the outgoing hemisphere as the coder
  * does; the subband steps are recomputed only when the vector's gain
  * changes (once per level). */
@@ -224,6 +254,12 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
         for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
             /* pass 0: the incoming space, drop a whole [outgoing][band] block
              * whose energy stays below the threshold; pass 1: every vector */
+#if BW_CFG_FAST_QUANT
+            if (pass && b == 1u && pl->round_cut == 0u) {
+                quant_one_band(pl, &sb, blk, gi_q16, forward);
+                continue;
+            }
+#endif
             uint64_t e = 0;
             bw_walk_t w;
             bw_walk_init(&w);
