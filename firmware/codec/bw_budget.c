@@ -208,7 +208,7 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
 #define EST_A0_Q6 186u /* 2.90 bits per non-zero coefficient, 1/64 bit  */
 #define EST_A1_Q6 16u  /* 0.99 bit per octave of |c| / step, per quarter */
 #define EST_A2_Q8 65u  /* 0.254 of the entropy of the non-zero share     */
-#define EST_T_LOSSLESS (-16)
+#define EST_T_LOSSLESS (-15) /* every bin but the zeros */
 #define FAST_PASSES 4u
 #define EST_PRIOR_Q12 4342u /* the real sizes run about 6 % above the estimate */
 

@@ -172,8 +172,8 @@ void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
  * 4 log2(256 |c| / st) + BW_HIST_ZERO_BIN - 32 (quarter octaves, rounded
  * down; the last bin takes everything above), so that the base step
  * 2^(t / 4) codes it as non-zero about from bin BW_HIST_ZERO_BIN + t on. */
-#define BW_HIST_BINS 192u
-#define BW_HIST_ZERO_BIN 48u
+#define BW_HIST_BINS 128u
+#define BW_HIST_ZERO_BIN 16u
 void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist);
 
 /* ---- coding order (bw_order.c) ------------------------------------------- */

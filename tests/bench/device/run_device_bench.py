@@ -54,6 +54,7 @@ CROSS = "arm-none-eabi-"
 
 SHAPE_SPECTRA, SHAPE_REFLECTANCE, SHAPE_ISO, SHAPE_FULL = 0, 1, 2, 3
 MODES = ["lossless", "maxerr1", "maxerr4", "maxerr16", "ratio8", "ratio32"]
+PRED_TARGET = 200  # instructions per sample of a prediction encode on the device
 MODE_LABEL = {"lossless": "lossless", "maxerr1": "max-error 1", "maxerr4": "max-error 4",
               "maxerr16": "max-error 16", "ratio8": "bytes, ratio 8", "ratio32": "bytes, ratio 32"}
 BASIS = {0: "haar", 1: "5/3", 2: "9/7", 3: "pred"}
@@ -612,6 +613,37 @@ def device_targets_section(A, sets, parsed):
                   "basis: %.2f x (%s) | %s |" % (
                       ds.key, worst[0], worst[1], worst[2], worst_b[0], worst_b[1], worst_b[2],
                       worst_b[3], worst_all[0], worst_all[1], "yes" if ok else "no"))
+        # the device's coder: the multi-symbol one, every basis and mode of the
+        # one-pass rows
+        by = {(d.get("coder", "rice"), d["basis"], d["mode"]): d for d in r["fast"]}
+        worst_x, worst_b = None, None
+        for (coder, basis, mode), d in by.items():
+            if coder != "ms" or ("range", basis, mode) not in by:
+                continue
+            x = int(d["enc"]) / int(d["samples"])
+            b = int(d["bytes"]) / int(by[("range", basis, mode)]["bytes"])
+            label = "%s %s" % (BASIS_NAMES.get(int(basis), "-") if ds.bands > 1 else "-", mode)
+            if worst_x is None or x > worst_x[0]:
+                worst_x = (x, label)
+            if worst_b is None or b > worst_b[0]:
+                worst_b = (b, label)
+        if worst_x:
+            A("| %s | the device's coder (multi-symbol) <= %g instr/sample, within %g %% of the "
+              "range coder's bytes, every basis and mode | %.1f instr/sample at most (%s); "
+              "bytes %.4f x at most (%s) | %s |" % (
+                  ds.key, MS_INSTR_TARGET, (MS_BYTES_TARGET - 1) * 100, worst_x[0], worst_x[1],
+                  worst_b[0], worst_b[1],
+                  "yes" if worst_x[0] <= MS_INSTR_TARGET and worst_b[0] <= MS_BYTES_TARGET
+                  else "no (%.2f x the instructions)" % (worst_x[0] / MS_INSTR_TARGET)))
+        # prediction, where the encoder chose it (sets of spectra)
+        preds = [(int(row["enc_fixed"]) / int(row["samples"]), m)
+                 for m, row in r["rows"].items()
+                 if "bytes" in row and row.get("basis") == "3" and int(row.get("enc_fixed", 0))]
+        if preds:
+            x, m = max(preds)
+            A("| %s | prediction <= %g instr/sample (range coder, basis fixed) | %.1f at most "
+              "(%s) | %s |" % (ds.key, PRED_TARGET, x, m,
+                               "yes" if x <= PRED_TARGET else "no (%.2f x)" % (x / PRED_TARGET)))
     A("")
 
 
@@ -766,7 +798,9 @@ def main():
       "`BW_BASIS_AUTO` (the CLI's default): for a set with a spectral axis the encoder codes "
       "every basis (for sets of spectra in lossless and max-error modes also prediction, "
       "`pred`) and keeps the best, so *basis fixed* gives the same encode with the "
-      "chosen basis named up front (same payload). Modes: lossless; max-error E; bytes: "
+      "chosen basis named up front (same payload); *effort fast* is the device's default "
+      "(`BW_EFFORT_FAST`: the basis chosen on an eighth of the data, a byte budget's step "
+      "estimated; 'Targets of the device encode' below). Modes: lossless; max-error E; bytes: "
       "budget = 2 x samples / R bytes (ratio R against the 16-bit raw samples), payload "
       "including its header and CRC. ÷ memcpy: instructions per sample divided by "
       "the memcpy floor of the same data set in the same run.")
@@ -777,15 +811,15 @@ def main():
     A("")
     A("| data set | mode | samples | payload bytes | bits/sample | max abs error | basis "
       "| encode | encode, basis fixed | encode + verify | decode | encode ÷ memcpy "
-      "| decode ÷ memcpy | = host CLI |")
-    A("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
+      "| decode ÷ memcpy | = host CLI | encode, effort fast: bytes, instr/sample |")
+    A("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---|---|")
     for ds in sets:
         r = parsed[ds.key]
         fl = r["floors"]
         for m in MODES:
             row = r["rows"].get(m)
             if not row or "bytes" not in row:
-                A("| %s | %s | | | | | | failed | | | | | | |" % (ds.key, MODE_LABEL[m]))
+                A("| %s | %s | | | | | | failed | | | | | | | |" % (ds.key, MODE_LABEL[m]))
                 continue
             n = int(row["samples"])
             b = int(row["bytes"])
@@ -803,11 +837,13 @@ def main():
                 hostcol = "no (%d)" % hb
                 failures.append("%s %s: device %d bytes, host CLI %d" % (ds.key, m, bv, hb))
             bcol = str(b) if bv == b else "%d (verify: %d)" % (b, bv)
-            A("| %s | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            fastcol = ("%s, %s" % (row["bytes_quick"], fmt(int(row["enc_quick"]) / n))
+                       if int(row.get("enc_quick", 0)) else "as *encode*")
+            A("| %s | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 ds.key, MODE_LABEL[m], n, bcol, fmt(8.0 * b / n, 3), row["worst"],
                 BASIS.get(int(row["basis"]), row["basis"]) if ds.bands > 4 else "-",
                 fmt(enc), fmt(encf) if encf else "-", fmt(encv), fmt(dec),
-                fmt(enc / mc), fmt(dec / mc), hostcol))
+                fmt(enc / mc), fmt(dec / mc), hostcol, fastcol))
             if row.get("status") != "ok":
                 failures.append("%s %s: guarantee or payload check failed" % (ds.key, m))
     A("")
