@@ -209,18 +209,25 @@ static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq1
 /* One band: every vector is one coefficient whose step depends only on its
  * level, so the block is taken in memory order, the level of position t
  * that of its lowest non-zero base-4 digit (bw_walk_next); without a
- * rounding cut, the order does not matter. */
+ * rounding cut, the order does not matter. Forward, where a level's step
+ * and offset fit 32 bits, each coefficient below 2^23 takes one 32-bit
+ * division (div_q8_off's result). */
 static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t *blk,
                            uq16_t gi_q16, bool forward)
 {
     const bw_dims_t *d = &pl->dims;
     unsigned L = bw_has_out(d) ? d->level_out : 0u;
     uq56_8_t st[BW_MAX_LEVEL + 1u], off[BW_MAX_LEVEL + 1u];
+    uint32_t st32[BW_MAX_LEVEL + 1u], off32[BW_MAX_LEVEL + 1u];
     for (unsigned k = 0; k <= L; k++) {
         uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
         uq16_t gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
         st[k] = elem_step(pl->step_q8, gio_q16, 65536u, sb->gain_q16[0]);
         off[k] = (st[k] * pl->round_q8) >> 8;
+        /* 0: no 32-bit division at this level (exact, or too large) */
+        bool fits = st[k] > BW_STEP_ONE_Q8 && st[k] <= UINT32_MAX && off[k] < (1u << 31);
+        st32[k] = fits ? (uint32_t)st[k] : 0u;
+        off32[k] = fits ? (uint32_t)off[k] : 0u;
     }
     uint32_t mask = (1u << (2u * L)) - 1u;
     for (uint32_t t = 0; t < d->n_out; t++) {
@@ -228,9 +235,14 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
         /* k = level + 1: 0 for the scaling coefficients, else L less the
          * index of the lowest non-zero digit */
         unsigned k = low ? L - (bw_bitlen(low & (0u - low)) - 1u) / 2u : 0u;
-        uq56_8_t s = st[k];
-        if (s > BW_STEP_ONE_Q8)
-            blk[t] = forward ? quant(blk[t], s, off[k]) : dequant(blk[t], s);
+        int32_t c = blk[t];
+        uint32_t a = bw_abs32(c), s32 = st32[k];
+        if (forward && s32 && a < (1u << 23)) {
+            uint32_t q = ((a << 8) + off32[k]) / s32;
+            blk[t] = c < 0 ? -(int32_t)q : (int32_t)q;
+        } else if (st[k] > BW_STEP_ONE_Q8) {
+            blk[t] = forward ? quant(c, st[k], off[k]) : dequant(c, st[k]);
+        }
     }
 }
 #endif
