@@ -267,16 +267,17 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
     return s0 + (uint32_t)((uint64_t)(s1 - s0) * f / 256u);
 }
 
-bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
-                                  int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
-                                  size_t *len)
+/* The encodes of BW_EFFORT_FAST: BW_OK with the payload in out, or
+ * BW_ERR_BUDGET where none landed (the search's turn), or an error. */
+static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                               int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t budget,
+                               size_t *len)
 {
-    size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
     uint32_t hist[BW_HIST_BINS];
     pl->step_q8 = step_of(STEP_T_MAX / 2u);
     size_t over = bw_header_write(NULL, pl, pa, BW_MODE_BYTES) + BW_TRAILER_SIZE;
     if (budget <= over + 8u)
-        return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
+        return BW_ERR_BUDGET;
     uint64_t aim = (uint64_t)(budget - over) * 8u * 199u / 200u, ratio = EST_PRIOR_Q12;
     bw_status_t st = bw_encode_prepare(pl, samples, work);
     if (st != BW_OK)
@@ -300,8 +301,11 @@ bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const in
             break; /* the coarsest step leaves too much: the search's threshold */
         if (pass >= 2u && l1 != l2 && s1 != s2) {
             /* the secant through the two encodes before, where the
-             * estimate's own slope would limit the ratio's correction */
-            int64_t t = s2 + (s2 - s1) * ((int64_t)aim - l2) / (l2 - l1);
+             * estimate's own slope would limit the ratio's correction
+             * (its slope in Q16, within +-16: no overflow) */
+            int64_t k_q16 = ((int64_t)aim - l2) * 65536 / (l2 - l1);
+            k_q16 = k_q16 > (16 << 16) ? (16 << 16) : k_q16 < -(16 << 16) ? -(16 << 16) : k_q16;
+            int64_t t = s2 + (s2 - s1) * k_q16 / 65536;
             if (t > (int64_t)BW_STEP_ONE_Q8 && t <= (int64_t)step_of(STEP_T_MAX))
                 s = (uint32_t)t;
         }
@@ -336,5 +340,17 @@ bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const in
         if (ratio == 0u)
             ratio = 1u;
     }
+    return BW_ERR_BUDGET;
+}
+
+bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                                  int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
+                                  size_t *len)
+{
+    size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
+    bw_status_t st = fast_passes(pl, pa, samples, work, ctx, out, budget, len);
+    if (st != BW_ERR_BUDGET)
+        return st;
+    pl->step_q8 = BW_STEP_ONE_Q8;
     return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
 }
