@@ -99,27 +99,112 @@ static STRIP_INLINE unsigned rc_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_
     return bit;
 }
 
-/*
- * The range coder's side of a strip of cnt elements, both ways: the encoder
- * (rcd NULL) codes the values v with the contexts put with them (pe, pv,
- * ps); the decoder (rce NULL) decodes into v and *dst[b] and finds the
- * contexts from par[b] and prv[b] as it goes (a parent or the vector above
- * may lie earlier in the same strip). cls: the elements' classes; s: what
- * the previous strip left. false: a corrupt strip.
- */
-static STRIP_INLINE bool rc_strip(bw_rc_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
-                                  bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
-                                  const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
-                                  int32_t *const *dst, const int32_t *const *par,
-                                  const int32_t *const *prv)
+#define MS_ESC (BW_MS_SYMS - 1u)
+
+/* One of the multi-symbol coder's binary models, either way (rc_bit's twin). */
+static STRIP_INLINE unsigned ms_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
+                                    unsigned bit)
+{
+    if (dec)
+        return bw_rc_dec_msbit(dec, p);
+    bw_rc_enc_msbit(enc, p, bit);
+    return bit;
+}
+
+/* A binary model of either coder: the binary one's adaptive rate, or the
+ * multi-symbol one's fixed rate. */
+static STRIP_INLINE unsigned model_bit(bool ms, bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
+                                       unsigned bit)
+{
+    return BW_CFG_CODER_MS && ms ? ms_bit(enc, dec, p, bit) : rc_bit(enc, dec, p, bit);
+}
+
+/* The binary coder's bit length e (1..31) of a non-zero element of class c
+ * in magnitude context mc, and its bits below the leading one: coded (e
+ * given, from *a), or decoded (e 0, into *a, which holds 1). Returns e; 0
+ * for a corrupt length. */
+static STRIP_INLINE unsigned rc_magnitude(bw_rc_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                          unsigned c, unsigned mc, uint32_t *a, unsigned e)
 {
     bool dec = rcd != NULL;
+    bw_prob_t *tree = m->mag[c][mc];
+    unsigned node = 1, sym = e - 1u;
+    for (int sh = 4; sh >= 0; sh--)
+        node = node * 2u + rc_bit(rce, rcd, &tree[node], (sym >> sh) & 1u);
+    if (dec) {
+        e = node - 32u + 1u;
+        if (e > 31u)
+            return 0;
+    }
+    if (e >= 2u) {
+        unsigned mb = rc_bit(rce, rcd, &m->mant[c][e], (*a >> (e - 2u)) & 1u);
+        if (dec)
+            *a = (*a << 1) | mb;
+        if (e >= 3u) {
+            if (dec)
+                *a = (*a << (e - 2u)) | bw_rc_dec_direct(rcd, e - 2u);
+            else
+                bw_rc_enc_direct(rce, *a, e - 2u);
+        }
+    }
+    return e;
+}
+
+/* The multi-symbol coder's: e as one symbol (MS_ESC and 5 bits for
+ * e - 1 >= MS_ESC), the bits below the leading one plain. */
+static STRIP_INLINE unsigned ms_magnitude(bw_ms_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                          unsigned c, unsigned mc, uint32_t *a, unsigned e)
+{
+    bw_ms_model_t *em = &m->e[c][mc];
+    if (rcd) {
+        e = 1u + bw_rc_dec_sym(rcd, em);
+        if (e == MS_ESC + 1u)
+            e += bw_rc_dec_bits(rcd, 5);
+    } else if (e - 1u >= MS_ESC) {
+        bw_rc_enc_sym(rce, em, MS_ESC);
+        bw_rc_enc_bits(rce, e - 1u - MS_ESC, 5);
+    } else {
+        bw_rc_enc_sym(rce, em, e - 1u);
+    }
+    if (e > 31u)
+        return 0;
+    for (unsigned n = e - 1u; n;) { /* the bits below the leading one, plain */
+        unsigned k = n > 16u ? n - 16u : n; /* the top bits first */
+        n -= k;
+        if (rcd)
+            *a = (*a << k) | bw_rc_dec_bits(rcd, k);
+        else
+            bw_rc_enc_bits(rce, *a >> n, k);
+    }
+    return e;
+}
+
+/*
+ * The range coders' side of a strip of cnt elements, both ways: the
+ * encoder (rcd NULL) codes the values v with the contexts put with them
+ * (pe, pv, ps); the decoder (rce NULL) decodes into v and *dst[b] and finds
+ * the contexts from par[b] and prv[b] as it goes (a parent or the vector
+ * above may lie earlier in the same strip). ms: the multi-symbol coder
+ * (BW_FLAG_MS: its models, bit lengths as symbols), else the binary one;
+ * the callers pass a constant, so each gets its own copy. cls: the
+ * elements' classes; s: what the previous strip left. false: a corrupt
+ * strip.
+ */
+static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
+                                     bw_strip_state_t *s, unsigned cnt, int32_t *v,
+                                     const uint8_t *cls, const uint8_t *pe, const uint8_t *pv,
+                                     const uint8_t *ps, int32_t *const *dst,
+                                     const int32_t *const *par, const int32_t *const *prv)
+{
+    bool dec = rcd != NULL;
+    ms = BW_CFG_CODER_MS && ms;
     uint32_t mask = 0;
     if (!dec)
         for (unsigned b = 0; b < cnt; b++)
             if (v[b])
                 mask |= 1u << b;
-    if (!rc_bit(rce, rcd, &m->present[cls[0]][s->prev_mask != 0], mask != 0)) {
+    unsigned c0 = cls[0], pm = s->prev_mask != 0;
+    if (!model_bit(ms, rce, rcd, ms ? &m->ms.present[c0][pm] : &m->rc.present[c0][pm], mask != 0)) {
         if (dec)
             for (unsigned b = 0; b < cnt; b++)
                 *dst[b] = 0;
@@ -132,7 +217,10 @@ static STRIP_INLINE bool rc_strip(bw_rc_models_t *m, bw_rc_enc_t *rce, bw_rc_dec
     for (unsigned b = 0; b < cnt; b++) {
         unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
         unsigned vc = valid_ctx((s->prev_mask >> b) & 1u, pe_b);
-        unsigned bit = rc_bit(rce, rcd, &m->valid[cls[b]][prev_bit][vc], (mask >> b) & 1u);
+        unsigned c = cls[b];
+        unsigned bit = model_bit(ms, rce, rcd,
+                                 ms ? &m->ms.valid[c][prev_bit][vc] : &m->rc.valid[c][prev_bit][vc],
+                                 (mask >> b) & 1u);
         mask |= (uint32_t)bit << b;
         prev_bit = bit;
         if (!bit) {
@@ -146,127 +234,18 @@ static STRIP_INLINE bool rc_strip(bw_rc_models_t *m, bw_rc_enc_t *rce, bw_rc_dec
         unsigned e = dec ? 0u : bw_bitlen(a); /* 1..32 */
         unsigned pv_b = dec ? ctx_len(prv[b]) : pv[b];
         unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
-        bw_prob_t *tree = m->mag[cls[b]][mag_ctx(s->e_left, above, pe_b)];
-        unsigned node = 1, sym = e - 1u;
-        for (int sh = 4; sh >= 0; sh--)
-            node = node * 2u + rc_bit(rce, rcd, &tree[node], (sym >> sh) & 1u);
-        if (dec) {
-            e = node - 32u + 1u;
-            if (e > 31u)
-                return false;
-        }
-        if (e >= 2u) {
-            unsigned mb = rc_bit(rce, rcd, &m->mant[cls[b]][e], (a >> (e - 2u)) & 1u);
-            if (dec)
-                a = (a << 1) | mb;
-            if (e >= 3u) {
-                if (dec)
-                    a = (a << (e - 2u)) | bw_rc_dec_direct(rcd, e - 2u);
-                else
-                    bw_rc_enc_direct(rce, a, e - 2u);
-            }
-        }
-        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + (dec ? sign_ctx_up(par[b], prv[b]) : ps[b]);
-        unsigned neg = rc_bit(rce, rcd, &m->sign[sc], !dec && v[b] < 0);
-        if (dec)
-            *dst[b] = v[b] = neg ? -(int32_t)a : (int32_t)a;
-        s->e_above[b] = (uint8_t)e;
-        s->e_left = e;
-    }
-    if (dec && !mask)
-        return false; /* a present strip holds at least one value */
-    s->prev_mask = mask;
-    return true;
-}
-
-#define MS_ESC (BW_MS_SYMS - 1u)
-
-/* One of the multi-symbol coder's binary models, either way (rc_bit's twin). */
-static STRIP_INLINE unsigned ms_bit(bw_rc_enc_t *enc, bw_rc_dec_t *dec, bw_prob_t *p,
-                                    unsigned bit)
-{
-    if (dec)
-        return bw_rc_dec_msbit(dec, p);
-    bw_rc_enc_msbit(enc, p, bit);
-    return bit;
-}
-
-/*
- * The multi-symbol coder's side of a strip (BW_FLAG_MS), both ways as
- * rc_strip: a presence flag, then per element its bit length e as one
- * symbol (0 for zero; MS_ESC and 4 bits for e >= MS_ESC), for e >= 2 the
- * bit below the leading one with a model and the rest as plain bits, and
- * the sign with its context.
- */
-static STRIP_INLINE bool ms_strip(bw_ms_models_t *m, bw_rc_enc_t *rce, bw_rc_dec_t *rcd,
-                                  bw_strip_state_t *s, unsigned cnt, int32_t *v, const uint8_t *cls,
-                                  const uint8_t *pe, const uint8_t *pv, const uint8_t *ps,
-                                  int32_t *const *dst, const int32_t *const *par,
-                                  const int32_t *const *prv)
-{
-    bool dec = rcd != NULL;
-    uint32_t mask = 0;
-    if (!dec)
-        for (unsigned b = 0; b < cnt; b++)
-            if (v[b])
-                mask |= 1u << b;
-    if (!ms_bit(rce, rcd, &m->present[cls[0]][s->prev_mask != 0], mask != 0)) {
-        if (dec)
-            for (unsigned b = 0; b < cnt; b++)
-                *dst[b] = 0;
-        s->prev_mask = 0;
-        memset(s->e_above, 0, sizeof s->e_above);
-        s->e_left = 0;
-        return true;
-    }
-    unsigned prev_bit = 0;
-    for (unsigned b = 0; b < cnt; b++) {
-        unsigned pe_b = dec ? ctx_len(par[b]) : pe[b];
-        unsigned vc = valid_ctx((s->prev_mask >> b) & 1u, pe_b);
-        unsigned bit = ms_bit(rce, rcd, &m->valid[cls[b]][prev_bit][vc], (mask >> b) & 1u);
-        mask |= (uint32_t)bit << b;
-        prev_bit = bit;
-        if (!bit) {
-            if (dec)
-                *dst[b] = v[b] = 0;
-            s->e_above[b] = 0;
-            s->e_left = 0;
-            continue;
-        }
-        unsigned pv_b = dec ? ctx_len(prv[b]) : pv[b];
-        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
-        bw_ms_model_t *em = &m->e[cls[b]][mag_ctx(s->e_left, above, pe_b)];
-        uint32_t a = dec ? 1u : bw_abs32(v[b]);
-        unsigned e;
-        if (dec) {
-            e = 1u + bw_rc_dec_sym(rcd, em);
-            if (e == MS_ESC + 1u)
-                e += bw_rc_dec_bits(rcd, 5);
-        } else {
-            e = bw_bitlen(a);
-            if (e - 1u >= MS_ESC) {
-                bw_rc_enc_sym(rce, em, MS_ESC);
-                bw_rc_enc_bits(rce, e - 1u - MS_ESC, 5);
-            } else {
-                bw_rc_enc_sym(rce, em, e - 1u);
-            }
-        }
-        s->e_above[b] = (uint8_t)e;
-        s->e_left = e;
-        if (e > 31u)
+        unsigned mc = mag_ctx(s->e_left, above, pe_b);
+        e = ms ? ms_magnitude(&m->ms, rce, rcd, c, mc, &a, e)
+               : rc_magnitude(&m->rc, rce, rcd, c, mc, &a, e);
+        if (!e)
             return false;
-        for (unsigned n = e - 1u; n;) { /* the bits below the leading one, plain */
-            unsigned k = n > 16u ? n - 16u : n; /* the top bits first */
-            n -= k;
-            if (dec)
-                a = (a << k) | bw_rc_dec_bits(rcd, k);
-            else
-                bw_rc_enc_bits(rce, a >> n, k);
-        }
         unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + (dec ? sign_ctx_up(par[b], prv[b]) : ps[b]);
-        unsigned neg = ms_bit(rce, rcd, &m->sign[sc], !dec && v[b] < 0);
+        unsigned neg =
+            model_bit(ms, rce, rcd, ms ? &m->ms.sign[sc] : &m->rc.sign[sc], !dec && v[b] < 0);
         if (dec)
             *dst[b] = v[b] = neg ? -(int32_t)a : (int32_t)a;
+        s->e_above[b] = (uint8_t)e;
+        s->e_left = e;
     }
     if (dec && !mask)
         return false; /* a present strip holds at least one value */
@@ -276,7 +255,7 @@ static STRIP_INLINE bool ms_strip(bw_ms_models_t *m, bw_rc_enc_t *rce, bw_rc_dec
 
 #if BW_CFG_FAST_STRIPS
 /* The multi-symbol coder's encoder alone, with the coder's range and low in
- * locals for the whole strip: the same code as ms_strip (which the decoder
+ * locals for the whole strip: the same code as range_strip (which the decoder
  * runs), in fewer instructions. */
 #define MS_RENORM()                                                                              \
     while (range < BW_RC_TOP) {                                                                  \
@@ -374,12 +353,12 @@ void bw_strip_enc_code(bw_strip_enc_t *se)
 #if BW_CFG_FAST_STRIPS
         ms_strip_enc(se);
 #else
-        ms_strip(&se->m.ms, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
-                 NULL, NULL, NULL);
+        range_strip(true, &se->m, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv,
+                    se->ps, NULL, NULL, NULL);
 #endif
     } else {
-        rc_strip(&se->m.rc, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv, se->ps,
-                 NULL, NULL, NULL);
+        range_strip(false, &se->m, &se->rc, NULL, &se->st, cnt, se->v, se->cls, se->pe, se->pv,
+                    se->ps, NULL, NULL, NULL);
     }
     se->cnt = 0;
     se->mask = 0;
@@ -618,8 +597,10 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
         for (unsigned b = 0; b < cnt; b++)
             dst[b] = bw_iter_next(&it, &cls[b], &par[b], &prv[b]);
         bool ok = BW_CFG_CODER_MS && coder == BW_CODER_MS
-                      ? ms_strip(&m->ms, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv)
-                      : rc_strip(&m->rc, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par, prv);
+                      ? range_strip(true, m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par,
+                                    prv)
+                      : range_strip(false, m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par,
+                                    prv);
         if (!ok)
             return BW_ERR_CORRUPT;
     }
