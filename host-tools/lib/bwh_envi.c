@@ -202,17 +202,27 @@ static void items_free(char **it, long n)
     free(it);
 }
 
+/* The items of the {list} v of `key`, want of them (0: any number); -1
+ * (the error said) if it is none or has another count. */
+static long list_want(const char *path, const char *key, const char *v, size_t want, char ***it)
+{
+    long n = list_items(v, it);
+    if (n < 0)
+        return bwh_fail("%s: '%s' is not a {list}", path, key);
+    if (want && (size_t)n != want) {
+        items_free(*it, n);
+        return bwh_fail("%s: '%s' has %ld items, expected %zu", path, key, n, want);
+    }
+    return n;
+}
+
 static int list_numbers(const char *path, const char *key, const char *v, size_t want,
                         bwh_numbers_t *out)
 {
     char **it;
-    long n = list_items(v, &it);
+    long n = list_want(path, key, v, want, &it);
     if (n < 0)
-        return bwh_fail("%s: '%s' is not a {list}", path, key);
-    if (want && (size_t)n != want) {
-        items_free(it, n);
-        return bwh_fail("%s: '%s' has %ld items, expected %zu", path, key, n, want);
-    }
+        return -1;
     double *x = malloc((n ? (size_t)n : 1) * sizeof *x);
     int rc = x ? 0 : bwh_fail("out of memory");
     for (long i = 0; !rc && i < n; i++) {
@@ -233,13 +243,9 @@ static int list_strings(const char *path, const char *key, const char *v, size_t
                         bwh_strings_t *out)
 {
     char **it;
-    long n = list_items(v, &it);
+    long n = list_want(path, key, v, want, &it);
     if (n < 0)
-        return bwh_fail("%s: '%s' is not a {list}", path, key);
-    if (want && (size_t)n != want) {
-        items_free(it, n);
-        return bwh_fail("%s: '%s' has %ld items, expected %zu", path, key, n, want);
-    }
+        return -1;
     int rc = bwh_meta_set_strings(out, (const char *const *)it, (size_t)n);
     items_free(it, n);
     return rc;
