@@ -279,17 +279,28 @@ static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, 
         MS_RENORM();                                                                             \
     } while (0)
 
-static void ms_strip_enc(bw_strip_enc_t *se)
+/* Where a strip's values and contexts come from: the strip put (se->v and
+ * the contexts strip_put stored), or straight from a vector (vec of the
+ * vector put_vector was given, its bands k0.. as v; the contexts found as
+ * strip_put would find them, only for the values that need them). */
+typedef struct {
+    const int32_t *vec, *spec_cls, *par, *prev;
+    uint32_t k0;
+    unsigned cls_dir;
+} ms_src_t;
+
+static BW_ALWAYS_INLINE void ms_strip_core(bw_strip_enc_t *se, const ms_src_t *src,
+                                           unsigned cnt, const int32_t *v, uint32_t mask)
 {
     bw_ms_models_t *m = &se->m.ms;
     bw_rc_enc_t *rc = &se->rc;
     bw_strip_state_t *s = &se->st;
-    unsigned cnt = se->cnt;
-    const int32_t *v = se->v;
     const uint8_t *cls = se->cls;
+    bool direct = src != NULL;
     uint64_t low = rc->low;
-    uint32_t range = rc->range, mask = se->mask;
-    MS_BIT(&m->present[cls[0]][s->prev_mask != 0], mask != 0);
+    uint32_t range = rc->range;
+    unsigned c0 = direct ? BW_SPEC_CLS(src->spec_cls[src->k0]) * 3u + src->cls_dir : cls[0];
+    MS_BIT(&m->present[c0][s->prev_mask != 0], mask != 0);
     if (!mask) {
         s->prev_mask = 0;
         memset(s->e_above, 0, sizeof s->e_above);
@@ -301,7 +312,17 @@ static void ms_strip_enc(bw_strip_enc_t *se)
     unsigned prev_bit = 0, e_left = s->e_left;
     uint32_t above_mask = s->prev_mask;
     for (unsigned b = 0; b < cnt; b++) {
-        unsigned c = cls[b], pe_b = se->pe[b], bit = (mask >> b) & 1u;
+        unsigned c, pe_b, bit = (mask >> b) & 1u;
+        const int32_t *par_b = NULL;
+        if (direct) {
+            int32_t sc = src->spec_cls[src->k0 + b];
+            c = BW_SPEC_CLS(sc) * 3u + src->cls_dir;
+            par_b = bw_parent_of(src->par, src->vec, sc, src->k0 + b);
+            pe_b = ctx_len(par_b);
+        } else {
+            c = cls[b];
+            pe_b = se->pe[b];
+        }
         MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe_b)], bit);
         prev_bit = bit;
         if (!bit) {
@@ -311,7 +332,8 @@ static void ms_strip_enc(bw_strip_enc_t *se)
         }
         int32_t x = v[b];
         uint32_t a = bw_abs32(x);
-        unsigned e = bw_bitlen(a), pv_b = se->pv[b];
+        const int32_t *prv_b = direct && src->prev ? src->prev + src->k0 + b : NULL;
+        unsigned e = bw_bitlen(a), pv_b = direct ? ctx_len(prv_b) : se->pv[b];
         unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
         bw_ms_model_t *em = &m->e[c][mag_ctx(e_left, above, pe_b)];
         unsigned sym = e - 1u < MS_ESC ? e - 1u : MS_ESC;
@@ -332,7 +354,8 @@ static void ms_strip_enc(bw_strip_enc_t *se)
             low += (uint64_t)range * ((a >> n) & ((1u << k) - 1u));
             MS_RENORM();
         }
-        unsigned sc = (b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b];
+        unsigned sc =
+            (b ? sign_ctx(&v[b - 1]) : 0u) + (direct ? sign_ctx_up(par_b, prv_b) : se->ps[b]);
         MS_BIT(&m->sign[sc], x < 0);
         s->e_above[b] = (uint8_t)e;
         e_left = e;
@@ -341,6 +364,19 @@ static void ms_strip_enc(bw_strip_enc_t *se)
     s->prev_mask = mask;
     rc->low = low;
     rc->range = range;
+}
+
+static void ms_strip_enc(bw_strip_enc_t *se) { ms_strip_core(se, NULL, se->cnt, se->v, se->mask); }
+
+/* A whole strip straight from bands k0..k0+BW_STRIP-1 of a vector (no
+ * strip pending): the bytes of putting them one by one. */
+static void ms_strip_direct(bw_strip_enc_t *se, const ms_src_t *src)
+{
+    const int32_t *v = src->vec + src->k0;
+    uint32_t mask = 0;
+    for (unsigned b = 0; b < BW_STRIP; b++)
+        mask |= (uint32_t)(v[b] != 0) << b;
+    ms_strip_core(se, src, BW_STRIP, v, mask);
 }
 #endif
 
@@ -424,7 +460,23 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
         rice_vector(se, v, b);
         return;
     }
-    for (uint32_t k = 0; k < b; k++) {
+    uint32_t k = 0;
+#if BW_CFG_FAST_STRIPS
+    if (BW_CFG_CODER_MS && se->coder == BW_CODER_MS) {
+        /* finish the pending strip, then whole strips straight from v */
+        for (; se->cnt && k < b; k++) {
+            int32_t sc = spec_cls[k];
+            strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
+                      prev ? prev + k : NULL);
+        }
+        ms_src_t src = {v, spec_cls, par, prev, k, cls_dir};
+        for (; k + BW_STRIP <= b; k += BW_STRIP) {
+            src.k0 = k;
+            ms_strip_direct(se, &src);
+        }
+    }
+#endif
+    for (; k < b; k++) {
         int32_t sc = spec_cls[k];
         strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
                   prev ? prev + k : NULL);
