@@ -61,6 +61,9 @@
  *   BW_CFG_FAST_STRIPS        the range coders' strip code built once for each
  *                             direction (else one copy codes and decodes), the
  *                             coarse-to-fine order as loops
+ *   BW_CFG_FAST_PREDICT       prediction's weight steps in 32 bits where the
+ *                             values allow it, encoder and decoder loops
+ *                             built apart
  *   BW_CFG_CRC_SLICE4         CRC-32 four bytes a step (4 KiB of tables, else
  *                             a 64-byte nibble table)
  *   BW_CFG_UNROLL             hot loops unrolled 8 times, small helpers inline,
@@ -131,6 +134,9 @@
 #endif
 #ifndef BW_CFG_FAST_STRIPS
 #define BW_CFG_FAST_STRIPS BW_CFG_SPEED
+#endif
+#ifndef BW_CFG_FAST_PREDICT
+#define BW_CFG_FAST_PREDICT BW_CFG_SPEED
 #endif
 #ifndef BW_CFG_CRC_SLICE4
 #define BW_CFG_CRC_SLICE4 BW_CFG_SPEED

@@ -33,80 +33,129 @@
 #define PRED_MU 6554 /* the LMS step, 0.1 in Q16 */
 #define PRED_SAT (1 << 20)
 #define PRED_W_MAX (1 << 18)
+/* the largest |e| |ds| whose e ds PRED_MU is within 32 bits */
+#define PRED_FAST_EDS (INT32_MAX / PRED_MU)
 
 static inline int64_t sat64(int64_t v, int64_t m) { return v > m ? m : v < -m ? -m : v; }
-
-typedef struct {
-    int32_t w_q16[PRED_TAPS];
-    int32_t d[PRED_TAPS];  /* the differences of the current sample */
-    int32_t ds[PRED_TAPS]; /* the same saturated to +-PRED_SAT */
-} pred_t;
 
 static inline int32_t sat_d(int32_t d)
 {
     return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d;
 }
 
-/* The prediction of band k of spectrum cur (bands before k decoded), prev
- * the decoded previous spectrum (NULL for the first); sets pr->d and pr->ds.
- * d_3 and d_2 are the previous band's d_0 and d_1 (0 before band 1). The
- * decoded samples of a valid payload lie within +-2^25, their differences
- * within +-2^26: 32 bits (which wrap, defined, on a corrupt payload). */
-static int32_t pred_value(pred_t *pr, const int32_t *cur, const int32_t *prev, uint32_t k,
-                          uint32_t bands)
+/* w + u within +-PRED_W_MAX, |w| <= 2^18, |u| <= 2^30 */
+static inline int32_t pred_add(int32_t w, int32_t u)
 {
-    pr->d[3] = pr->d[0];
-    pr->d[2] = pr->d[1];
-    pr->ds[3] = pr->ds[0];
-    pr->ds[2] = pr->ds[1];
-    pr->d[0] = k >= 2u ? bw_wsub(cur[k - 1], cur[k - 2]) : 0;
-    pr->d[1] = prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0;
-    pr->ds[0] = sat_d(pr->d[0]);
-    pr->ds[1] = sat_d(pr->d[1]);
-    int64_t acc = 0, a1 = k ? cur[k - 1] : prev ? prev[0] : 0;
-    for (unsigned i = 0; i < PRED_TAPS; i++)
-        acc += (int64_t)pr->w_q16[i] * pr->d[i];
-    return (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
+    w += u;
+    return w > PRED_W_MAX ? PRED_W_MAX : w < -PRED_W_MAX ? -PRED_W_MAX : w;
 }
 
-/* The weights learn from the decoded error err of the current sample. */
-static void pred_learn(pred_t *pr, int64_t err, uint32_t D)
+/* One weight's step: w + floor(e ds PRED_MU / 2^sh), kept within
+ * +-PRED_W_MAX; |e|, |ds| <= 2^20. */
+static inline int32_t pred_step(int32_t w, int32_t e, int32_t ds, unsigned sh)
+{
+    return (int32_t)sat64(w + bw_asr64((int64_t)e * ds * PRED_MU, sh), PRED_W_MAX);
+}
+
+/* floor(log2(nrm)), nrm >= 1 */
+static inline unsigned log2_64(int64_t nrm)
+{
+    uint32_t hi = (uint32_t)((uint64_t)nrm >> 32);
+    return hi ? 31u + bw_bitlen(hi) : bw_bitlen((uint32_t)nrm) - 1u;
+}
+
+typedef struct {
+    int32_t w[PRED_TAPS];
+} pred_w_t;
+
+/* The weights learn from the decoded error err (the general form: every
+ * bound of the header comment). */
+static BW_NOINLINE void pred_learn(pred_w_t *pw, int64_t err, int64_t dd, int32_t d0, int32_t d1,
+                                   int32_t d2, int32_t d3)
 {
     int32_t e = (int32_t)sat64(err, PRED_SAT);
-    int64_t nrm = (int64_t)D * D;
+    int32_t ds[PRED_TAPS] = {sat_d(d0), sat_d(d1), sat_d(d2), sat_d(d3)};
+    int64_t nrm = dd;
     for (unsigned i = 0; i < PRED_TAPS; i++)
-        nrm += (int64_t)pr->ds[i] * pr->ds[i];
-    /* divided by 2^floor(log2(nrm)) instead of nrm: no division */
-    uint32_t hi = (uint32_t)((uint64_t)nrm >> 32);
-    unsigned sh = hi ? 31u + bw_bitlen(hi) : bw_bitlen((uint32_t)nrm) - 1u;
+        nrm += (int64_t)ds[i] * ds[i];
+    unsigned sh = log2_64(nrm);
     for (unsigned i = 0; i < PRED_TAPS; i++)
-        pr->w_q16[i] = (int32_t)sat64(
-            pr->w_q16[i] + bw_asr64((int64_t)e * pr->ds[i] * PRED_MU, sh), PRED_W_MAX);
+        pw->w[i] = pred_step(pw->w[i], e, ds[i], sh);
+}
+
+/* One spectrum, either way (fwd a constant where it is inlined): v the
+ * samples (encoder: replaced by the coded errors) or the coded errors
+ * (decoder: replaced by the decoded samples), cur where the decoded
+ * samples go (the decoder: v), prev the previous spectrum's (NULL: none).
+ * Where the error and the differences are small (|err| |d_i| <=
+ * PRED_FAST_EDS, so every |d_i| <= PRED_SAT and err within +-PRED_SAT)
+ * the step is taken in 32 bits: e d_i PRED_MU fits, and its floor by 2^sh
+ * for sh >= 31 is its sign (sh 0: every d_i 0). */
+#if BW_CFG_FAST_PREDICT
+#define PRED_SPECTRUM_INLINE BW_ALWAYS_INLINE
+#else
+#define PRED_SPECTRUM_INLINE BW_NOINLINE
+#endif
+static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const int32_t *prev,
+                                           uint32_t bands, uint32_t D, int64_t dd, bool fwd)
+{
+    pred_w_t pw = {{0}};
+    int32_t d0 = 0, d1 = 0;
+    int32_t a1 = prev ? prev[0] : 0; /* r[k-1] */
+    for (uint32_t k = 0; k < bands; k++) {
+        int32_t d3 = d0, d2 = d1;
+        d0 = k >= 2u ? bw_wsub(a1, cur[k - 2]) : 0;
+        d1 = prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0;
+        int64_t acc = (int64_t)pw.w[0] * d0 + (int64_t)pw.w[1] * d1 +
+                      (int64_t)pw.w[2] * d2 + (int64_t)pw.w[3] * d3;
+        int32_t p = (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
+        int32_t q = v[k];
+        if (fwd) { /* |x - p| < 2^25, E < 2^24: 32-bit division */
+            int32_t e = q - p;
+            uint32_t m = (bw_abs32(e) + D / 2u) / D;
+            q = e < 0 ? -(int32_t)m : (int32_t)m;
+            v[k] = q;
+        }
+        int64_t err = (int64_t)q * (int32_t)D; /* D < 2^25 */
+        a1 = cur[k] = bw_wadd(p, (int32_t)err);
+        if (!k)
+            continue;
+        uint32_t ae = bw_abs32((int32_t)err);
+        uint32_t m = bw_abs32(d0) | bw_abs32(d1) | bw_abs32(d2) | bw_abs32(d3);
+        if (BW_CFG_FAST_PREDICT && BW_LIKELY(err == (int32_t)err && (uint64_t)(ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
+            int64_t nrm = dd + (int64_t)d0 * d0 + (int64_t)d1 * d1 + (int64_t)d2 * d2 +
+                          (int64_t)d3 * d3;
+            unsigned sh = log2_64(nrm);
+            sh = sh < 31u ? sh : 31u;
+            int32_t em = (int32_t)err * PRED_MU;
+            pw.w[0] = pred_add(pw.w[0], (em * d0) >> sh);
+            pw.w[1] = pred_add(pw.w[1], (em * d1) >> sh);
+            pw.w[2] = pred_add(pw.w[2], (em * d2) >> sh);
+            pw.w[3] = pred_add(pw.w[3], (em * d3) >> sh);
+        } else {
+            pred_learn(&pw, err, dd, d0, d1, d2, d3);
+        }
+    }
 }
 
 /* Encoder (forward) on range-checked samples x -> coded errors, in place,
  * the decoded spectra in two rows of `bands` (rows); decoder: coded errors
- * -> decoded samples, in place. */
+ * -> decoded samples, in place. The decoded samples of a valid payload lie
+ * within +-2^25, their differences within +-2^26: 32 bits (which wrap,
+ * defined, on a corrupt payload). */
 BW_NOINLINE void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool fwd)
 {
-    uint32_t bands = pl->dims.bands, D = pl->prequant, E = D / 2u;
+    uint32_t bands = pl->dims.bands, D = pl->prequant;
+    int64_t dd = (int64_t)D * D;
     const int32_t *prev = NULL;
     for (size_t s = 0; s < pl->dims.n_in; s++) {
         int32_t *v = x + s * bands, *cur = fwd ? rows + (s & 1u) * bands : v;
-        pred_t pr = {{0}, {0}, {0}};
-        for (uint32_t k = 0; k < bands; k++) {
-            int32_t p = pred_value(&pr, cur, prev, k, bands);
-            int64_t q = v[k];
-            if (fwd) { /* |x - p| < 2^25, E < 2^24: 32-bit division */
-                int64_t e = q - p;
-                uint32_t m = ((uint32_t)(e < 0 ? -e : e) + E) / D;
-                q = e < 0 ? -(int64_t)m : (int64_t)m;
-                v[k] = (int32_t)q;
-            }
-            cur[k] = (int32_t)(p + q * D);
-            if (k)
-                pred_learn(&pr, q * D, D);
-        }
+        if (!BW_CFG_FAST_PREDICT)
+            pred_spectrum(v, cur, prev, bands, D, dd, fwd);
+        else if (fwd)
+            pred_spectrum(v, cur, prev, bands, D, dd, true);
+        else
+            pred_spectrum(v, cur, prev, bands, D, dd, false);
         prev = cur;
     }
 }

@@ -3402,14 +3402,18 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
         size_t n = bw_dims_samples(&d);
         int32_t *x = xmalloc(n * sizeof *x), *r = xmalloc(n * sizeof *r),
                 *q = xmalloc(n * sizeof *q);
-        for (unsigned fill = 0; fill < 3; fill++) {
-            if (fill == 0)
-                fill_smooth(x, d.n_in, d.bands, 7100u + c, 50);
-            else if (fill == 1)
+        for (unsigned fill = 0; fill < 4; fill++) {
+            if (fill == 1) {
                 fill_full(x, n, 7200u + c); /* the whole range: saturated predictions */
-            else
+            } else if (fill == 2) {
                 for (size_t i = 0; i < n; i++) /* extremes alternating */
                     x[i] = (i / 3u) % 2u ? SMAX : -SMAX;
+            } else {
+                fill_smooth(x, d.n_in, d.bands, 7100u + c, 50);
+                if (fill == 3) /* spikes: the weights' steps in 32 bits and in 64 in turn */
+                    for (size_t i = 5; i < n; i += 37)
+                        x[i] = (i / 37u) % 2u ? SMAX / 3 : -SMAX / 5;
+            }
             for (size_t bi = 0; bi < ARRAY_LEN(bounds); bi++)
                 for (unsigned rice = 0; rice < 2u + BW_CFG_CODER_MS; rice++) {
                     uint32_t E = bounds[bi];
