@@ -132,10 +132,28 @@ typedef enum {
     BW_EFFORT_FAST = 1
 } bw_effort_t;
 
+/* Which entropy coder codes the body (bw_params_t.coder). */
+typedef enum {
+    /* the one the flags name: BW_FLAG_RICE, BW_FLAG_MS, or neither (the
+     * binary range coder, the smallest payloads) */
+    BW_CODER_BY_FLAGS = 0,
+    /* the encoder chooses, for a device that must keep up with its sensor
+     * (the flags then name no coder): Rice strips for prediction errors
+     * whose bit lengths average at least 7/8 and whose Rice payload stays
+     * within 248/256 of an order-0 coding of them (errors close to
+     * geometric: there Rice strips come within about 2 % of the range
+     * coder's bytes in a fraction of its instructions; the statistics from
+     * every fourth error of a large measurement), else the multi-symbol
+     * range coder (the binary one in a core built without it,
+     * BW_CFG_CODER_MS 0); the payload's flags name the coder chosen */
+    BW_CODER_AUTO = 1
+} bw_coder_choice_t;
+
 typedef struct {
     uint8_t mode;          /* bw_mode_t                                     */
     uint8_t basis;         /* bw_basis_t, or BW_BASIS_AUTO                  */
     uint8_t effort;        /* bw_effort_t; 0 (BEST) in a zeroed struct     */
+    uint8_t coder;         /* bw_coder_choice_t; 0 (BY_FLAGS) when zeroed   */
     uint32_t max_error;    /* MAX_ERROR: bound in sample units              */
     uint32_t byte_budget;  /* BYTES: upper bound on the payload size        */
     uint32_t step_q8;      /* STEP: quantiser step, Q24.8                   */

@@ -92,6 +92,16 @@ static inline unsigned bw_bitlen(uint32_t v)
 #endif
 }
 
+/* Leading zeros of v != 0. */
+static inline unsigned bw_clz32(uint32_t v)
+{
+#if defined(__GNUC__)
+    return (unsigned)__builtin_clz(v);
+#else
+    return 32u - bw_bitlen(v);
+#endif
+}
+
 static inline uint32_t bw_abs32(int32_t v) { return v < 0 ? 0u - (uint32_t)v : (uint32_t)v; }
 
 #endif

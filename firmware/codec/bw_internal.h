@@ -260,6 +260,15 @@ bw_status_t bw_encode_pass(bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
  * by the caller) with the header and the CRC, *len the size even when it
  * does not fit cap (BW_ERR_OUTPUT_FULL). */
 bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *work);
+/* BW_CODER_AUTO's coder where it takes no Rice strips (bw_encode_code):
+ * the multi-symbol one, or the binary one in a core built without it. */
+#define BW_AUTO_CODER (BW_CFG_CODER_MS ? BW_FLAG_MS : 0u)
+/* A coder choice the encoders take: BY_FLAGS, or AUTO with no coder flag. */
+static inline bool bw_coder_choice_ok(const bw_params_t *pa)
+{
+    return pa->coder == BW_CODER_BY_FLAGS ||
+           (pa->coder == BW_CODER_AUTO && !(pa->flags & (BW_FLAG_RICE | BW_FLAG_MS)));
+}
 bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
                            int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len);
 /* BYTES: the payload of at most min(byte_budget, cap) bytes with the finest

@@ -35,6 +35,8 @@
 #define PRED_W_MAX (1 << 18)
 /* the largest |e| |ds| whose e ds PRED_MU is within 32 bits */
 #define PRED_FAST_EDS (INT32_MAX / PRED_MU)
+/* D^2 below this: the weights' steps in 32 bits (D <= 2^15) */
+#define PRED_FAST_DD ((int64_t)1 << 30)
 
 static inline int64_t sat64(int64_t v, int64_t m) { return v > m ? m : v < -m ? -m : v; }
 
@@ -87,10 +89,10 @@ static BW_NOINLINE void pred_learn(pred_w_t *pw, int64_t err, int64_t dd, int32_
  * samples (encoder: replaced by the coded errors) or the coded errors
  * (decoder: replaced by the decoded samples), cur where the decoded
  * samples go (the decoder: v), prev the previous spectrum's (NULL: none).
- * Where the error and the differences are small (|err| |d_i| <=
- * PRED_FAST_EDS, so every |d_i| <= PRED_SAT and err within +-PRED_SAT)
- * the step is taken in 32 bits: e d_i PRED_MU fits, and its floor by 2^sh
- * for sh >= 31 is its sign (sh 0: every d_i 0). */
+ * Where the error and the differences are small (|d_i| < 2^14, |err| <
+ * 2^17, |err| |d_i| <= PRED_FAST_EDS, D^2 < 2^30: so every d_i and err
+ * within +-PRED_SAT) the step is taken in 32 bits: nrm < 2^31, e d_i
+ * PRED_MU fits, and so does the weight plus its step (sh 0: every d_i 0). */
 #if BW_CFG_FAST_PREDICT
 #define PRED_SPECTRUM_INLINE BW_ALWAYS_INLINE
 #else
@@ -99,15 +101,14 @@ static BW_NOINLINE void pred_learn(pred_w_t *pw, int64_t err, int64_t dd, int32_
 static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const int32_t *prev,
                                            uint32_t bands, uint32_t D, int64_t dd, bool fwd)
 {
-    pred_w_t pw = {{0}};
+    int32_t w0 = 0, w1 = 0, w2 = 0, w3 = 0; /* in registers: pred_learn gets a copy */
     int32_t d0 = 0, d1 = 0;
     int32_t a1 = prev ? prev[0] : 0; /* r[k-1] */
     for (uint32_t k = 0; k < bands; k++) {
         int32_t d3 = d0, d2 = d1;
         d0 = k >= 2u ? bw_wsub(a1, cur[k - 2]) : 0;
         d1 = prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0;
-        int64_t acc = (int64_t)pw.w[0] * d0 + (int64_t)pw.w[1] * d1 +
-                      (int64_t)pw.w[2] * d2 + (int64_t)pw.w[3] * d3;
+        int64_t acc = (int64_t)w0 * d0 + (int64_t)w1 * d1 + (int64_t)w2 * d2 + (int64_t)w3 * d3;
         int32_t p = (int32_t)sat64(a1 + ((acc + 32768) >> 16), BW_SAMPLE_MAX);
         int32_t q = v[k];
         if (fwd) { /* |x - p| < 2^25, E < 2^24: 32-bit division */
@@ -122,18 +123,25 @@ static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const i
             continue;
         uint32_t ae = bw_abs32((int32_t)err);
         uint32_t m = bw_abs32(d0) | bw_abs32(d1) | bw_abs32(d2) | bw_abs32(d3);
-        if (BW_CFG_FAST_PREDICT && BW_LIKELY(err == (int32_t)err && (uint64_t)(ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
-            int64_t nrm = dd + (int64_t)d0 * d0 + (int64_t)d1 * d1 + (int64_t)d2 * d2 +
-                          (int64_t)d3 * d3;
-            unsigned sh = log2_64(nrm);
-            sh = sh < 31u ? sh : 31u;
+        if (BW_CFG_FAST_PREDICT && BW_LIKELY(dd < PRED_FAST_DD && err == (int32_t)err &&
+                                             ((m >> 14) | (ae >> 17)) == 0u &&
+                                             (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
+            /* |d_i| < 2^14 and D^2 < 2^30: nrm < 2^31, and sh < 31 */
+            uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
+                           (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
+            unsigned sh = bw_bitlen(nrm) - 1u;
             int32_t em = (int32_t)err * PRED_MU;
-            pw.w[0] = pred_add(pw.w[0], (em * d0) >> sh);
-            pw.w[1] = pred_add(pw.w[1], (em * d1) >> sh);
-            pw.w[2] = pred_add(pw.w[2], (em * d2) >> sh);
-            pw.w[3] = pred_add(pw.w[3], (em * d3) >> sh);
+            w0 = pred_add(w0, (em * d0) >> sh);
+            w1 = pred_add(w1, (em * d1) >> sh);
+            w2 = pred_add(w2, (em * d2) >> sh);
+            w3 = pred_add(w3, (em * d3) >> sh);
         } else {
+            pred_w_t pw = {{w0, w1, w2, w3}};
             pred_learn(&pw, err, dd, d0, d1, d2, d3);
+            w0 = pw.w[0];
+            w1 = pw.w[1];
+            w2 = pw.w[2];
+            w3 = pw.w[3];
         }
     }
 }

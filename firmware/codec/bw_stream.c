@@ -44,7 +44,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
                                      BW_FOR_STREAM);
     if (st != BW_OK)
         return st;
-    if (!bw_ext_valid(pa->ext, pa->ext_len))
+    if (!bw_ext_valid(pa->ext, pa->ext_len) || !bw_coder_choice_ok(pa))
         return BW_ERR_ARG; /* the records are read again at bw_stream_finish */
     if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
         return BW_ERR_WORK;
@@ -54,6 +54,10 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->mem = mem;
     bw_plan_t pl;
     stream_plan(s, &pl);
+    if (BW_AUTO_CODER && pa->coder == BW_CODER_AUTO) { /* no prediction in stream order */
+        s->params.flags |= (uint8_t)BW_AUTO_CODER;
+        s->params.coder = BW_CODER_BY_FLAGS;
+    }
     bw_plan_tables(&pl);
     size_t hl = bw_header_write(NULL, &pl, &s->params, s->params.mode);
     if (cap < hl + BW_TRAILER_SIZE)
@@ -61,7 +65,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->out = out;
     s->cap = cap;
     bw_strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE,
-                      bw_coder_of(pa->flags));
+                      bw_coder_of(s->params.flags));
     s->err = BW_OK;
     return BW_OK;
 }

@@ -118,6 +118,7 @@ size_t bw_job_pack(const bw_job_t *j, uint8_t *o)
     o[4] = j->basis;
     o[5] = j->flags;
     o[6] = j->effort;
+    o[7] = j->coder;
     bw_put_u32(o + 8, j->n_in);
     bw_put_u32(o + 12, j->bands);
     bw_put_u32(o + 16, j->max_error);
@@ -135,7 +136,7 @@ size_t bw_job_pack(const bw_job_t *j, uint8_t *o)
 bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
 {
     if (len < BW_JOB_SIZE || len > BW_JOB_SIZE + BW_JOB_EXT_MAX || in[6] > BW_EFFORT_FAST ||
-        in[7])
+        in[7] > BW_CODER_AUTO)
         return false;
     memset(j, 0, sizeof *j);
     j->shape = in[0];
@@ -145,6 +146,7 @@ bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *j)
     j->basis = in[4];
     j->flags = in[5];
     j->effort = in[6];
+    j->coder = in[7];
     j->n_in = bw_get_u32(in + 8);
     j->bands = bw_get_u32(in + 12);
     j->max_error = bw_get_u32(in + 16);
@@ -242,6 +244,7 @@ void bw_job_make(bw_job_t *j, const bw_dims_t *d, const bw_params_t *p)
     j->basis = p->basis;
     j->flags = p->flags;
     j->effort = p->effort;
+    j->coder = p->coder;
     j->max_error = p->max_error;
     j->byte_budget = p->byte_budget;
     j->scale_bits = p->scale_bits;
@@ -257,6 +260,7 @@ void bw_job_params(const bw_job_t *j, bw_params_t *p)
     p->basis = j->basis;
     p->flags = j->flags;
     p->effort = j->effort;
+    p->coder = j->coder;
     p->max_error = j->max_error;
     p->byte_budget = j->byte_budget;
     p->scale_bits = j->scale_bits;

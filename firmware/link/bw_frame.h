@@ -91,7 +91,7 @@ bool bw_frame_rx_byte(bw_frame_rx_t *rx, uint8_t byte, bw_frame_t *out);
 
 /* The encode request of a BW_FT_JOB frame. */
 typedef struct {
-    uint8_t shape, level_out, level_in, mode, basis, flags, effort;
+    uint8_t shape, level_out, level_in, mode, basis, flags, effort, coder;
     uint32_t n_in, bands, max_error, byte_budget, scale_bits, offset_bits;
     char source[128]; /* the sensor's input (QEMU: a file by semihosting) */
     /* the payload's extension records (bw_params_t.ext: the host's

@@ -23,7 +23,7 @@ static const char encode_help[] =
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
     "                       [--scale S] [--relative]\n"
-    "                       [--coder range|ms|rice] [-q]\n"
+    "                       [--coder range|ms|rice|auto] [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
     "\n"
@@ -85,11 +85,13 @@ static const char encode_help[] =
     "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
     "  --relative        with --bytes or --ratio, float input > 0: code log(value),\n"
     "                    so the budget buys relative rather than absolute accuracy\n"
-    "  --coder C         entropy coder: range (default, the smallest payload); ms\n"
-    "                    (multi-symbol range coder, format 7: about a third fewer\n"
-    "                    instructions per sample on the device, about the same\n"
-    "                    bytes); or rice (adaptive Rice strips: a few times fewer\n"
-    "                    instructions, a few percent more bytes)\n"
+    "  --coder C         entropy coder: range (the default on the host: the smallest\n"
+    "                    payload); ms (multi-symbol range coder, format 7: about a\n"
+    "                    third fewer instructions per sample on the device, about\n"
+    "                    the same bytes); rice (adaptive Rice strips: several times\n"
+    "                    fewer instructions, more bytes where most coefficients are\n"
+    "                    zero); or auto (the default with --device): rice for\n"
+    "                    prediction errors of a bit or more a sample, else ms\n"
     "  --symmetry S      directional data: mirror codes the half y < 0 of each\n"
     "                    hemisphere as differences from its mirror image (x, -y, z),\n"
     "                    for BRDFs symmetric about the incidence plane x-z;\n"
@@ -125,8 +127,15 @@ static int parse_symmetry(const char *v, void *dest)
     return 0;
 }
 
+#define CODER_AUTO 0x100u /* --coder auto: BW_CODER_AUTO */
+#define CODER_UNSET 0x200u /* no --coder: auto on a device, else range */
+
 static int parse_coder(const char *v, void *dest)
 {
+    if (strcmp(v, "auto") == 0) {
+        *(unsigned *)dest = CODER_AUTO;
+        return 0;
+    }
     int f = bwh_coder_from_name(v);
     if (f < 0)
         return -1;
@@ -285,7 +294,7 @@ int bw_cmd_encode(int argc, char **argv)
     int n_max_rel = 0, n_rel_floor = 0;
     uint32_t bytes = 0, drop = 0;
     int has_drop = 0, quiet = 0, has_effort = 0, effort = 0;
-    unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = 0;
+    unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = CODER_UNSET;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
         {"input", 'i', CLI_LIST, .dest = &in},
@@ -320,7 +329,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"stream", 0, CLI_FLAG, .dest = &stream},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
-         .what = "--coder must be range, rice or ms"},
+         .what = "--coder must be range, ms, rice or auto"},
         {"symmetry", 0, CLI_CALL, .dest = &symmetry, .parse = parse_symmetry, .seen = &has_symmetry,
          .what = "--symmetry must be auto, mirror, reciprocal, both or none"},
         {"quiet", 'q', CLI_FLAG, .dest = &quiet},
@@ -359,6 +368,11 @@ int bw_cmd_encode(int argc, char **argv)
     o.effort = has_effort ? (unsigned)effort : device != DEV_HOST ? BW_EFFORT_FAST
                                                                   : BW_EFFORT_BEST;
     o.scale = scale;
+    /* on a device the coder that keeps up with the sensor */
+    if (coder == CODER_UNSET)
+        coder = device != DEV_HOST ? CODER_AUTO : 0u;
+    o.coder = coder == CODER_AUTO ? BW_CODER_AUTO : BW_CODER_BY_FLAGS;
+    coder = coder == CODER_AUTO ? 0u : coder;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
     uint64_t device_instructions = 0;

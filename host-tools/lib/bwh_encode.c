@@ -76,6 +76,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.mode = (uint8_t)o->mode;
     p.basis = (uint8_t)o->basis;
     p.effort = (uint8_t)o->effort;
+    p.coder = (uint8_t)o->coder;
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
     p.flags = (uint8_t)(o->flags & BW_FLAGS_KNOWN);

@@ -48,6 +48,9 @@ typedef struct {
     size_t ext_len;
     /* bw_effort_t: BW_EFFORT_BEST (0) or BW_EFFORT_FAST (bw_codec.h) */
     unsigned effort;
+    /* bw_coder_choice_t: BW_CODER_BY_FLAGS (0, the coder `flags` names) or
+     * BW_CODER_AUTO (the encoder chooses; `flags` then names none) */
+    unsigned coder;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

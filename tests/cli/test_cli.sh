@@ -390,12 +390,22 @@ for set in "fs.f32 --bands 1024" "rgl.f32 --bands 1 --level 4 --incoming $nrgl" 
     check_bound "$f both bounds" "$T/$f" "$T/rb.bwv" 0.001 1e-5 0.0003
 done
 # on the device the core codes the samples, the host maps the floats: the same payload
-# (the host with the device's default effort)
+# (the host with the device's default effort and coder)
 for m in "--lossless" "--max-rel-error 0.001" "--max-rel-error 0.01 --max-error 0.5"; do
     "$BW" encode --device linux -i "$T/sg.f32" -o "$T/dev.bwv" --bands 33 $m >/dev/null 2>"$T/err" &&
-        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m --effort fast && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
+        "$BW" encode -i "$T/sg.f32" -o "$T/host.bwv" --bands 33 $m --effort fast --coder auto && cmp -s "$T/dev.bwv" "$T/host.bwv" &&
         ok || bad "device linux $m: $(cat "$T/err")"
 done
+# --coder auto (the device's default): Rice strips for the dense prediction
+# errors of field spectra, the multi-symbol coder for a transform; the payload
+# names the coder it chose, and is the one that coder gives
+"$BW" encode --input-format sed -i $DATA/*.sed --lossless --basis pred --coder auto -o "$T/ca.bwv" -q &&
+    "$BW" info "$T/ca.bwv" | grep -q '^coder: rice$' &&
+    "$BW" encode --input-format sed -i $DATA/*.sed --lossless --basis pred --coder rice -o "$T/cr.bwv" -q &&
+    cmp -s "$T/ca.bwv" "$T/cr.bwv" && ok || bad "coder auto on field spectra: not their Rice payload"
+"$BW" encode --input-format sed -i $DATA/*.sed --lossless --basis 53 --coder auto -o "$T/ca.bwv" -q &&
+    "$BW" info "$T/ca.bwv" | grep -q '^coder: ms$' && ok || bad "coder auto with a transform: not ms"
+expect_status "unknown coder" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --coder fastest
 # usage and refusals
 expect_status "rel-floor alone" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --rel-floor 0.1
 expect_status "max-rel-error with a budget" 2 "$BW" encode -i "$T/sg.f32" -o "$T/x.bwv" --bands 33 --max-rel-error 0.01 --ratio 8

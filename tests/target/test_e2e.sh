@@ -24,7 +24,7 @@ bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 make --no-print-directory -s TARGET=qemu all || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
 
 # same_payload NAME ENCODE-ARGS...: device and host payloads are identical
-# (the host with the device's default effort), and the device's decodes
+# (the host with the device's default effort and coder), and the device's decodes
 # within the mode's guarantee
 same_payload() {
     local name=$1
@@ -34,7 +34,7 @@ same_payload() {
         return
     fi
     grep -q "instructions (" "$T/dev.out" && ok || bad "$name: no instruction count reported"
-    "$BW" encode "$@" --effort fast -o "$T/host.bwv" 2>"$T/host.err" || { bad "$name: host encode: $(cat "$T/host.err")"; return; }
+    "$BW" encode --coder auto "$@" --effort fast -o "$T/host.bwv" 2>"$T/host.err" || { bad "$name: host encode: $(cat "$T/host.err")"; return; }
     cmp -s "$T/dev.bwv" "$T/host.bwv" && ok || bad "$name: device payload differs from the host's"
     "$BW" decode -i "$T/dev.bwv" -o "$T/dev.f32" && ok || bad "$name: decode"
 }
@@ -89,22 +89,22 @@ same_payload "reflectance streamed, rice" -i "$T/r.i32" --input-format i32 --ban
 
 # resend: the host loses a chunk and asks for it again
 "$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&
-    "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 --effort fast -o "$T/host.bwv" &&
+    "$BW" encode --input-format sed -i $DATA/*.sed --basis 53 --effort fast --coder auto -o "$T/host.bwv" &&
     cmp -s "$T/dev.bwv" "$T/host.bwv" && ok || bad "resend of a lost chunk: $(cat "$T/err")"
 
 # the same application as a host process (hal/linux) gives the same payloads
-# (the host with the device's default effort)
+# (the host with the device's default effort and coder)
 for args in "--basis 53 --lossless" "--stream --basis 97 --max-error 0.001" "--ratio 32 --basis haar"; do
     # shellcheck disable=SC2086
     if "$BW" encode --device linux --input-format sed -i $DATA/*.sed $args -o "$T/lin.bwv" >/dev/null 2>"$T/err" &&
-        "$BW" encode --input-format sed -i $DATA/*.sed $args --effort fast -o "$T/host.bwv" 2>>"$T/err"; then
+        "$BW" encode --input-format sed -i $DATA/*.sed $args --effort fast --coder auto -o "$T/host.bwv" 2>>"$T/err"; then
         cmp -s "$T/lin.bwv" "$T/host.bwv" && ok || bad "linux device ($args): payload differs from the host's"
     else
         bad "linux device ($args): $(cat "$T/err")"
     fi
 done
 "$BW" encode --device linux -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64 -o "$T/lin.bwv" --drop-chunk 0 >/dev/null 2>"$T/err" &&
-    "$BW" encode -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64 --effort fast -o "$T/host.bwv" &&
+    "$BW" encode -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64 --effort fast --coder auto -o "$T/host.bwv" &&
     cmp -s "$T/lin.bwv" "$T/host.bwv" && ok || bad "linux device resend: $(cat "$T/err")"
 
 # too large for the device: one clear line that says what the device holds and

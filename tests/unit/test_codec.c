@@ -3455,6 +3455,106 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
     print_message("%u encodings checked\n", runs);
 }
 
+/* BW_CODER_AUTO: Rice strips for prediction errors whose bit lengths
+ * average at least 7/8 (and whose Rice payload is below an order-0 coding
+ * of them), else the multi-symbol coder (the binary one in a core
+ * without it); the payload names the coder it chose and decodes as any
+ * other; a coder flag with it, or another choice, is refused. */
+static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **state)
+{
+    (void)state;
+    const unsigned ms = BW_CFG_CODER_MS ? BW_FLAG_MS : 0u;
+    bw_dims_t fd, d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 24, 300);
+    const int32_t *field = need_field_spectra(&fd);
+    size_t n = bw_dims_samples(&d);
+    int32_t *x = xmalloc(n * sizeof *x), *y;
+    uint8_t *out, *ref;
+    size_t len, ref_len;
+    bw_header_t h;
+    static const struct {
+        uint8_t basis, mode;
+        uint32_t max_error;
+        int32_t noise; /* -1: the 60 field spectra */
+        unsigned want; /* 1: Rice, 2: multi-symbol */
+    } cases[] = {
+        {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, -1, 1},    /* errors of several bits */
+        {BW_BASIS_PRED, BW_MODE_MAX_ERROR, 4, -1, 1},   /* still more than a bit */
+        {BW_BASIS_PRED, BW_MODE_MAX_ERROR, 10, -1, 1},
+        {BW_BASIS_PRED, BW_MODE_MAX_ERROR, 300, -1, 2}, /* mostly zeros */
+        {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, 60, 2},    /* uniform noise: Rice codes it badly */
+        {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, 0, 2},     /* smooth: mostly zeros */
+        {BW_BASIS_53, BW_MODE_LOSSLESS, 0, -1, 2},      /* a transform */
+        {BW_BASIS_97, BW_MODE_BYTES, 0, 60, 2},
+    };
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        if (cases[c].basis == BW_BASIS_PRED && !pred_built())
+            continue;
+        const bw_dims_t *dc = cases[c].noise < 0 ? &fd : &d;
+        const int32_t *xc = cases[c].noise < 0 ? field : x;
+        if (cases[c].noise >= 0)
+            fill_smooth(x, d.n_in, d.bands, 9100u + c, cases[c].noise);
+        bw_params_t p = params_of(cases[c].mode, cases[c].basis);
+        p.max_error = cases[c].max_error;
+        p.byte_budget = (uint32_t)(bw_dims_samples(dc) / 2u);
+        p.coder = BW_CODER_AUTO;
+        bw_status_t st = encode_new(dc, &p, xc, true, &out, &len);
+        if (st != BW_OK)
+            fail_msg("case %zu: %s", c, bw_strerror(st));
+        assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
+        unsigned want = cases[c].want == 1u ? BW_FLAG_RICE : ms;
+        if ((h.flags & (BW_FLAG_RICE | BW_FLAG_MS)) != want)
+            fail_msg("case %zu: coder flags %#x, want %#x", c, h.flags & (BW_FLAG_RICE | BW_FLAG_MS),
+                     want);
+        /* the same payload as naming that coder */
+        p.coder = BW_CODER_BY_FLAGS;
+        p.flags = (uint8_t)want;
+        assert_int_equal(encode_new(dc, &p, xc, true, &ref, &ref_len), BW_OK);
+        assert_int_equal(len, ref_len);
+        assert_memory_equal(out, ref, len);
+        if (cases[c].want == 1u) { /* Rice within 3 % of the binary range coder there */
+            free(ref);
+            p.flags = 0;
+            assert_int_equal(encode_new(dc, &p, xc, true, &ref, &ref_len), BW_OK);
+            if ((double)len > 1.03 * (double)ref_len)
+                fail_msg("case %zu: Rice %zu bytes, range coder %zu", c, len, ref_len);
+        }
+        free(ref);
+        free(out);
+        free(y);
+    }
+    /* the streaming encoder: no prediction, so the multi-symbol coder, and
+     * the stream-order payload of bw_encode with the same choice */
+    fill_smooth(x, d.n_in, d.bands, 9200u, 60);
+    bw_params_t p = params_of(BW_MODE_MAX_ERROR, BW_BASIS_53);
+    p.max_error = 3;
+    p.coder = BW_CODER_AUTO;
+    assert_int_equal(stream_encode(&d, &p, x, &out, &len), BW_OK);
+    p.flags = BW_FLAG_STREAM_ORDER;
+    assert_int_equal(encode_new(&d, &p, x, true, &ref, &ref_len), BW_OK);
+    assert_int_equal(len, ref_len);
+    assert_memory_equal(out, ref, len);
+    assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
+    assert_int_equal(h.flags & (BW_FLAG_RICE | BW_FLAG_MS), ms);
+    free(y);
+    free(ref);
+    free(out);
+    /* refused: a coder flag with AUTO, an unknown choice */
+    p = params_of(BW_MODE_LOSSLESS, BW_BASIS_53);
+    p.coder = BW_CODER_AUTO;
+    p.flags = BW_FLAG_RICE;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_ERR_ARG);
+    free(out);
+    p.flags = 0;
+    p.coder = BW_CODER_AUTO + 1u;
+    assert_int_equal(encode_new(&d, &p, x, false, &out, &len), BW_ERR_ARG);
+    free(out);
+    p.coder = BW_CODER_AUTO;
+    p.flags = BW_FLAG_RICE;
+    assert_int_equal(stream_encode(&d, &p, x, &out, &len), BW_ERR_ARG);
+    free(out);
+    free(x);
+}
+
 /* Prediction payloads made by a core with the prediction encoder
  * (BW_CFG_ENCODE_PRED) from pred_fixture_input: 3 spectra of 24 bands within
  * a bound of 2 (range coder), and exactly with Rice strips. */
@@ -3770,6 +3870,7 @@ int main(void)
         cmocka_unit_test(fast_basis_choice_stays_close_to_trying_every_basis),
         cmocka_unit_test(fast_byte_budget_lands_close_to_the_search),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
+        cmocka_unit_test(coder_auto_picks_rice_for_dense_prediction_errors_else_ms),
         cmocka_unit_test(every_decoder_decodes_prediction_payloads),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),
         cmocka_unit_test(prediction_is_refused_where_it_does_not_apply),

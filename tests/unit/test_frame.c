@@ -155,6 +155,7 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     j.basis = 255;
     j.flags = 1;
     j.effort = BW_EFFORT_FAST;
+    j.coder = BW_CODER_AUTO;
     j.n_in = 256;
     j.bands = 2151;
     j.max_error = 7;
@@ -171,9 +172,10 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     b[6] = BW_EFFORT_FAST + 1; /* no such effort */
     assert_false(bw_job_unpack(b, sizeof b, &k));
     b[6] = BW_EFFORT_FAST;
-    b[7] = 1; /* reserved */
+    assert_int_equal(b[7], BW_CODER_AUTO);
+    b[7] = BW_CODER_AUTO + 1; /* no such coder choice */
     assert_false(bw_job_unpack(b, sizeof b, &k));
-    b[7] = 0;
+    b[7] = BW_CODER_AUTO;
     memset(b + 32, 'x', 128); /* no terminating NUL */
     assert_false(bw_job_unpack(b, sizeof b, &k));
 
@@ -196,6 +198,7 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     bw_params_t p;
     bw_job_params(&k, &p);
     assert_int_equal(p.effort, BW_EFFORT_FAST);
+    assert_int_equal(p.coder, BW_CODER_AUTO);
     assert_ptr_equal(p.ext, k.ext);
     assert_int_equal(p.ext_len, BW_JOB_EXT_MAX);
 }

@@ -50,7 +50,7 @@ class EncodeOpts(ctypes.Structure):
                 ("device", ctypes.POINTER(DeviceJob)),
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
                 ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t),
-                ("effort", ctypes.c_uint)]
+                ("effort", ctypes.c_uint), ("coder", ctypes.c_uint)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)

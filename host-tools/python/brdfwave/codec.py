@@ -303,7 +303,7 @@ def _write_payload(path, payload):
 def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            incidence_unit=None, quantity=None, unit=None, fields=None, metadata=None,
            level=None, incoming=False, level_in=None, lossless=None, max_error=None,
-           nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder="range",
+           nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder=None,
            stream=False, symmetry="auto", path=None, device=None, firmware=None,
            max_rel_error=None, rel_floor=None, effort=None):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
@@ -333,7 +333,9 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     budget searches its step) or "fast" (an eighth of it with each, then the
     whole once with the best; the budget's step estimated and corrected by
     each encode's size); None: "best" on this host, "fast" with device;
-    coder: "range", "ms" or "rice"; stream=True: streamed order; symmetry: "auto",
+    coder: "range", "ms", "rice" or "auto" (rice for prediction errors of a
+    bit or more a sample, else ms); None: "range" on this host, "auto" with
+    device; stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
     --device`; firmware: its image, else found beside the library or named by
@@ -418,9 +420,13 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         raise BrdfwaveError("effort must be best or fast")
     o.effort = 0 if effort == "best" else 1
     o.basis = b
-    if coder not in ("range", "rice", "ms"):
-        raise BrdfwaveError("coder must be range, ms or rice")
-    if coder == "rice":
+    if coder is None:
+        coder = "range" if device is None else "auto"
+    if coder not in ("range", "rice", "ms", "auto"):
+        raise BrdfwaveError("coder must be range, ms, rice or auto")
+    if coder == "auto":
+        o.coder = 1  # BW_CODER_AUTO
+    elif coder == "rice":
         o.flags |= 0x04
     elif coder == "ms":
         o.flags |= 0x80

@@ -457,20 +457,30 @@ static const fast_mode_t fast_modes[] = {
     {"step8", BW_MODE_STEP, 0, 8},        {"step64", BW_MODE_STEP, 0, 64},
 };
 
+/* the coders: by their flag, or BW_CODER_AUTO (auto: prediction only, where
+ * it chooses between Rice strips and the multi-symbol coder) */
 static const struct {
     const char *name;
-    uint8_t flag;
-} fast_coders[] = {{"rice", BW_FLAG_RICE}, {"ms", BW_FLAG_MS}, {"range", 0}};
+    uint8_t flag, automatic;
+} fast_coders[] = {
+    {"rice", BW_FLAG_RICE, 0}, {"ms", BW_FLAG_MS, 0}, {"range", 0, 0}, {"auto", 0, 1}};
 
 static void run_fast(set_t *s)
 {
     unsigned levels = bw_spec_levels(s->d.bands);
+    bool pred = s->d.shape == BW_SHAPE_SPECTRA;
     for (size_t c = 0; c < sizeof fast_coders / sizeof *fast_coders; c++)
-    for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
-        if (!levels && basis != BW_BASIS_53)
+    for (unsigned basis = 0; basis <= BW_BASIS_PRED; basis++) {
+        if (basis < BW_BASIS_COUNT && fast_coders[c].automatic)
+            continue; /* auto: prediction's choice */
+        if (basis < BW_BASIS_COUNT && !levels && basis != BW_BASIS_53)
             continue; /* no spectral axis: one row per mode */
+        if (basis == BW_BASIS_PRED && !pred)
+            continue;
         for (size_t i = 0; i < sizeof fast_modes / sizeof *fast_modes; i++) {
             const fast_mode_t *m = &fast_modes[i];
+            if (basis == BW_BASIS_PRED && m->mode > BW_MODE_MAX_ERROR)
+                continue;
             bw_params_t p;
             memset(&p, 0, sizeof p);
             p.mode = m->mode;
@@ -478,6 +488,7 @@ static void run_fast(set_t *s)
             p.max_error = m->max_error;
             p.step_q8 = m->step * 256u;
             p.flags = fast_coders[c].flag;
+            p.coder = fast_coders[c].automatic ? BW_CODER_AUTO : BW_CODER_BY_FLAGS;
             p.scale_bits = 0x3F800000u;
             size_t len = 0;
             bw_status_t st, st_d;
@@ -494,12 +505,16 @@ static void run_fast(set_t *s)
             max_stack(&stack_dec_max, stk);
             uint64_t sse = 0;
             uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;
-            int ok = st_d == BW_OK && (h.flags & (BW_FLAG_RICE | BW_FLAG_MS)) == fast_coders[c].flag &&
-                     bound_held(m->mode, m->max_error, worst);
+            unsigned got = h.flags & (BW_FLAG_RICE | BW_FLAG_MS);
+            int ok = st_d == BW_OK && bound_held(m->mode, m->max_error, worst) &&
+                     (fast_coders[c].automatic ? got != (BW_FLAG_RICE | BW_FLAG_MS)
+                                               : got == fast_coders[c].flag);
             printf("FAST coder=%s basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
-                   " worst=%lu sse=%llu status=%s\n",
-                   fast_coders[c].name, basis, m->name, (unsigned long)s->n, (unsigned long)len, t_enc, t_dec,
-                   (unsigned long)worst, sse, ok ? "ok" : "FAIL");
+                   " worst=%lu sse=%llu chosen=%s status=%s\n",
+                   fast_coders[c].name, basis, m->name, (unsigned long)s->n, (unsigned long)len,
+                   t_enc, t_dec, (unsigned long)worst, sse,
+                   got == BW_FLAG_RICE ? "rice" : got == BW_FLAG_MS ? "ms" : "range",
+                   ok ? "ok" : "FAIL");
             if (!ok)
                 failures++;
         }
