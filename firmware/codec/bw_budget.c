@@ -41,6 +41,7 @@ typedef struct {
     int32_t *work;
     bw_ctx_t *ctx;
     size_t budget;
+    size_t near; /* > 0: a search may stop at a payload that fits in near or more bytes */
 } budget_t;
 
 /* The size of the BYTES payload at the plan's current settings. */
@@ -97,49 +98,98 @@ static bw_status_t bisect(const budget_t *b, unsigned what, uint32_t aux, bool u
             *lo = mid;
         else
             *hi = mid;
+        if (BW_CFG_FAST_BUDGET && b->near && sz <= b->budget && sz >= b->near)
+            break; /* near enough: the fitting end is mid */
     }
     return BW_OK;
 }
 
-bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
-                             int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
+/* The exact coding, if it fits, else the two neighbouring steps of 32 per
+ * octave around the budget (*lo_s leaves too much, *hi_s fits); or, where
+ * even the coarsest step leaves too much, the vector threshold. *done: the
+ * payload is written. */
+static BW_ALWAYS_INLINE bw_status_t coarse(const budget_t *b, uint8_t *out, size_t *len,
+                                           bool *done, uint32_t *lo_s, uint32_t *hi_s)
 {
+    bw_plan_t *pl = b->pl;
     size_t sz;
-    bw_status_t st;
-    budget_t b = {pl, pa, samples, work, ctx, pa->byte_budget < cap ? pa->byte_budget : cap};
+    *done = true;
     /* the exact coding first: if it fits, nothing is lost, and the payload
      * is the lossless one */
     pl->step_q8 = BW_STEP_ONE_Q8;
-    st = bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, ctx, NULL, 0, &sz);
+    bw_status_t st = bw_encode_pass(pl, b->pa, BW_MODE_LOSSLESS, b->samples, b->work, b->ctx,
+                                    NULL, 0, &sz);
     if (st != BW_OK)
         return st;
-    if (sz <= b.budget)
-        return bw_encode_pass(pl, pa, BW_MODE_LOSSLESS, samples, work, ctx, out, b.budget, len);
+    if (sz <= b->budget)
+        return bw_encode_pass(pl, b->pa, BW_MODE_LOSSLESS, b->samples, b->work, b->ctx, out,
+                              b->budget, len);
     uint32_t lo = 0, hi = STEP_T_MAX;
     pl->step_q8 = step_of(hi);
-    st = count_bytes(&b, &sz);
+    st = count_bytes(b, &sz);
     if (st != BW_OK)
         return st;
-    if (sz > b.budget) {
+    if (sz > b->budget) {
         /* even the coarsest step leaves too much: then, at that step, the
          * smallest vector threshold (2, 4, .. 65536 steps) that fits; the
          * largest drops every vector with more than one band */
         uint32_t vt0 = pl->vec_thresh_q8, lo_i = 0, hi_i = VEC_THRESH_MAX_LOG2 + 1u;
-        st = bisect(&b, SET_VEC, vt0, false, false, &lo_i, &hi_i); /* hi_i fits, if any does */
+        st = bisect(b, SET_VEC, vt0, false, false, &lo_i, &hi_i); /* hi_i fits, if any does */
         if (st != BW_OK)
             return st;
         if (hi_i > VEC_THRESH_MAX_LOG2)
             return BW_ERR_BUDGET;
         set(pl, SET_VEC, hi_i, vt0);
-        return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, ctx, out, b.budget, len);
+        return bw_encode_pass(pl, b->pa, BW_MODE_BYTES, b->samples, b->work, b->ctx, out,
+                              b->budget, len);
     }
-    st = bisect(&b, SET_STEP_T, 0, false, false, &lo, &hi);
-    if (st != BW_OK)
-        return st;
+    st = bisect(b, SET_STEP_T, 0, false, false, &lo, &hi);
+    *lo_s = step_of(lo);
+    *hi_s = step_of(hi);
+    *done = false;
+    return st;
+}
+
+/* The search; from the steps bracket[0] (too much; BW_STEP_ONE_Q8: not
+ * known) and bracket[1] (fits; UINT32_MAX: not known) when bracket is
+ * given, stopping at the first payload within 1 % under the budget
+ * (BW_EFFORT_FAST after its encodes). */
+static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                          int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len,
+                          const uint32_t *bracket)
+{
+    size_t sz, budget = pa->byte_budget < cap ? pa->byte_budget : cap;
+    bw_status_t st;
+    bracket = BW_CFG_FAST_BUDGET ? bracket : NULL;
+    budget_t b = {pl, pa, samples, work, ctx, budget, bracket ? budget - budget / 100u : 0u};
+    uint32_t lo_s = bracket ? bracket[0] : 0u, hi_s = bracket ? bracket[1] : 0u;
+    /* one side of the bracket only: widen it by an eighth of the step at a
+     * time (up to 8 encodes) */
+    for (unsigned k = 0; bracket && k < 8u && (lo_s <= BW_STEP_ONE_Q8 || hi_s == UINT32_MAX);
+         k++) {
+        bool up = hi_s == UINT32_MAX;
+        uint32_t t = up ? lo_s + lo_s / 8u : hi_s - hi_s / 8u;
+        if ((up && t < lo_s) || t <= BW_STEP_ONE_Q8)
+            break;
+        pl->step_q8 = t;
+        st = count_bytes(&b, &sz);
+        if (st != BW_OK)
+            return st;
+        if (sz <= b.budget)
+            hi_s = t;
+        else
+            lo_s = t;
+    }
+    if (!bracket || lo_s <= BW_STEP_ONE_Q8 || hi_s == UINT32_MAX) {
+        bool done;
+        b.near = 0u; /* the whole search, as BW_EFFORT_BEST's */
+        st = coarse(&b, out, len, &done, &lo_s, &hi_s);
+        if (st != BW_OK || done)
+            return st;
+    }
     /* then on the step itself, down to 1/16384 of it: at 32 steps per
      * octave the payload still jumps by about 2 % from step to step, and
      * small payloads (a few hundred bytes) move by a few bytes at a time */
-    uint32_t lo_s = step_of(lo), hi_s = step_of(hi);
     st = bisect(&b, SET_STEP, 0, false, true, &lo_s, &hi_s);
     if (st != BW_OK)
         return st;
@@ -152,7 +202,7 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
     st = count_bytes(&b, &sz);
     if (st != BW_OK)
         return st;
-    if (sz < b.budget - b.budget / ROUND_FILL) {
+    if (sz < b.budget - b.budget / ROUND_FILL && !(BW_CFG_FAST_BUDGET && b.near && sz >= b.near)) {
         /* t = r n + c: the offset r / 256 for every coefficient, and
          * (r + 1) / 256 for the first c of them, band by band (coarse to
          * fine), each band in the quantiser's order of vectors: so that the
@@ -189,6 +239,12 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
     return bw_encode_pass(pl, pa, BW_MODE_BYTES, samples, work, ctx, out, b.budget, len);
 }
 
+bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
+                             int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
+{
+    return search(pl, pa, samples, work, ctx, out, cap, len, NULL);
+}
+
 /* ---- BW_EFFORT_FAST ---------------------------------------------------------
  *
  * The bits at a base step 2^(t / 4) are estimated from the histogram of the
@@ -201,9 +257,12 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
  * with the estimate scaled by what the encodes before it measured (from the
  * third on, the secant through the two before), writing the payload as it
  * goes: the first that lands within 1 % under the budget is the payload;
- * after FAST_PASSES, the search. Against the search above, one to four
- * encodes instead of fifteen to twenty, for a payload up to 1 % smaller and
- * no rounding fill. */
+ * after FAST_PASSES, the search from the steps they tried (the largest that
+ * left too much, the smallest that fit; widened by an eighth at a time where
+ * they all left too much or all too little) to the first payload within 1 %
+ * under, and only where that falls short, the whole search. Against the
+ * search above, one to four encodes instead of fifteen to twenty where they
+ * land, for a payload up to 1 % smaller and no rounding fill. */
 
 #define EST_A0_Q6 186u /* 2.90 bits per non-zero coefficient, 1/64 bit  */
 #define EST_A1_Q6 16u  /* 0.99 bit per octave of |c| / step, per quarter */
@@ -271,8 +330,10 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
  * BW_ERR_BUDGET where none landed (the search's turn), or an error. */
 static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t budget,
-                               size_t *len)
+                               size_t *len, uint32_t bracket[2])
 {
+    bracket[0] = BW_STEP_ONE_Q8; /* the largest step that left too much */
+    bracket[1] = UINT32_MAX;     /* the smallest that fit */
     uint32_t hist[BW_HIST_BINS];
     pl->step_q8 = step_of(STEP_T_MAX / 2u);
     size_t over = bw_header_write(NULL, pl, pa, BW_MODE_BYTES) + BW_TRAILER_SIZE;
@@ -330,6 +391,10 @@ static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32
             return BW_OK;
         if (st != BW_OK && st != BW_ERR_OUTPUT_FULL)
             return st;
+        if (st == BW_OK && s < bracket[1])
+            bracket[1] = s;
+        else if (st != BW_OK && s > bracket[0])
+            bracket[0] = s;
         /* the estimate was off by what this encode measured */
         uint64_t body = (*len > over ? *len - over : 1u) * 8u;
         s1 = s2;
@@ -348,9 +413,26 @@ bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const in
                                   size_t *len)
 {
     size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
-    bw_status_t st = fast_passes(pl, pa, samples, work, ctx, out, budget, len);
+    uint32_t bracket[2], round_q8 = pl->round_q8, vec_thresh_q8 = pl->vec_thresh_q8;
+    bw_status_t st = fast_passes(pl, pa, samples, work, ctx, out, budget, len, bracket);
     if (st != BW_ERR_BUDGET)
         return st;
     pl->step_q8 = BW_STEP_ONE_Q8;
-    return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
+    /* the search from the steps the encodes tried, to the first payload
+     * within 1 % under (widening the bracket where they all left too much,
+     * or all too little); else the whole search */
+    bool tried = (bracket[0] > BW_STEP_ONE_Q8 || bracket[1] != UINT32_MAX) &&
+                 bracket[0] < bracket[1];
+    if (tried) {
+        st = search(pl, pa, samples, work, ctx, out, cap, len, bracket);
+        if (st != BW_OK || *len >= budget - budget / 100u)
+            return st;
+        /* short of it (a payload of a few hundred bytes, where single
+         * coefficients move it by more than 1 %): the whole search */
+        pl->step_q8 = BW_STEP_ONE_Q8;
+        pl->round_q8 = round_q8;
+        pl->round_cut = 0;
+        pl->vec_thresh_q8 = vec_thresh_q8;
+    }
+    return search(pl, pa, samples, work, ctx, out, cap, len, NULL);
 }

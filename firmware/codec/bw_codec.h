@@ -128,7 +128,9 @@ typedef enum {
      * whole once with the basis that coded them smallest (for a byte budget,
      * the smallest exact coding of the parts); a byte budget estimates its
      * step from the coefficients and corrects it by the size of each encode
-     * until one lands within 1 % under the budget (one to four encodes) */
+     * until one lands within 1 % under the budget (one to four encodes; then
+     * the search from the steps they tried, to the first payload within 1 %
+     * under) */
     BW_EFFORT_FAST = 1
 } bw_effort_t;
 

@@ -278,7 +278,7 @@ bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t
                              size_t *len);
 /* The same with BW_EFFORT_FAST: the step estimated from the coefficients,
  * corrected by the size of each encode, until one lands within 1 % under
- * the budget (else the search above). */
+ * the budget (else the search above, from the steps those encodes tried). */
 bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                   int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
                                   size_t *len);
