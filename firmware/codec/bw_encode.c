@@ -120,7 +120,7 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
                            int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
 {
     bw_params_t chosen;
-    if ((BW_CFG_ENCODE_PRED || BW_AUTO_CODER) && pa->coder == BW_CODER_AUTO) {
+    if ((BW_CFG_ENCODE_PRED || BW_AUTO_CODER != 0u) && pa->coder == BW_CODER_AUTO) {
         /* (a core without prediction's encoder and the multi-symbol coder
          * codes AUTO with the binary coder: the flags as they are) */
         chosen = *pa;

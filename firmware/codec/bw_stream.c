@@ -54,7 +54,7 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->mem = mem;
     bw_plan_t pl;
     stream_plan(s, &pl);
-    if (BW_AUTO_CODER && pa->coder == BW_CODER_AUTO) { /* no prediction in stream order */
+    if (BW_AUTO_CODER != 0u && pa->coder == BW_CODER_AUTO) { /* no prediction in stream order */
         s->params.flags |= (uint8_t)BW_AUTO_CODER;
         s->params.coder = BW_CODER_BY_FLAGS;
     }

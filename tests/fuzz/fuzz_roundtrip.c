@@ -115,9 +115,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int mirror = (data[4] & 0x80u) && d.shape != BW_SHAPE_SPECTRA;
     if (mirror)
         pa.flags = BW_FLAG_MIRROR;
-    /* the coder (bits 5-6 of the mode byte): range, Rice, multi-symbol */
+    /* the coder (bits 5-6 of the mode byte): range, Rice, multi-symbol, or
+     * the encoder's choice (BW_CODER_AUTO) */
     static const uint8_t coder_flags[4] = {0u, BW_FLAG_RICE, BW_FLAG_MS, 0u};
     pa.flags |= coder_flags[(data[5] >> 5) & 3u];
+    if (((data[5] >> 5) & 3u) == 3u)
+        pa.coder = BW_CODER_AUTO;
     if (mode == BW_MODE_MAX_ERROR)
         pa.max_error = p < 0xF000u ? 1u + p % 1000u
                                    : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
