@@ -4,8 +4,6 @@
  * prediction, quantise, code, header and CRC), the choice of the basis, and
  * the self-check of the mode's guarantee.
  */
-#include <string.h>
-
 #include "bw_crc32.h"
 #include "bw_internal.h"
 #include "bw_le.h"
@@ -47,7 +45,7 @@ bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *wo
 #define BW_AUTO_RICE_Q8 248u
 
 /* log2(v) in Q16, v >= 1: the leading bit's place, and log2(1 + f) for the
- * fraction f below it from 17 points (Q16) interpolated, within 2^-11 */
+ * fraction f below it from 17 points (Q16) interpolated, within 2^-10 */
 static uint32_t log2_q16(uint32_t v)
 {
     static const uint16_t t[17] = {0,     5732,  11136, 16248, 21098, 25711, 30109, 34312, 38336,
