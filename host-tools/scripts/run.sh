@@ -27,7 +27,8 @@ row() { # label payload reference decoded
     l2=$(sed -n 's/^relative_l2_percent: //p' "$OUT/cmp")
     maxe=$(sed -n 's/^max_abs_error: //p' "$OUT/cmp")
     instr=$(sed -n 's/.*instructions (\([0-9.]*\) per sample).*/\1/p' "$OUT/device.out" 2>/dev/null)
-    printf '| %s | %s | %s | %.3f | %.2f | %s | %s | %s |\n' "$1" "$samples" "$bytes" \
+    how="$(sed -n 's/^basis: //p' "$OUT/info"), $(sed -n 's/^coder: //p' "$OUT/info")"
+    printf '| %s | %s | %s | %s | %.3f | %.2f | %s | %s | %s |\n' "$1" "$how" "$samples" "$bytes" \
         "$(echo "8 * $bytes / $samples" | bc -l)" "$(echo "4 * $samples / $bytes" | bc -l)" "$l2" "$maxe" \
         "${instr:--}" >>"$S"
 }
@@ -35,8 +36,8 @@ row() { # label payload reference decoded
 {
     echo "# brdfwave: encode on the $DEVICE co-processor, receive, decode, compare"
     echo
-    echo "| measurement and mode | samples | payload bytes | bits/sample | ratio vs float32 | rel. L2 % | max abs error | device instructions/sample |"
-    echo "|---|---|---|---|---|---|---|---|"
+    echo "| measurement and mode | basis, coder | samples | payload bytes | bits/sample | ratio vs float32 | rel. L2 % | max abs error | device instructions/sample |"
+    echo "|---|---|---|---|---|---|---|---|---|"
 } >"$S"
 
 # field spectra, exact on the file's 5 decimals
