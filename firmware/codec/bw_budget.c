@@ -33,6 +33,16 @@ static uint32_t step_of(unsigned t)
     return s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
 }
 
+/* The budget of a request and an output of cap bytes. */
+static size_t budget_of(const bw_params_t *pa, size_t cap)
+{
+    return pa->byte_budget < cap ? pa->byte_budget : cap;
+}
+
+/* BW_EFFORT_FAST's landing: a payload of at least this many bytes (within
+ * 1 % under the budget) ends its encodes and its search. */
+static size_t landing(size_t budget) { return budget - budget / 100u; }
+
 /* What one encode with one basis needs to try a setting. */
 typedef struct {
     bw_plan_t *pl;
@@ -158,10 +168,10 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
                           int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len,
                           const uint32_t *bracket)
 {
-    size_t sz, budget = pa->byte_budget < cap ? pa->byte_budget : cap;
+    size_t sz, budget = budget_of(pa, cap);
     bw_status_t st;
     bracket = BW_CFG_FAST_BUDGET ? bracket : NULL;
-    budget_t b = {pl, pa, samples, work, ctx, budget, bracket ? budget - budget / 100u : 0u};
+    budget_t b = {pl, pa, samples, work, ctx, budget, bracket ? landing(budget) : 0u};
     uint32_t lo_s = bracket ? bracket[0] : 0u, hi_s = bracket ? bracket[1] : 0u;
     /* one side of the bracket only: widen it by an eighth of the step at a
      * time (up to 8 encodes) */
@@ -387,7 +397,7 @@ static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32
         pl->step_q8 = s;
         bw_quantise(pl, work, true);
         st = bw_encode_code(pl, pa, BW_MODE_BYTES, work, ctx, out, budget, len);
-        if (st == BW_OK && *len >= budget - budget / 100u)
+        if (st == BW_OK && *len >= landing(budget))
             return BW_OK;
         if (st != BW_OK && st != BW_ERR_OUTPUT_FULL)
             return st;
@@ -412,7 +422,7 @@ bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const in
                                   int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
                                   size_t *len)
 {
-    size_t budget = pa->byte_budget < cap ? pa->byte_budget : cap;
+    size_t budget = budget_of(pa, cap);
     uint32_t bracket[2], round_q8 = pl->round_q8, vec_thresh_q8 = pl->vec_thresh_q8;
     bw_status_t st = fast_passes(pl, pa, samples, work, ctx, out, budget, len, bracket);
     if (st != BW_ERR_BUDGET)
@@ -425,7 +435,7 @@ bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const in
                  bracket[0] < bracket[1];
     if (tried) {
         st = search(pl, pa, samples, work, ctx, out, cap, len, bracket);
-        if (st != BW_OK || *len >= budget - budget / 100u)
+        if (st != BW_OK || *len >= landing(budget))
             return st;
         /* short of it (a payload of a few hundred bytes, where single
          * coefficients move it by more than 1 %): the whole search */

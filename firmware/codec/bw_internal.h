@@ -103,6 +103,13 @@ static inline unsigned bw_level_cls(const bw_plan_t *pl, int j)
 #define BW_SPEC_CLS(v) ((unsigned)(v) & 3u)
 #define BW_SPEC_PAR(v) ((int32_t)((uint32_t)(v) >> 2) - 1)
 
+/* The coder's context class of a coefficient (BW_CODER_CLASSES): its
+ * spectral class (sc = spec_cls[k]) and its vector's direction class. */
+static inline unsigned bw_coef_cls(int32_t sc, unsigned cls_dir)
+{
+    return BW_SPEC_CLS(sc) * 3u + cls_dir;
+}
+
 /* The parent of band k of vector v (sc = spec_cls[k]): band k of the parent
  * vector pv (coarse-to-fine order), else the spectral parent in v; NULL for
  * none. */
@@ -233,7 +240,7 @@ static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t *
     int32_t *p = it->vec + k, sc = it->pl->spec_cls[k];
     *par = bw_parent_of(it->par, it->vec, sc, k);
     *prv = it->prev ? it->prev + k : NULL;
-    *cls = (uint8_t)(BW_SPEC_CLS(sc) * 3u + it->cls_dir);
+    *cls = (uint8_t)bw_coef_cls(sc, it->cls_dir);
     if (++it->k == it->pl->dims.bands)
         bw_iter_next_vec(it);
     return p;

@@ -190,6 +190,12 @@ static void vec_quant(const spec_bands_t *sb, const uq56_8_t *st_q8, int32_t *v,
     }
 }
 
+/* The incoming x outgoing inverse gain (Q16) of a subband. */
+static inline uq16_t gain_io(uq16_t gi_q16, uq16_t g_out_q16)
+{
+    return (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+}
+
 /* The next outgoing vector in the coder's walk: its position, and *gio_q16
  * the incoming x outgoing inverse gain of its subband. */
 static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq16_t *gio_q16)
@@ -201,7 +207,7 @@ static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq1
         pos = bw_walk_next(w, d->level_out, &j);
         g_out_q16 = bw_biohaar_inv_gain_q16(d->level_out, j);
     }
-    *gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+    *gio_q16 = gain_io(gi_q16, g_out_q16);
     return pos;
 }
 
@@ -221,7 +227,7 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
     uint32_t st32[BW_MAX_LEVEL + 1u], off32[BW_MAX_LEVEL + 1u];
     for (unsigned k = 0; k <= L; k++) {
         uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-        uq16_t gio_q16 = (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
+        uq16_t gio_q16 = gain_io(gi_q16, g_out_q16);
         st[k] = elem_step(pl->step_q8, gio_q16, 65536u, sb->gain_q16[0]);
         off[k] = (st[k] * pl->round_q8) >> 8;
         /* 0: no 32-bit division at this level (exact, or too large) */

@@ -299,7 +299,7 @@ static BW_ALWAYS_INLINE void ms_strip_core(bw_strip_enc_t *se, const ms_src_t *s
     bool direct = src != NULL;
     uint64_t low = rc->low;
     uint32_t range = rc->range;
-    unsigned c0 = direct ? BW_SPEC_CLS(src->spec_cls[src->k0]) * 3u + src->cls_dir : cls[0];
+    unsigned c0 = direct ? bw_coef_cls(src->spec_cls[src->k0], src->cls_dir) : cls[0];
     MS_BIT(&m->present[c0][s->prev_mask != 0], mask != 0);
     if (!mask) {
         s->prev_mask = 0;
@@ -316,7 +316,7 @@ static BW_ALWAYS_INLINE void ms_strip_core(bw_strip_enc_t *se, const ms_src_t *s
         const int32_t *par_b = NULL;
         if (direct) {
             int32_t sc = src->spec_cls[src->k0 + b];
-            c = BW_SPEC_CLS(sc) * 3u + src->cls_dir;
+            c = bw_coef_cls(sc, src->cls_dir);
             par_b = bw_parent_of(src->par, src->vec, sc, src->k0 + b);
             pe_b = ctx_len(par_b);
         } else {
@@ -427,6 +427,16 @@ static inline void strip_put(bw_strip_enc_t *se, int32_t v, unsigned cls, const 
         bw_strip_enc_code(se);
 }
 
+/* Band k of vector v with the contexts of put_vector's arguments. */
+static inline void put_band(bw_strip_enc_t *se, const int32_t *v, uint32_t k,
+                            const int32_t *spec_cls, unsigned cls_dir, const int32_t *par,
+                            const int32_t *prev)
+{
+    int32_t sc = spec_cls[k];
+    strip_put(se, v[k], bw_coef_cls(sc, cls_dir), bw_parent_of(par, v, sc, k),
+              prev ? prev + k : NULL);
+}
+
 /* Rice: the values in coding order, whole strips straight from a vector. */
 static void rice_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b)
 {
@@ -464,11 +474,8 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
 #if BW_CFG_FAST_STRIPS
     if (BW_CFG_CODER_MS && se->coder == BW_CODER_MS) {
         /* finish the pending strip, then whole strips straight from v */
-        for (; se->cnt && k < b; k++) {
-            int32_t sc = spec_cls[k];
-            strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
-                      prev ? prev + k : NULL);
-        }
+        for (; se->cnt && k < b; k++)
+            put_band(se, v, k, spec_cls, cls_dir, par, prev);
         ms_src_t src = {v, spec_cls, par, prev, k, cls_dir};
         for (; k + BW_STRIP <= b; k += BW_STRIP) {
             src.k0 = k;
@@ -476,11 +483,8 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
         }
     }
 #endif
-    for (; k < b; k++) {
-        int32_t sc = spec_cls[k];
-        strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cls_dir, bw_parent_of(par, v, sc, k),
-                  prev ? prev + k : NULL);
-    }
+    for (; k < b; k++)
+        put_band(se, v, k, spec_cls, cls_dir, par, prev);
 }
 
 void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
@@ -552,7 +556,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
                     /* one band: three values share their parent's contexts;
                      * the strip's count and mask in locals (the byte stores
                      * below would make the compiler reload them) */
-                    uint8_t cls = (uint8_t)(BW_SPEC_CLS(sc[0]) * 3u + cd);
+                    uint8_t cls = (uint8_t)bw_coef_cls(sc[0], cd);
                     unsigned n = se->cnt;
                     uint32_t mask = se->mask;
                     int32_t *sv = se->v;
@@ -597,17 +601,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
     bw_iter_init(&it, pl, x);
     size_t vectors = (size_t)d->n_in * d->n_out;
     for (size_t n = 0; n < vectors; n++) {
-        const int32_t *v = it.vec;
-        if (se->coder == BW_CODER_RICE) {
-            rice_vector(se, v, b);
-        } else {
-            unsigned cd = it.cls_dir;
-            for (uint32_t k = 0; k < b; k++) {
-                int32_t sc = pl->spec_cls[k];
-                strip_put(se, v[k], BW_SPEC_CLS(sc) * 3u + cd, bw_parent_of(it.par, v, sc, k),
-                          it.prev ? it.prev + k : NULL);
-            }
-        }
+        put_vector(se, it.vec, b, pl->spec_cls, it.cls_dir, it.par, it.prev);
         bw_iter_next_vec(&it);
     }
 }
