@@ -20,3 +20,11 @@ bench-guarantee: bench-rd-deps $(BW_CLI)
 	BW=$(BW_CLI) $(BENCH_PYTHON) tests/bench/run_guarantee_bench.py
 
 bench-rd: bench-guarantee
+
+# Payloads in segments: their cost in bytes, what a lost segment or 1 KiB
+# chunk costs in samples, and what they cost the emulated board's streaming
+# encoder (build/bench/progressive.md; QEMU from deps-run).
+.PHONY: bench-progressive
+bench-progressive: deps-run $(BW_CLI)
+	$(Q)$(MAKE) --no-print-directory TARGET=qemu all
+	BW=$(BW_CLI) $(BENCH_PYTHON) tests/bench/run_progressive_bench.py

@@ -13,8 +13,9 @@
 # the small code forms, the encoder without prediction), so that those forms
 # run here, and the tests are compiled with the same switches (they read
 # them, firmware/codec/bw_config.h); the other builds run the default forms.
-# test_codec then runs once more with the core and the test built with the
-# default switches, for what the device's encoder leaves out (prediction).
+# test_codec and test_segments then run once more with the core and the test
+# built with the default switches, for what the device's core leaves out
+# (prediction, segments).
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
 # Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
@@ -96,5 +97,6 @@ for t in tests/unit/test_*.c; do
     run_test "$(basename "${t%.c}")" "$t" "$DEVICE_CFG" "${objs[@]}"
 done
 run_test test_codec_O1_core tests/unit/test_codec.c "" "${core_o1[@]}"
+run_test test_segments_O1_core tests/unit/test_segments.c "" "${core_o1[@]}"
 echo "RESULT: $passed passed, $failed failed"
 [ "$failed" = 0 ]

@@ -25,6 +25,10 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen);
 void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
                       size_t vlen);
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
+/* The inverse of only the parents on the path of leaf t (coarse to fine):
+ * leaf t and its siblings at every level come out as bw_biohaar_inv gives
+ * them, from the blocks on that path alone. */
+void bw_biohaar_inv_path(int32_t *x, unsigned level, size_t vlen, uint32_t t);
 
 /* Mallat index -> in-place leaf position. Mallat order: the 4 base scaling
  * coefficients, then the 12 details of level 0's parents, then the 48 of

@@ -46,7 +46,8 @@
  *   bw_header.c        the payload's header and its CRC
  *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
  *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
- *   bw_decode.c        bw_decode
+ *   bw_decode.c        bw_decode, and bw_decode_salvage (segments)
+ *   bw_salvage.c       what a decode in part rebuilt (bw_salvage_mask)
  *   bw_stream.c        the streaming encoder (bw_stream_*)
  *   bw_crc32.c         CRC-32
  *   bw_error.c         status messages
@@ -175,6 +176,15 @@ typedef struct {
      * ext_len + BW_EXT_OVERHEAD at most: add that to BW_PAYLOAD_BOUND. */
     const uint8_t *ext;
     uint32_t ext_len;
+    /* Segments (docs/FORMAT.md, Segments): 0 codes one body; n > 0 splits
+     * the body into independently decodable segments of n vectors each (a
+     * vector: the bands of one incoming x outgoing coefficient, in coding
+     * order; the last segment may hold fewer), each with its length and
+     * CRC-32, so that a damaged or missing segment costs its own
+     * coefficients only (bw_decode_salvage). A payload with segments is
+     * version 7 and BW_SEGMENT_OVERHEAD(s) bytes larger at most: add that
+     * to BW_PAYLOAD_BOUND. Not for the streaming encoder. */
+    uint32_t segment_vectors;
 } bw_params_t;
 
 /* Header flags.
@@ -320,6 +330,10 @@ typedef struct {
      * their length, 0 and 0 when there are none (bw_ext_next walks them) */
     uint32_t ext_off;
     uint32_t ext_len;
+    /* record BW_EXT_SEGMENTS: vectors per segment, and the segments'
+     * count; 0 and 1 for a body in one piece */
+    uint32_t segment_vectors;
+    uint32_t segments;
 } bw_header_t;
 
 /* ---- extension records ------------------------------------------------- */
@@ -339,6 +353,7 @@ typedef struct {
 #define BW_EXT_FLOAT_EXACT 0x01u /* float32 values bit for bit: bit planes, exceptions;
                                   * its first field, a varint, is the tail's length */
 #define BW_EXT_LOG_MAP 0x02u     /* samples to values through a signed log-linear map */
+#define BW_EXT_SEGMENTS 0x03u    /* the body is split into segments (the core's) */
 #define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
 #define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
 #define BW_EXT_MAX (1u << 20)  /* bytes of records at most */
@@ -366,12 +381,77 @@ bw_status_t bw_decode_ctx(bw_ctx_t *ctx, const uint8_t *payload, size_t len, int
 bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
                       int32_t *work, size_t work_cap, bw_header_t *hdr_out);
 
+/* The most bytes segments add to a payload of s segments: the record, the
+ * table (a length and a CRC-32 per segment, one CRC-32 for the header and
+ * the table) and each segment's coder flush. */
+#define BW_SEGMENT_OVERHEAD(s) ((size_t)16u + (size_t)(s) * 14u)
+/* The segment table at the start of a segmented body: per segment its
+ * length and CRC-32, then the CRC-32 of the payload from its first byte to
+ * the table's last 4 bytes (the header and the table: whoever changes the
+ * header, as the host adding records, writes it again). */
+#define BW_SEGMENT_TABLE_SIZE(s) ((size_t)(s) * 8u + 4u)
+
+/*
+ * Decodes what a segmented payload still holds when parts of it are damaged
+ * or missing (a cut payload, bytes lost or changed on the way): every
+ * segment that lies whole within payload[len] and matches its CRC-32 is
+ * decoded, the coefficients of the others are taken as zero, and the
+ * samples are rebuilt from what is there (the coarser levels of a lost
+ * segment's region). The header and the segment table must be intact (their
+ * own CRC-32). Returns BW_OK for a whole payload (as bw_decode_ctx),
+ * BW_ERR_INCOMPLETE when segments were lost (the samples hold the rest),
+ * else bw_decode_ctx's error (a payload without segments that is not whole:
+ * BW_ERR_CRC or BW_ERR_TRUNCATED). seg_ok (may be NULL): per segment 1
+ * decoded, 0 lost, for the first seg_cap segments (hdr_out->segments in
+ * all). vec_lost (may be NULL): n_in * n_out bytes, the coefficient vectors
+ * in their place in the work array ([incoming][outgoing], in-place
+ * transform positions), 1 where a vector's coefficients were lost, else 0.
+ */
+bw_status_t bw_decode_salvage(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
+                              int32_t *samples, size_t samples_cap, int32_t *work,
+                              size_t work_cap, bw_header_t *hdr_out, uint8_t *seg_ok,
+                              size_t seg_cap, uint8_t *vec_lost);
+
+/*
+ * Decodes one incoming direction of a BRDF (shapes BRDF_ISO and BRDF_FULL:
+ * row `in` of the samples' layout [incoming][outgoing][band]) or one
+ * spectrum of a set of spectra (row `in`): n_out * bands samples into
+ * samples, the same as that row of bw_decode_ctx's. Only what the row
+ * depends on is decoded: the segments that hold its coefficients (a body
+ * in one piece up to the last of them) and, for a full BRDF, the incoming
+ * blocks on its path down the tree (with the mirror, the mirrored row's
+ * too), then the inverse steps of those blocks alone; in segments, the
+ * CRCs checked are the table's and those of the segments read (BW_ERR_CRC),
+ * not the whole payload's. work: as for bw_decode_ctx (the coefficients
+ * have their places in it). BW_ERR_ARG for
+ * a reflectance (no incoming axis), a row out of range, or a full BRDF with
+ * the reciprocity step (every row depends on every other: decode it all).
+ */
+bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
+                               int32_t *samples, size_t samples_cap, int32_t *work,
+                               size_t work_cap, bw_header_t *hdr_out);
+
+/* What bw_decode_salvage rebuilt, per direction pair (every band alike):
+ * exact (as the whole payload decodes), approximate (rebuilt from the
+ * coarser levels that were kept, without finer details that were lost), or
+ * missing (its coarsest level was lost: the samples there are not to be
+ * used). */
+#define BW_SAMPLE_EXACT 0u
+#define BW_SAMPLE_APPROX 1u
+#define BW_SAMPLE_MISSING 2u
+/* mask[n_in * n_out] in the samples' layout ([incoming][outgoing]) from the
+ * lost vectors bw_decode_salvage reported; tmp: n_in * n_out int32 of
+ * scratch. */
+void bw_salvage_mask(const bw_header_t *h, const uint8_t *vec_lost, uint8_t *mask,
+                     int32_t *tmp);
+
 /* ---- streaming encoder ------------------------------------------------ */
 
 /*
  * Encodes spectra as they arrive, in scan order ([incoming][outgoing], the
  * grid order of the directions), with RAM that does not grow with the number
- * of directions: each spectrum is transformed on arrival, and the Bio-Haar
+ * of directions (nor with segments, bw_params_t.segment_vectors: their table
+ * is kept in the output): each spectrum is transformed on arrival, and the Bio-Haar
  * lifting runs up the triangle tree as soon as four siblings are complete,
  * its coefficients going straight to the strip coder. The payload is
  * byte-identical to bw_encode's with BW_FLAG_STREAM_ORDER and the same
@@ -394,6 +474,10 @@ typedef struct {
     uint8_t *out;
     size_t cap;
     bw_status_t err;
+    /* segments (params.segment_vectors): the vectors coded, the segment
+     * being coded and where it begins in the body */
+    size_t emitted, seg_at;
+    uint32_t seg;
     bw_strip_enc_t se;
 } bw_stream_t;
 

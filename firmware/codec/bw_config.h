@@ -25,6 +25,18 @@
  *                                      its step and corrects it by the size of
  *                                      each encode (bw_budget.c); 0: it
  *                                      searches as BW_EFFORT_BEST
+ *   BW_CFG_SEGMENTS           1        bodies in segments (BW_EXT_SEGMENTS):
+ *                                      bw_encode splits a body so when asked
+ *                                      (bw_params_t.segment_vectors), the
+ *                                      decoder decodes them; 0: both refuse
+ *                                      them (BW_ERR_NOT_BUILT), as a build
+ *                                      without BW_CFG_CODER_MS its payloads
+ *
+ * Decoder features:
+ *
+ *   BW_CFG_SALVAGE            1        bw_decode_salvage decodes what a damaged
+ *                                      or cut segmented payload still holds; 0:
+ *                                      only whole payloads (as bw_decode_ctx)
  *
  * Coders:
  *
@@ -76,7 +88,8 @@
  *   freestanding 16 KiB check, the sanitizer's first pass, the benchmark's
  *   -Os stack figures: the switches of mk/core-device.mk, BW_CFG_SPEED=0,
  *   BW_CFG_ENCODE_PRED=0, BW_CFG_BUDGET_FILL_HALF=0, BW_CFG_FAST_BASIS=0,
- *   BW_CFG_FAST_BUDGET=0, BW_CFG_STATUS_TEXT=0 and BW_CFG_CODER_MS=0, which
+ *   BW_CFG_FAST_BUDGET=0, BW_CFG_SEGMENTS=0, BW_CFG_SALVAGE=0,
+ *   BW_CFG_STATUS_TEXT=0 and BW_CFG_CODER_MS=0, which
  *   keep encoder, decoder and streaming encoder within 16 KiB of flash.
  *
  * Two builds write byte-identical payloads for the same input and options
@@ -107,6 +120,13 @@
 #endif
 #ifndef BW_CFG_FAST_BUDGET
 #define BW_CFG_FAST_BUDGET 1
+#endif
+
+#ifndef BW_CFG_SEGMENTS
+#define BW_CFG_SEGMENTS 1
+#endif
+#ifndef BW_CFG_SALVAGE
+#define BW_CFG_SALVAGE 1
 #endif
 
 #ifndef BW_CFG_STATUS_TEXT

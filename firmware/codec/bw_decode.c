@@ -7,12 +7,76 @@
  */
 #include <string.h>
 
+#include "bw_crc32.h"
 #include "bw_internal.h"
+#include "bw_le.h"
 #include "bw_strip_coder.h"
 
-static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, const bw_header_t *h,
-                                  int32_t *samples, size_t samples_cap, int32_t *work,
-                                  size_t work_cap)
+/* What the segments of a decode came to (bw_decode_salvage's outputs). */
+typedef struct {
+    bool salvage;     /* the payload may be damaged or cut: decode what is whole */
+    uint8_t *seg_ok;  /* may be NULL */
+    size_t seg_cap;
+    uint8_t *vec_lost; /* may be NULL */
+    uint32_t lost;
+} seg_out_t;
+
+/* A segmented body (docs/FORMAT.md, Segments): its table, whose CRC covers
+ * the header, then each segment decoded afresh; with so->salvage the
+ * segments that are not whole within payload[len] or fail their CRC are
+ * lost (their coefficients zero), else any such is an error. */
+static bw_status_t decode_segments(const bw_plan_t *pl, int32_t *x, const uint8_t *p, size_t len,
+                                   const bw_header_t *h, bw_models_t *m, seg_out_t *so)
+{
+    uint32_t segs = h->segments, bands = pl->dims.bands;
+    size_t hl = h->header_len, tab = bw_segment_table_size(segs);
+    bool salvage = BW_CFG_SALVAGE && so->salvage;
+    size_t avail = salvage ? len - hl : h->body_len;
+    size_t nv = (size_t)pl->dims.n_in * pl->dims.n_out, pos = tab;
+    const uint8_t *t = p + hl;
+    if (tab > avail || bw_get_u32(t + tab - 4u) != bw_crc32(p, hl + tab - 4u))
+        return salvage ? BW_ERR_CRC : BW_ERR_CORRUPT;
+    unsigned coder = bw_coder_of(h->flags);
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    for (uint32_t s = 0; s < segs; s++) {
+        size_t first = (size_t)s * pl->seg_vec, nvec = nv - first;
+        uint32_t sl = bw_get_u32(t + (size_t)s * BW_SEG_ENTRY);
+        if (nvec > pl->seg_vec)
+            nvec = pl->seg_vec;
+        bool ok = pos <= avail && sl <= avail - pos &&
+                  bw_crc32(p + hl + pos, sl) == bw_get_u32(t + (size_t)s * BW_SEG_ENTRY + 4u);
+        bw_iter_segment(&it);
+        if (ok) {
+            bw_status_t st = bw_decode_coefs(&it, nvec * bands, p + hl + pos, sl, coder, m);
+            if (st != BW_OK && !salvage)
+                return st;
+            ok = st == BW_OK;
+        } else if (!salvage) {
+            return BW_ERR_CORRUPT;
+        }
+        if (BW_CFG_SALVAGE && !ok) { /* lost: its vectors zero, the iterator past them */
+            so->lost++;
+            bw_iter_at(&it, pl, x, first);
+            for (size_t k = 0; k < nvec; k++) {
+                size_t at = (size_t)(it.vec - x) / bands;
+                memset(it.vec, 0, bands * sizeof *x);
+                if (so->vec_lost)
+                    so->vec_lost[at] = 1;
+                bw_iter_next_vec(&it);
+            }
+        }
+        if (so->seg_ok && s < so->seg_cap)
+            so->seg_ok[s] = ok;
+        pos = pos <= avail && sl <= avail - pos ? pos + sl : avail + 1u;
+    }
+    /* a whole body is its segments exactly */
+    return salvage || pos == avail ? BW_OK : BW_ERR_CORRUPT;
+}
+
+static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, size_t len,
+                                  const bw_header_t *h, int32_t *samples, size_t samples_cap,
+                                  int32_t *work, size_t work_cap, seg_out_t *so)
 {
     const bw_dims_t *d = &h->dims;
     size_t n = bw_dims_samples(d);
@@ -22,9 +86,16 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, const bw_head
     bw_plan_make(&pl, d, h->basis, h->mode,
                  h->mode == BW_MODE_MAX_ERROR ? h->max_error : h->step_q8, h->flags, 0u,
                  work + n, work + n);
+    pl.seg_vec = h->segment_vectors;
     bw_plan_tables(&pl);
-    bw_status_t st = bw_decode_body(&pl, work, p + h->header_len, h->body_len,
-                                    bw_coder_of(h->flags), &ctx->models);
+    seg_out_t strict = {false, NULL, 0, NULL, 0};
+    if (!so)
+        so = &strict;
+    if (BW_CFG_SALVAGE && so->vec_lost)
+        memset(so->vec_lost, 0, (size_t)d->n_in * d->n_out);
+    bw_status_t st = BW_CFG_SEGMENTS && pl.seg_vec ? decode_segments(&pl, work, p, len, h, &ctx->models, so)
+                                : bw_decode_body(&pl, work, p + h->header_len, h->body_len,
+                                                 bw_coder_of(h->flags), &ctx->models);
     if (st != BW_OK)
         return st;
     if (pl.basis == BW_BASIS_PRED) {
@@ -55,7 +126,41 @@ bw_status_t bw_decode_ctx(bw_ctx_t *ctx, const uint8_t *payload, size_t len, int
         *hdr_out = h;
     if (st != BW_OK)
         return st;
-    return decode_checked(ctx, payload, &h, samples, samples_cap, work, work_cap);
+    return decode_checked(ctx, payload, len, &h, samples, samples_cap, work, work_cap, NULL);
+}
+
+bw_status_t bw_decode_salvage(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
+                              int32_t *samples, size_t samples_cap, int32_t *work,
+                              size_t work_cap, bw_header_t *hdr_out, uint8_t *seg_ok,
+                              size_t seg_cap, uint8_t *vec_lost)
+{
+    bw_header_t h;
+    if (!ctx || !payload || !samples || !work)
+        return BW_ERR_ARG;
+    bw_status_t st = bw_header_read(payload, len, &h);
+    if (!BW_CFG_SALVAGE)
+        seg_cap = 0;
+    seg_out_t so = {st != BW_OK, seg_ok, seg_cap, vec_lost, 0};
+    if (BW_CFG_SALVAGE && (st == BW_ERR_CRC || st == BW_ERR_HEADER)) {
+        /* not whole: the header's fields as they read, which the segment
+         * table's CRC vouches for; a payload without segments, or with
+         * the host's tail (whose place a cut moves), is lost whole */
+        bw_header_t f;
+        memset(&f, 0, sizeof f);
+        if (bw_header_parse_fields(payload, len, &f) == BW_OK && f.segment_vectors &&
+            f.payload_len - BW_TRAILER_SIZE == f.header_len + f.body_len) {
+            h = f;
+            st = BW_OK;
+        }
+    }
+    if (hdr_out)
+        *hdr_out = h;
+    if (st != BW_OK)
+        return st;
+    st = decode_checked(ctx, payload, len, &h, samples, samples_cap, work, work_cap, &so);
+    if (st == BW_OK && seg_ok && !h.segment_vectors && seg_cap)
+        seg_ok[0] = 1;
+    return st == BW_OK && so.lost ? BW_ERR_INCOMPLETE : st;
 }
 
 bw_status_t bw_decode(const uint8_t *payload, size_t len, int32_t *samples, size_t samples_cap,
@@ -75,5 +180,176 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
     bw_status_t st = bw_header_parse_fields(payload, len, &h); /* every field but crc */
     if (st != BW_OK)
         return st;
-    return decode_checked(&ctx, payload, &h, samples, samples_cap, work, work_cap);
+    return decode_checked(&ctx, payload, len, &h, samples, samples_cap, work, work_cap, NULL);
+}
+
+/* ---- one incoming direction ------------------------------------------------ */
+
+#define PATH_BLOCKS (1u + 3u * BW_MAX_LEVEL)
+
+/* The in-place positions of the incoming blocks that row t of a level-L
+ * incoming hemisphere is rebuilt from: its base's scaling block, then per
+ * level the three detail blocks below its ancestor (the centre child is the
+ * parent's own block); 1 + 3 L of them. */
+static unsigned path_blocks(uint32_t t, unsigned L, uint32_t *pos)
+{
+    unsigned n = 0;
+    pos[n++] = (t >> (2u * L)) << (2u * L);
+    for (unsigned j = 0; j < L; j++) {
+        uint32_t p = t >> (2u * (L - j)); /* the ancestor at level j */
+        for (uint32_t m = 1; m <= 3u; m++)
+            pos[n++] = (4u * p + m) << (2u * (L - j - 1u));
+    }
+    return n;
+}
+
+/* a few indices in ascending order (insertion) */
+static void sort_u32(uint32_t *v, unsigned n)
+{
+    for (unsigned i = 1; i < n; i++)
+        for (unsigned j = i; j && v[j - 1u] > v[j]; j--) {
+            uint32_t t = v[j];
+            v[j] = v[j - 1u];
+            v[j - 1u] = t;
+        }
+}
+
+/* Decodes the vectors [r[k][0], r[k][1]) of the coding order (ranges sorted,
+ * each within the measurement): the segments that hold them, or a body in
+ * one piece up to the last. */
+static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t *p,
+                                 const bw_header_t *h, bw_models_t *m, size_t (*r)[2],
+                                 unsigned nr)
+{
+    uint32_t b = pl->dims.bands, V = pl->seg_vec;
+    unsigned coder = bw_coder_of(h->flags);
+    bw_iter_t it;
+    if (!V) { /* whole strips: a strip's presence is of all its 32 values */
+        size_t c = (r[nr - 1u][1] * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
+        bw_iter_init(&it, pl, x);
+        return bw_decode_coefs(&it, c < pl->n ? c : pl->n, p + h->header_len, h->body_len,
+                               coder, m);
+    }
+    const uint8_t *t = p + h->header_len;
+    size_t tab = bw_segment_table_size(h->segments), nv = (size_t)pl->dims.n_in * pl->dims.n_out;
+    if (tab > h->body_len || bw_get_u32(t + tab - 4u) != bw_crc32(p, h->header_len + tab - 4u))
+        return BW_ERR_CRC;
+    size_t pos = tab; /* where segment `next` begins */
+    uint32_t next = 0;
+    for (unsigned k = 0; k < nr; k++) {
+        for (size_t s = r[k][0] / V; s <= (r[k][1] - 1u) / V; s++) {
+            if (s < next)
+                continue; /* decoded for an earlier range */
+            for (; next < s; next++)
+                pos += bw_get_u32(t + (size_t)next * BW_SEG_ENTRY);
+            uint32_t sl = bw_get_u32(t + s * BW_SEG_ENTRY);
+            if (pos > h->body_len || sl > h->body_len - pos ||
+                bw_crc32(t + pos, sl) != bw_get_u32(t + s * BW_SEG_ENTRY + 4u))
+                return BW_ERR_CRC;
+            size_t first = s * V, cnt = nv - first < V ? nv - first : V;
+            bw_iter_at(&it, pl, x, first);
+            bw_iter_segment(&it);
+            bw_status_t st = bw_decode_coefs(&it, cnt * b, t + pos, sl, coder, m);
+            if (st != BW_OK)
+                return st;
+            pos += sl;
+            next = (uint32_t)s + 1u;
+        }
+    }
+    return BW_OK;
+}
+
+bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
+                               int32_t *samples, size_t samples_cap, int32_t *work,
+                               size_t work_cap, bw_header_t *hdr_out)
+{
+    bw_header_t h;
+    if (!ctx || !payload || !samples || !work)
+        return BW_ERR_ARG;
+    /* in segments, the table's CRC and those of the segments read vouch
+     * for what is used: no pass over the whole payload */
+    bw_status_t st = bw_header_parse_fields(payload, len, &h);
+    if (st == BW_OK && !(BW_CFG_SEGMENTS && h.segment_vectors))
+        st = bw_header_read(payload, len, &h);
+    if (hdr_out)
+        *hdr_out = h;
+    if (st != BW_OK)
+        return st;
+    const bw_dims_t *d = &h.dims;
+    size_t n = bw_dims_samples(d), no = d->n_out, b = d->bands, row = no * b;
+    if (d->shape == BW_SHAPE_REFLECTANCE || in >= d->n_in || (h.flags & BW_FLAG_RECIPROCAL))
+        return BW_ERR_ARG;
+    if (samples_cap < row || work_cap < bw_work_bound(n, d->bands))
+        return BW_ERR_WORK;
+    bw_plan_t pl;
+    bw_plan_make(&pl, d, h.basis, h.mode, h.mode == BW_MODE_MAX_ERROR ? h.max_error : h.step_q8,
+                 h.flags, 0u, work + n, work + n);
+    pl.seg_vec = BW_CFG_SEGMENTS ? h.segment_vectors : 0u;
+    bw_plan_tables(&pl);
+    bool full = bw_has_in(d);
+    unsigned Li = d->level_in, nb = 0, nrow = 1;
+    /* the rows: this one, and the one a full BRDF's mirrored half was coded
+     * against; the blocks they come from, in coding order */
+    uint32_t rows[2] = {in, in}, ci[2u * PATH_BLOCKS];
+    if (full && pl.mirror && in >= d->n_in / 2u)
+        rows[nrow++] = bw_mirror_index(in, Li);
+    for (unsigned k = 0; k < nrow; k++) {
+        uint32_t pos[PATH_BLOCKS];
+        unsigned np = full ? path_blocks(rows[k], Li, pos) : 1u;
+        for (unsigned j = 0; j < np; j++)
+            ci[nb++] = full ? bw_cf_index(pos[j], Li) : rows[k];
+    }
+    sort_u32(ci, nb);
+    size_t r[2u * PATH_BLOCKS][2];
+    unsigned nr = 0;
+    uint32_t first = in; /* prediction: from its segment's first spectrum */
+    if (pl.basis == BW_BASIS_PRED)
+        first = pl.seg_vec ? in / pl.seg_vec * pl.seg_vec : 0u;
+    for (unsigned k = 0; k < nb; k++)
+        if (!nr || ci[k] != ci[k - 1u]) {
+            r[nr][0] = (size_t)(k || pl.basis != BW_BASIS_PRED ? ci[k] : first) * no;
+            r[nr++][1] = ((size_t)ci[k] + 1u) * no;
+        }
+    st = decode_ranges(&pl, work, payload, &h, &ctx->models, r, nr);
+    if (st != BW_OK)
+        return st;
+    int32_t *x = work + (size_t)in * row;
+    if (pl.basis == BW_BASIS_PRED) {
+        bw_plan_t sub = pl;
+        sub.dims.n_in = in - first + 1u;
+        bw_predict(&sub, work + (size_t)first * row, NULL, false);
+    } else {
+        for (unsigned k = 0; k < nr && pl.step_q8 > BW_STEP_ONE_Q8; k++)
+            bw_dequant_block(&pl, work, (uint32_t)(r[k][0] / no));
+        for (unsigned k = 0; k < nrow; k++) {
+            int32_t *y = work + (size_t)rows[k] * row;
+            if (full)
+                bw_biohaar_inv_path(work, Li, row, rows[k]);
+            if (bw_has_out(d))
+                bw_biohaar_inv(y, d->level_out, b);
+            for (size_t o = 0; pl.spec_levels && o < no; o++)
+                bw_spec_inv(y + o * b, (uint32_t)b, pl.basis, pl.spec_levels, pl.tmp);
+        }
+        if (pl.mirror) { /* one row: the symmetry steps of a plan of it */
+            bw_plan_t sub = pl;
+            sub.dims.n_in = 1u;
+            sub.dims.shape = BW_SHAPE_BRDF_ISO;
+            if (!full) {
+                bw_symmetry(&sub, x, false);
+            } else if (nrow == 2u) {
+                const int32_t *mr = work + (size_t)rows[1] * row;
+                for (uint32_t o = 0; o < no; o++) {
+                    const int32_t *pv = mr + (size_t)bw_mirror_index(o, d->level_out) * b;
+                    for (size_t k = 0; k < b; k++)
+                        x[o * b + k] = (int32_t)((uint32_t)x[o * b + k] + (uint32_t)pv[k]);
+                }
+            }
+        }
+    }
+    uint32_t pq = pl.basis == BW_BASIS_PRED ? 1u : pl.prequant; /* prediction: none left */
+    for (size_t k = 0; k < row; k++) {
+        int64_t v = (int64_t)x[k] * pq;
+        samples[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
+    }
+    return BW_OK;
 }

@@ -114,6 +114,38 @@ static bool auto_rice(const bw_plan_t *pl, bw_params_t *chosen, unsigned mode, i
            ((uint64_t)*len * 8u << 16) * 256u <= est * BW_AUTO_RICE_Q8;
 }
 
+/* A segmented body (docs/FORMAT.md, Segments) at body[cap] (NULL: only
+ * counts): the table, then each segment's vectors coded afresh, its length
+ * and CRC-32 in the table (the table's own CRC is the caller's, after the
+ * header). Returns the body's size; *over: it did not fit cap. */
+static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se, uint8_t *body,
+                            size_t cap, unsigned coder, bool *over)
+{
+    uint32_t segs = bw_plan_segments(pl);
+    size_t nv = (size_t)pl->dims.n_in * pl->dims.n_out, pos = bw_segment_table_size(segs);
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    *over = body && pos > cap;
+    for (uint32_t s = 0; s < segs; s++) {
+        size_t first = (size_t)s * pl->seg_vec, nvec = nv - first;
+        size_t at = pos < cap ? pos : cap;
+        if (nvec > pl->seg_vec)
+            nvec = pl->seg_vec;
+        bw_iter_segment(&it);
+        bw_strip_enc_init(se, body ? body + at : NULL, cap - at, coder);
+        bw_code_vectors(&it, se, nvec);
+        size_t sl = bw_strip_enc_finish(se);
+        if (body && (bw_strip_enc_overflow(se) || sl > cap - at)) {
+            *over = true;
+        } else if (body) {
+            bw_put_u32(body + (size_t)s * BW_SEG_ENTRY, (uint32_t)sl);
+            bw_put_u32(body + (size_t)s * BW_SEG_ENTRY + 4u, bw_crc32(body + at, sl));
+        }
+        pos += sl;
+    }
+    return pos;
+}
+
 bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned mode,
                            int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
 {
@@ -137,15 +169,27 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
             return BW_ERR_OUTPUT_FULL;
         body_cap = cap - hl - BW_TRAILER_SIZE;
     }
-    bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, bw_coder_of(pa->flags));
-    bw_code_body(pl, work, se);
-    size_t body = bw_strip_enc_finish(se);
+    size_t body;
+    bool over;
+    if (BW_CFG_SEGMENTS && pl->seg_vec) {
+        body = code_segments(pl, work, se, counting ? NULL : out + hl, body_cap,
+                             bw_coder_of(pa->flags), &over);
+    } else {
+        bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, bw_coder_of(pa->flags));
+        bw_code_body(pl, work, se);
+        body = bw_strip_enc_finish(se);
+        over = bw_strip_enc_overflow(se);
+    }
     *len = hl + body + BW_TRAILER_SIZE;
     if (counting)
         return BW_OK;
-    if (bw_strip_enc_overflow(se) || *len > UINT32_MAX)
+    if (over || *len > UINT32_MAX)
         return BW_ERR_OUTPUT_FULL;
     bw_header_write(out, pl, pa, mode);
+    if (BW_CFG_SEGMENTS && pl->seg_vec) { /* the CRC of the header and the segment table */
+        size_t t = bw_segment_table_size(bw_plan_segments(pl)) - 4u;
+        bw_put_u32(out + hl + t, bw_crc32(out, hl + t));
+    }
     bw_put_u32(out + hl + body, bw_crc32(out, hl + body));
     return BW_OK;
 }
@@ -193,6 +237,8 @@ static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const
     int32_t *tables = work + bw_dims_samples(dims);
     bw_plan_make(pl, dims, basis, pa->mode, mode_param(pa), pa->flags, pa->vec_thresh_q8, tables,
                  tables);
+    uint32_t nv = dims->n_in * dims->n_out;
+    pl->seg_vec = !BW_CFG_SEGMENTS ? 0u : pa->segment_vectors < nv ? pa->segment_vectors : nv;
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
@@ -305,6 +351,8 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
     if (!bw_ext_valid(pa->ext, pa->ext_len) || pa->effort > BW_EFFORT_FAST ||
         !bw_coder_choice_ok(pa))
         return BW_ERR_ARG;
+    if (!BW_CFG_SEGMENTS && pa->segment_vectors)
+        return BW_ERR_NOT_BUILT;
     bool pred = BW_CFG_ENCODE_PRED && bw_pred_applies(dims, pa->mode, pa->flags);
 
     bw_plan_t pl;

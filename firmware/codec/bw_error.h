@@ -26,7 +26,8 @@ extern "C" {
     X(BW_ERR_MISMATCH, -14, "operands have different sizes")                        \
     X(BW_ERR_TRAILING, -15, "payload length does not match its header")                    \
     X(BW_ERR_EXTENSION, -16, "payload needs an extension this decoder does not know") \
-    X(BW_ERR_NOT_BUILT, -17, "this build leaves out the coder the payload or request needs")
+    X(BW_ERR_NOT_BUILT, -17, "this build leaves out the coder the payload or request needs") \
+    X(BW_ERR_INCOMPLETE, -18, "payload damaged or cut: segments lost, the rest decoded")
 
 typedef enum {
 #define BW_X_ENUM(name, value, msg) name = value,

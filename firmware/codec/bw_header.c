@@ -68,20 +68,32 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     }
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
-    h[2] = pa->ext_len || (pa->flags & BW_FLAG_MS) ? BW_VERSION_EXT : BW_VERSION;
+    /* the segments' record after the caller's: type, length, V */
+    uint8_t seg[7];
+    size_t sl = 0;
+    if (BW_CFG_SEGMENTS && pl->seg_vec) {
+        seg[0] = BW_EXT_SEGMENTS;
+        sl = put_varint(seg + 2, pl->seg_vec);
+        seg[1] = (uint8_t)sl;
+        sl += 2u;
+    }
+    uint32_t el = pa->ext_len + (uint32_t)sl;
+    h[2] = el || (pa->flags & BW_FLAG_MS) ? BW_VERSION_EXT : BW_VERSION;
     h[3] = (uint8_t)b3;
     h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
-    h[5] = (uint8_t)((pa->flags & BW_FLAGS_KNOWN) | (pa->ext_len ? BW_FLAG_EXT : 0u));
+    h[5] = (uint8_t)((pa->flags & BW_FLAGS_KNOWN) | (el ? BW_FLAG_EXT : 0u));
     h[6] = (uint8_t)pl->spec_levels;
-    if (pa->ext_len) {
+    if (el) {
         /* the records' length, then the records (bw_ext_valid checked them) */
         uint8_t len_field[5];
-        size_t k = put_varint(len_field, pa->ext_len);
+        size_t k = put_varint(len_field, el);
         if (out) {
             memcpy(out + n, len_field, k);
-            memcpy(out + n + k, pa->ext, pa->ext_len);
+            if (pa->ext_len)
+                memcpy(out + n + k, pa->ext, pa->ext_len);
+            memcpy(out + n + k + pa->ext_len, seg, sl);
         }
-        n += k + pa->ext_len;
+        n += k + el;
     }
     return n;
 }
@@ -106,27 +118,37 @@ bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
 /* The bytes BW_EXT_FLOAT_EXACT sets apart at the body's end (its first
  * field; 0 without it), or BW_ERR_HEADER for a malformed record,
  * BW_ERR_EXTENSION for a critical type this decoder does not know. */
-static int32_t ext_scan(const uint8_t *area, size_t len)
+static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec)
 {
     size_t pos = 0;
     uint8_t type;
     const uint8_t *d;
     uint32_t dl, tail = 0;
     int32_t st = 0;
+    *seg_vec = 0;
     while (pos < len) {
         if (!bw_ext_next(area, len, &pos, &type, &d, &dl) ||
             (type == BW_EXT_FLOAT_EXACT && (!get_varint(d, d + dl, &tail) || tail > INT32_MAX)))
             return BW_ERR_HEADER;
-        if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u)
+        if (type == BW_EXT_SEGMENTS && !BW_CFG_SEGMENTS) {
+            st = BW_ERR_NOT_BUILT;
+        } else if (type == BW_EXT_SEGMENTS) {
+            /* one record, its data one varint V >= 1 */
+            if (*seg_vec || get_varint(d, d + dl, seg_vec) != d + dl || !*seg_vec)
+                return BW_ERR_HEADER;
+        } else if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u) {
             st = BW_ERR_EXTENSION;
+        }
     }
     return st < 0 ? st : (int32_t)tail;
 }
 
-/* the encoder writes records without a tail: it codes no bytes past the body */
+/* the encoder writes records without a tail (it codes no bytes past the
+ * body) and without segments (its own record says those) */
 bool bw_ext_valid(const uint8_t *area, size_t len)
 {
-    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len) == 0;
+    uint32_t sv;
+    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &sv) == 0 && !sv;
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -156,6 +178,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     const uint8_t *q = p + BW_HEADER_FIXED, *end = p + len - BW_TRAILER_SIZE;
     bw_dims_t *d = &h->dims;
     h->version = p[2];
+    h->segment_vectors = 0;
     d->shape = p[3] & 3u;
     h->mode = (uint8_t)(p[3] >> 2 & 3u);
     h->basis = (uint8_t)(p[3] >> 4 & 3u);
@@ -197,7 +220,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
             return BW_ERR_HEADER;
         h->ext_off = (uint32_t)(q - p);
         h->ext_len = el;
-        int32_t tail = ext_scan(q, el);
+        int32_t tail = ext_scan(q, el, &h->segment_vectors);
         if (tail < 0)
             return (bw_status_t)tail;
         q += el;
@@ -219,5 +242,13 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) || (pc != BW_OK && pc != BW_ERR_NOT_BUILT) ||
         h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands))
         return BW_ERR_HEADER;
+    /* segments of V vectors, V at most their number (one encoding) */
+    h->segments = 1u;
+    if (BW_CFG_SEGMENTS && h->segment_vectors) {
+        uint32_t nvec = d->n_in * d->n_out, sv = h->segment_vectors;
+        if (sv > nvec)
+            return BW_ERR_HEADER;
+        h->segments = (nvec - 1u) / sv + 1u;
+    }
     return pc; /* a valid header, or one this build cannot decode */
 }

@@ -43,6 +43,7 @@ typedef struct {
     bool mirror;            /* BW_FLAG_MIRROR */
     bool recip;             /* BW_FLAG_RECIPROCAL */
     bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
+    uint32_t seg_vec;       /* vectors per segment (BW_EXT_SEGMENTS), 0: one body */
     int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
     int32_t *tmp;           /* [bands] lifting scratch                           */
@@ -156,6 +157,9 @@ bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsign
 /* done: the first spectral levels already applied (bw_load). */
 void bw_transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done);
 void bw_transform_inv(const bw_plan_t *pl, int32_t *x);
+/* The direction index of the mirror image (x, -y, z) of direction o of a
+ * level (docs/FORMAT.md, Transform). */
+uint32_t bw_mirror_index(uint32_t o, unsigned level);
 /* The mirror and reciprocity steps of the plan's flags; forward, BW_ERR_RANGE
  * if a difference leaves +-BW_SAMPLE_MAX. */
 bw_status_t bw_symmetry(const bw_plan_t *pl, int32_t *x, bool forward);
@@ -169,6 +173,9 @@ void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
 /* Every coefficient of the plan, forward (thresholds, then the dead-zone
  * quantiser with the plan's rounding offsets) or back. */
 void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);
+/* The block of coarse-to-fine incoming index i back (the inverse
+ * quantiser of its coefficients alone). */
+void bw_dequant_block(const bw_plan_t *pl, int32_t *x, uint32_t i);
 /* One outgoing vector of parent level j (-1: scaling) forward, as
  * bw_quantise does where there is no incoming transform (the streaming
  * encoder's shapes; no rounding offsets). */
@@ -220,6 +227,7 @@ typedef struct {
     const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
     const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
     unsigned cls_dir;
+    size_t vi, seg0; /* the vector's index in coding order; its segment's first */
     uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
     unsigned qi;
     bw_stream_queue_t q;
@@ -229,6 +237,29 @@ typedef struct {
 void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x);
 /* Moves to the next vector in coding order. */
 void bw_iter_next_vec(bw_iter_t *it);
+/* The iterator at vector vi of the coding order (from its block's first). */
+void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi);
+/* The coarse-to-fine index of the coefficient at in-place position t of a
+ * level-L hemisphere (bw_biohaar_pos's inverse). */
+uint32_t bw_cf_index(uint32_t t, unsigned L);
+/* A segment begins at the current vector: from here on no context comes
+ * from a vector before it (no previous vector for this one, no parent coded
+ * before it). */
+void bw_iter_segment(bw_iter_t *it);
+
+/* ---- segments ------------------------------------------------------------ */
+
+/* The number of segments of a plan: ceil(vectors / seg_vec), 1 without. */
+static inline uint32_t bw_plan_segments(const bw_plan_t *pl)
+{
+    uint32_t nv = pl->dims.n_in * pl->dims.n_out;
+    return pl->seg_vec ? (nv - 1u) / pl->seg_vec + 1u : 1u;
+}
+/* The segment table at the body's start: per segment its length and its
+ * CRC-32 (4 bytes each, little-endian), then the CRC-32 of the payload
+ * from its first byte to there. */
+#define BW_SEG_ENTRY 8u
+static inline size_t bw_segment_table_size(uint32_t segs) { return BW_SEGMENT_TABLE_SIZE(segs); }
 
 /* The next coefficient, its class and where its contexts come from: the
  * parent (directional, else spectral) and the same band of the previous

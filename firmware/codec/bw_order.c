@@ -57,6 +57,20 @@ static void stream_leaf(unsigned L, uint32_t t, bw_stream_queue_t *q)
     }
 }
 
+/* The coarse-to-fine index of the outgoing coefficient at in-place position
+ * t of a level-L hemisphere: child d (1..3) of parent P at level k - 1 is
+ * 4^k + 3 P + d - 1 (its last non-zero child digit, at depth k); a scaling
+ * coefficient is its base triangle's number. */
+uint32_t bw_cf_index(uint32_t t, unsigned L)
+{
+    for (unsigned k = L; k >= 1u; k--) {
+        uint32_t d = (t >> (2u * (L - k))) & 3u;
+        if (d)
+            return (1u << (2u * k)) + 3u * (t >> (2u * (L - k + 1u))) + d - 1u;
+    }
+    return t >> (2u * L);
+}
+
 static void iter_vec(bw_iter_t *it)
 {
     const bw_plan_t *pl = it->pl;
@@ -85,6 +99,41 @@ static void iter_vec(bw_iter_t *it)
                                      ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) *
                                 b;
     it->cls_dir = bw_level_cls(pl, level);
+    /* no context from before the segment: the parent of a segment that
+     * began in this block may lie before it */
+    size_t first = (size_t)it->i * pl->dims.n_out;
+    unsigned L = pl->dims.level_out;
+    if (BW_CFG_SEGMENTS && it->par && it->seg0 > first &&
+        first + bw_cf_index(pos_out & ~(3u << (2u * (L - 1u - (unsigned)level))), L) < it->seg0)
+        it->par = NULL;
+    if (BW_CFG_SEGMENTS && it->vi == it->seg0)
+        it->prev = NULL;
+}
+
+void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi)
+{
+    /* the first vector of vi's block, then a step at a time to vi */
+    uint32_t no = pl->dims.n_out;
+    it->pl = pl;
+    it->x = x;
+    it->i = (uint32_t)(vi / no);
+    it->o = it->k = 0;
+    it->leaf = 0;
+    it->qi = it->q.n = 0;
+    bw_walk_init(&it->w);
+    it->vec = NULL;
+    it->vi = it->seg0 = (size_t)it->i * no;
+    if (it->i < pl->dims.n_in)
+        iter_vec(it);
+    while (it->vi < vi)
+        bw_iter_next_vec(it);
+}
+
+void bw_iter_segment(bw_iter_t *it)
+{
+    it->seg0 = it->vi;
+    it->prev = NULL;
+    it->par = NULL; /* coded before this vector, so before the segment */
 }
 
 void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x)
@@ -96,12 +145,15 @@ void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x)
     it->qi = it->q.n = 0;
     bw_walk_init(&it->w);
     it->vec = NULL;
+    it->vi = it->seg0 = 0;
     iter_vec(it);
 }
 
 void bw_iter_next_vec(bw_iter_t *it)
 {
     it->k = 0;
+    if (BW_CFG_SEGMENTS)
+        it->vi++;
     if (++it->o == it->pl->dims.n_out) {
         it->o = 0;
         it->i++;

@@ -164,6 +164,7 @@ BW_NOINLINE void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool
             pred_spectrum(v, cur, prev, bands, D, dd, true);
         else
             pred_spectrum(v, cur, prev, bands, D, dd, false);
-        prev = cur;
+        /* a segment's first spectrum has none before it */
+        prev = BW_CFG_SEGMENTS && pl->seg_vec && (s + 1u) % pl->seg_vec == 0u ? NULL : cur;
     }
 }

@@ -256,57 +256,77 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
 /* The step of every vector, walking the outgoing hemisphere as the coder
  * does; the subband steps are recomputed only when the vector's gain
  * changes (once per level). */
-void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
+/* The quantiser's cached steps of one gain (vec_steps), across vectors. */
+typedef struct {
+    spec_bands_t sb;
+    uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
+    uq16_t gio_q16; /* no vector has gain 0: the first one computes */
+} quant_cache_t;
+
+/* The block of coarse-to-fine incoming index i, forward or back. */
+static void quant_block(const bw_plan_t *pl, quant_cache_t *qc, int32_t *x,
+                        uint32_t i, bool forward, uint64_t thr)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
-    uint64_t thr = vec_thr(pl);
-    spec_bands_t sb;
-    uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
-    uq16_t steps_gio_q16 = 0; /* no vector has gain 0: the first one computes */
     size_t vecs = (size_t)d->n_in * d->n_out;
-    spec_bands(pl, &sb);
-    for (uint32_t i = 0; i < d->n_in; i++) {
-        uq16_t gi_q16 = bw_in_gain_q16(pl, i);
-        int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
-        for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
-            /* pass 0: the incoming space, drop a whole [outgoing][band] block
-             * whose energy stays below the threshold; pass 1: every vector */
+    uq16_t gi_q16 = bw_in_gain_q16(pl, i);
+    int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+    for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
+        /* pass 0: the incoming space, drop a whole [outgoing][band] block
+         * whose energy stays below the threshold; pass 1: every vector */
 #if BW_CFG_FAST_QUANT
-            if (pass && b == 1u && pl->round_cut == 0u) {
-                quant_one_band(pl, &sb, blk, gi_q16, forward);
-                continue;
-            }
+        if (pass && b == 1u && pl->round_cut == 0u) {
+            quant_one_band(pl, &qc->sb, blk, gi_q16, forward);
+            continue;
+        }
 #endif
-            uint64_t e = 0;
-            bw_walk_t w;
-            bw_walk_init(&w);
-            for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
-                uq16_t gio_q16;
-                uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
-                if (gio_q16 != steps_gio_q16) {
-                    vec_steps(pl, &sb, gio_q16, steps_q8);
-                    steps_gio_q16 = gio_q16;
-                }
-                int32_t *v = blk + (size_t)pos * b;
-                if (!pass) {
-                    e += vec_energy(&sb, steps_q8, v, thr - e);
-                } else if (forward && b > 1u && vec_energy(&sb, steps_q8, v, thr) < thr) {
-                    /* outgoing space: drop the spectral vector */
-                    memset(v, 0, (size_t)b * sizeof *v);
-                } else {
-                    /* the bands k with k vecs + vi < round_cut (< b vecs) */
-                    size_t vi = (size_t)i * d->n_out + o;
-                    vec_quant(&sb, steps_q8, v, forward, pl->round_q8,
-                              (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
-                }
+        uint64_t e = 0;
+        bw_walk_t w;
+        bw_walk_init(&w);
+        for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
+            uq16_t gio_q16;
+            uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
+            if (gio_q16 != qc->gio_q16) {
+                vec_steps(pl, &qc->sb, gio_q16, qc->steps_q8);
+                qc->gio_q16 = gio_q16;
             }
-            if (!pass && e < thr) {
-                memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
-                break;
+            int32_t *v = blk + (size_t)pos * b;
+            if (!pass) {
+                e += vec_energy(&qc->sb, qc->steps_q8, v, thr - e);
+            } else if (forward && b > 1u && vec_energy(&qc->sb, qc->steps_q8, v, thr) < thr) {
+                /* outgoing space: drop the spectral vector */
+                memset(v, 0, (size_t)b * sizeof *v);
+            } else {
+                /* the bands k with k vecs + vi < round_cut (< b vecs) */
+                size_t vi = (size_t)i * d->n_out + o;
+                vec_quant(&qc->sb, qc->steps_q8, v, forward, pl->round_q8,
+                          (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
             }
         }
+        if (!pass && e < thr) {
+            memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
+            break;
+        }
     }
+}
+
+void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
+{
+    uint64_t thr = vec_thr(pl);
+    quant_cache_t qc;
+    qc.gio_q16 = 0;
+    spec_bands(pl, &qc.sb);
+    for (uint32_t i = 0; i < pl->dims.n_in; i++)
+        quant_block(pl, &qc, x, i, forward, thr);
+}
+
+void bw_dequant_block(const bw_plan_t *pl, int32_t *x, uint32_t i)
+{
+    quant_cache_t qc;
+    qc.gio_q16 = 0;
+    spec_bands(pl, &qc.sb);
+    quant_block(pl, &qc, x, i, false, 0u);
 }
 
 void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j)

@@ -25,6 +25,37 @@ static void stream_plan(const bw_stream_t *s, bw_plan_t *pl)
     bw_plan_make(pl, &s->dims, pa->basis, pa->mode,
                  pa->mode == BW_MODE_MAX_ERROR ? pa->max_error : pa->step_q8, pa->flags,
                  pa->vec_thresh_q8, s->mem, s->mem + 2u * b);
+    if (BW_CFG_SEGMENTS)
+        pl->seg_vec = pa->segment_vectors;
+}
+
+/* The body's start: after the header and, with segments, their table. */
+static size_t body_at(const bw_plan_t *pl, size_t hl)
+{
+    return hl + (BW_CFG_SEGMENTS && pl->seg_vec ? bw_segment_table_size(bw_plan_segments(pl)) : 0u);
+}
+
+/* The strip coder from byte `at` of the body on (the table's room kept). */
+static void coder_at(bw_stream_t *s, size_t hl, size_t at)
+{
+    size_t room = s->cap - hl - BW_TRAILER_SIZE;
+    bw_strip_enc_init(&s->se, s->out + hl + (at < room ? at : room), at < room ? room - at : 0u,
+                      bw_coder_of(s->params.flags));
+}
+
+/* Ends the segment being coded: its length and CRC into the table. */
+static void segment_end(bw_stream_t *s, size_t hl)
+{
+    size_t len = bw_strip_enc_finish(&s->se), room = s->cap - hl - BW_TRAILER_SIZE;
+    uint8_t *e = s->out + hl + (size_t)s->seg * BW_SEG_ENTRY;
+    if (bw_strip_enc_overflow(&s->se) || s->seg_at + len > room) {
+        s->err = BW_ERR_OUTPUT_FULL;
+        return;
+    }
+    bw_put_u32(e, (uint32_t)len);
+    bw_put_u32(e + 4u, bw_crc32(s->out + hl + s->seg_at, len));
+    s->seg_at += len;
+    s->seg++;
 }
 
 static int32_t *pend_slot(const bw_stream_t *s, unsigned level, unsigned slot)
@@ -46,11 +77,15 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
         return st;
     if (!bw_ext_valid(pa->ext, pa->ext_len) || !bw_coder_choice_ok(pa))
         return BW_ERR_ARG; /* the records are read again at bw_stream_finish */
+    if (!BW_CFG_SEGMENTS && pa->segment_vectors)
+        return BW_ERR_NOT_BUILT;
     if (mem_len < bw_stream_mem_bound(dims->level_out, dims->bands))
         return BW_ERR_WORK;
     s->dims = *dims;
     s->params = *pa;
     s->params.flags |= BW_FLAG_STREAM_ORDER;
+    if (BW_CFG_SEGMENTS && s->params.segment_vectors > dims->n_in * dims->n_out)
+        s->params.segment_vectors = dims->n_in * dims->n_out;
     s->mem = mem;
     bw_plan_t pl;
     stream_plan(s, &pl);
@@ -60,12 +95,12 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     }
     bw_plan_tables(&pl);
     size_t hl = bw_header_write(NULL, &pl, &s->params, s->params.mode);
-    if (cap < hl + BW_TRAILER_SIZE)
+    if (cap < body_at(&pl, hl) + BW_TRAILER_SIZE)
         return BW_ERR_OUTPUT_FULL;
     s->out = out;
     s->cap = cap;
-    bw_strip_enc_init(&s->se, out + hl, cap - hl - BW_TRAILER_SIZE,
-                      bw_coder_of(s->params.flags));
+    s->seg_at = body_at(&pl, hl) - hl;
+    coder_at(s, hl, s->seg_at);
     s->err = BW_OK;
     return BW_OK;
 }
@@ -75,6 +110,13 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
  * and no previous vector. */
 static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
 {
+    if (BW_CFG_SEGMENTS && pl->seg_vec && s->emitted && s->emitted % pl->seg_vec == 0u) {
+        /* the next segment: a coder of its own */
+        size_t hl = bw_header_write(NULL, pl, &s->params, s->params.mode);
+        segment_end(s, hl);
+        coder_at(s, hl, s->seg_at);
+    }
+    s->emitted++;
     bw_quant_vector(pl, v, j);
     bw_strip_put_vector(&s->se, v, s->dims.bands, pl->spec_cls, bw_level_cls(pl, j), NULL, NULL);
 }
@@ -140,13 +182,25 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
         return s->err;
     if (s->pushed != (size_t)s->dims.n_in * s->dims.n_out)
         return s->err = BW_ERR_ARG; /* fewer spectra than the shape holds */
-    size_t body = bw_strip_enc_finish(&s->se);
     bw_plan_t pl;
     stream_plan(s, &pl);
+    size_t body;
+    if (BW_CFG_SEGMENTS && pl.seg_vec) {
+        segment_end(s, bw_header_write(NULL, &pl, &s->params, s->params.mode));
+        if (s->err != BW_OK)
+            return s->err;
+        body = s->seg_at;
+    } else {
+        body = bw_strip_enc_finish(&s->se);
+    }
     /* the header's room was kept at init */
     size_t hl = bw_header_write(s->out, &pl, &s->params, s->params.mode);
     if (bw_strip_enc_overflow(&s->se) || hl + body + BW_TRAILER_SIZE > UINT32_MAX)
         return s->err = BW_ERR_OUTPUT_FULL;
+    if (BW_CFG_SEGMENTS && pl.seg_vec) { /* the CRC of the header and the table */
+        size_t t = bw_segment_table_size(bw_plan_segments(&pl)) - 4u;
+        bw_put_u32(s->out + hl + t, bw_crc32(s->out, hl + t));
+    }
     bw_put_u32(s->out + hl + body, bw_crc32(s->out, hl + body));
     *len = hl + body + BW_TRAILER_SIZE;
     s->err = BW_ERR_ARG; /* finished: no more pushes */

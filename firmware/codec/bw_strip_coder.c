@@ -606,42 +606,47 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
     }
 }
 
+void bw_code_vectors(bw_iter_t *it, bw_strip_enc_t *se, size_t nvec)
+{
+    const bw_plan_t *pl = it->pl;
+    for (size_t n = 0; n < nvec; n++) {
+        put_vector(se, it->vec, pl->dims.bands, pl->spec_cls, it->cls_dir, it->par, it->prev);
+        bw_iter_next_vec(it);
+    }
+}
+
 /* ---- decoder --------------------------------------------------------------- */
 
-static bw_status_t decode_rice(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len)
+static bw_status_t decode_rice(bw_iter_t *it, size_t n, const uint8_t *body, size_t len)
 {
-    bw_iter_t it;
-    bw_iter_init(&it, pl, x);
     bw_rice_dec_t rd;
     bw_rice_dec_init(&rd, body, len);
     int32_t v[BW_STRIP];
-    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
-        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+    for (size_t base = 0; base < n; base += BW_STRIP) {
+        unsigned cnt = n - base < BW_STRIP ? (unsigned)(n - base) : BW_STRIP;
         if (!bw_rice_dec_strip(&rd, v, cnt))
             return BW_ERR_CORRUPT;
         for (unsigned b = 0; b < cnt; b++) {
             uint8_t cls;
             const int32_t *par, *prv;
-            *bw_iter_next(&it, &cls, &par, &prv) = v[b];
+            *bw_iter_next(it, &cls, &par, &prv) = v[b];
         }
     }
     return BW_OK;
 }
 
-static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, bw_models_t *m,
+static bw_status_t decode_rc(bw_iter_t *it, size_t n, bw_rc_dec_t *rc, bw_models_t *m,
                              unsigned coder)
 {
-    bw_iter_t it;
-    bw_iter_init(&it, pl, x);
     bw_strip_state_t st;
     memset(&st, 0, sizeof st);
-    for (size_t base = 0; base < pl->n; base += BW_STRIP) {
-        unsigned cnt = pl->n - base < BW_STRIP ? (unsigned)(pl->n - base) : BW_STRIP;
+    for (size_t base = 0; base < n; base += BW_STRIP) {
+        unsigned cnt = n - base < BW_STRIP ? (unsigned)(n - base) : BW_STRIP;
         int32_t *dst[BW_STRIP], v[BW_STRIP];
         const int32_t *par[BW_STRIP], *prv[BW_STRIP];
         uint8_t cls[BW_STRIP];
         for (unsigned b = 0; b < cnt; b++)
-            dst[b] = bw_iter_next(&it, &cls[b], &par[b], &prv[b]);
+            dst[b] = bw_iter_next(it, &cls[b], &par[b], &prv[b]);
         bool ok = BW_CFG_CODER_MS && coder == BW_CODER_MS
                       ? range_strip(true, m, NULL, rc, &st, cnt, v, cls, NULL, NULL, NULL, dst, par,
                                     prv)
@@ -654,13 +659,21 @@ static bw_status_t decode_rc(const bw_plan_t *pl, int32_t *x, bw_rc_dec_t *rc, b
     return rc->pos > rc->len + 4u ? BW_ERR_CORRUPT : BW_OK;
 }
 
-bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,
-                           unsigned coder, bw_models_t *m)
+bw_status_t bw_decode_coefs(bw_iter_t *it, size_t n, const uint8_t *body, size_t len,
+                            unsigned coder, bw_models_t *m)
 {
     if (coder == BW_CODER_RICE)
-        return decode_rice(pl, x, body, len);
+        return decode_rice(it, n, body, len);
     bw_models_init(m, coder);
     bw_rc_dec_t rc;
     bw_rc_dec_init(&rc, body, len);
-    return decode_rc(pl, x, &rc, m, coder);
+    return decode_rc(it, n, &rc, m, coder);
+}
+
+bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,
+                           unsigned coder, bw_models_t *m)
+{
+    bw_iter_t it;
+    bw_iter_init(&it, pl, x);
+    return bw_decode_coefs(&it, pl->n, body, len, coder, m);
 }

@@ -43,6 +43,13 @@ void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
 
 /* Codes the plan's coefficients x in coding order into se. */
 void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se);
+/* Codes the next nvec vectors of the iterator into se (a segment). */
+void bw_code_vectors(bw_iter_t *it, bw_strip_enc_t *se, size_t nvec);
+/* Decodes the next n coefficients of the iterator from a body of its own
+ * (a segment): Rice strips, or the range coder with the models m
+ * (initialised here). */
+bw_status_t bw_decode_coefs(bw_iter_t *it, size_t n, const uint8_t *body, size_t len,
+                            unsigned coder, bw_models_t *m);
 /* Decodes a body into the plan's coefficients x: Rice strips, or the range
  * coder with the models m (initialised here). */
 bw_status_t bw_decode_body(const bw_plan_t *pl, int32_t *x, const uint8_t *body, size_t len,

@@ -9,7 +9,7 @@
 /* The direction index of the mirror image (x, -y, z) of direction o at a
  * level: base triangle b goes to 3 - b, and in every child digit the
  * corners 2 and 3 trade places (0, 1, 2, 3 -> 0, 1, 3, 2). */
-BW_NOINLINE_SMALL static uint32_t mirror_index(uint32_t o, unsigned level)
+BW_NOINLINE_SMALL uint32_t bw_mirror_index(uint32_t o, unsigned level)
 {
     unsigned sh = 2u * level;
     uint32_t r = o & ((1u << sh) - 1u);
@@ -49,14 +49,14 @@ bw_status_t bw_symmetry(const bw_plan_t *pl, int32_t *x, bool forward)
                     a = o;
                     c = i;
                     if (o >= rows) {
-                        a = mirror_index(o, lo);
-                        c = mirror_index(i, lo);
+                        a = bw_mirror_index(o, lo);
+                        c = bw_mirror_index(i, lo);
                     }
                 }
             } else if (full ? i >= ni / 2u : o >= no / 2u) {
                 if (full)
-                    a = mirror_index(i, li);
-                c = mirror_index(o, lo);
+                    a = bw_mirror_index(i, li);
+                c = bw_mirror_index(o, lo);
             }
             size_t ps = ((size_t)a << sh) + c;
             if (ps >= s)

@@ -267,4 +267,18 @@ void bw_job_params(const bw_job_t *j, bw_params_t *p)
     p->offset_bits = j->offset_bits;
     p->ext = j->ext;
     p->ext_len = j->ext_len;
+    /* segments travel as the job's first record, BW_EXT_SEGMENTS with V (a
+     * varint): the encoder writes that record itself (a device that
+     * predates segments refuses the job: a critical record it does not
+     * know) */
+    const uint8_t *e = j->ext;
+    if (j->ext_len >= 3u && e[0] == BW_EXT_SEGMENTS && e[1] >= 1u && e[1] <= 5u &&
+        2u + (uint32_t)e[1] <= j->ext_len) {
+        uint32_t v = 0;
+        for (unsigned k = 0; k < e[1]; k++)
+            v |= (uint32_t)(e[2 + k] & 0x7Fu) << (7u * k);
+        p->segment_vectors = v;
+        p->ext = j->ext_len > 2u + e[1] ? e + 2u + e[1] : NULL;
+        p->ext_len = j->ext_len - 2u - e[1];
+    }
 }

@@ -139,7 +139,9 @@ bool bw_job_unpack(const uint8_t *in, size_t len, bw_job_t *job);
 
 /* The job of encoding samples of these dimensions with these parameters
  * (the host's side; source empty), and the parameters of a job (the
- * device's side). */
+ * device's side). Segments (bw_params_t.segment_vectors) travel as the
+ * job's first extension record, BW_EXT_SEGMENTS: the host puts it in
+ * front of p->ext (bw_job_make does not), bw_job_params takes it out. */
 void bw_job_make(bw_job_t *job, const bw_dims_t *dims, const bw_params_t *p);
 void bw_job_params(const bw_job_t *job, bw_params_t *p);
 

@@ -18,7 +18,9 @@
 extern "C" {
 #endif
 
-enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2 };
+/* CLI_EXIT_INCOMPLETE: the job was done with parts of its input lost (a
+ * damaged payload decoded in part) */
+enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2, CLI_EXIT_INCOMPLETE = 3 };
 
 /* The names in every message: the program ("brdfwave", "bwref") and the
  * command running ("encode"). The strings must outlive the command. */

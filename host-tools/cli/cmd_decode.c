@@ -15,6 +15,7 @@
 
 static const char decode_help[] =
     "usage: brdfwave decode -i IN.bwv -o OUT [--output-format F] [--max-samples N]\n"
+    "                       [--mask MASK.u8] [--incoming K]\n"
     "\n"
     "Decodes a payload in the encoder's layout, [incoming][outgoing][band], with\n"
     "its metadata (wavelengths, units, incidence angles, ...: 'brdfwave info').\n"
@@ -31,6 +32,17 @@ static const char decode_help[] =
     "  --max-samples N    refuse payloads that decode to more than N samples\n"
     "                     (default 67108864, 256 MiB of float32): a small payload\n"
     "                     can describe gigabytes\n"
+    "  --mask FILE        write the state of every sample, one byte each in the\n"
+    "                     output's layout: 0 exact, 1 approximate (rebuilt from\n"
+    "                     coarser levels: segments lost), 2 missing\n"
+    "  --incoming K       decode only incoming direction K of a BRDF (or spectrum K\n"
+    "                     of a set of spectra), as a reflectance (one spectrum): only\n"
+    "                     what it depends on is decoded (with --segments, only the\n"
+    "                     segments that hold it)\n"
+    "A payload coded in segments (encode --segments) that arrives damaged or cut\n"
+    "still decodes: every whole segment is decoded, the rest is rebuilt from the\n"
+    "coarser levels it has, and decode says how many samples that touched and\n"
+    "exits with status 3 (the output is written).\n"
     "On a terminal a progress line shows while the work takes more than a second.\n";
 
 static int parse_format(const char *v, void *dest)
@@ -61,15 +73,19 @@ static int format_of_name(const char *path)
 
 int bw_cmd_decode(int argc, char **argv)
 {
-    const char *inp = NULL, *outp = NULL;
+    const char *inp = NULL, *outp = NULL, *maskp = NULL;
     int fmt = -1;
-    uint32_t max_samples = 0;
+    uint32_t max_samples = 0, incoming = 0;
+    int has_incoming = 0;
     const cli_opt_t opts[] = {
         {"input", 'i', CLI_STRING, .dest = &inp},
         {"output", 'o', CLI_STRING, .dest = &outp},
         {"output-format", 0, CLI_CALL, .dest = &fmt, .parse = parse_format,
          .what = "--output-format must be f32, i32, u16, raw, npy, csv or envi"},
         {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = BW_MAX_SAMPLES},
+        {"mask", 0, CLI_STRING, .dest = &maskp},
+        {"incoming", 0, CLI_U32, .dest = &incoming, .lo = 0, .hi = UINT32_MAX - 1u,
+         .seen = &has_incoming},
         {NULL}};
     int st;
     if (!cli_parse(argc, argv, opts, decode_help, NULL, &st))
@@ -78,6 +94,8 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_usage("needs -i IN.bwv and -o OUT");
     if (fmt < 0)
         fmt = format_of_name(outp);
+    if (has_incoming && maskp)
+        return cli_usage("--mask is for a whole decode, not with --incoming");
     if (fmt == BWH_OUT_ENVI && !strcmp(outp, "-"))
         return cli_usage("--output-format envi writes a header beside its data: not to '-'");
     uint8_t *p;
@@ -93,15 +111,25 @@ int bw_cmd_decode(int argc, char **argv)
      * beyond float32 where the integers are fine) */
     int ints_only = fmt == BWH_OUT_I32 || fmt == BWH_OUT_U16;
     cli_progress_start("%zu bytes", len);
-    if (bwh_decode_limit(p, len, max_samples, &h, &s, ints_only ? NULL : &v) != 0 ||
-        bwh_meta_of_payload(p, len, &h, &meta) != 0) {
+    uint8_t *mask = NULL;
+    bwh_salvage_t sv;
+    bw_dims_t rowd;
+    int got = has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
+                                                 ints_only ? NULL : &v)
+                           : bwh_decode_salvage(p, len, max_samples, &h, &s,
+                                                ints_only ? NULL : &v, maskp ? &mask : NULL, &sv);
+    if (got < 0 || bwh_meta_of_payload(p, len, &h, &meta) != 0 ||
+        (has_incoming && bwh_meta_row(&meta, &h.dims, incoming) != 0)) {
         free(p);
         free(s);
         free(v);
+        free(mask);
         cli_progress_end();
         return cli_fail("%s: %s", inp, bwh_last_error());
     }
     free(p);
+    if (has_incoming)
+        h.dims = rowd;
     size_t n = bw_dims_samples(&h.dims);
     if (v)
         bwh_meta_put_missing(&meta, v, n);
@@ -116,9 +144,23 @@ int bw_cmd_decode(int argc, char **argv)
     d.meta = &meta;
     cli_progress_text("%zu samples, writing", n);
     int rc = bwh_output_write(outp, fmt, &d);
+    if (!rc && maskp)
+        rc = bwh_write_file(maskp, mask, n);
     free(s);
     free(v);
+    free(mask);
     bwh_meta_free(&meta);
     cli_progress_end();
-    return rc ? cli_fail("%s", bwh_last_error()) : CLI_EXIT_OK;
+    if (rc)
+        return cli_fail("%s", bwh_last_error());
+    if (got == 1) {
+        cli_fail("%s: damaged or cut: %u of %u segments lost; %zu of %zu samples (%.2f %%) "
+                 "rebuilt from coarser levels, %zu (%.2f %%) missing%s",
+                 inp, sv.lost_segments, sv.segments, sv.approx, n,
+                 n ? 100.0 * (double)sv.approx / (double)n : 0.0, sv.missing,
+                 n ? 100.0 * (double)sv.missing / (double)n : 0.0,
+                 maskp ? "" : " (--mask FILE marks them)");
+        return CLI_EXIT_INCOMPLETE;
+    }
+    return CLI_EXIT_OK;
 }

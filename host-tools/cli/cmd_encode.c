@@ -23,7 +23,7 @@ static const char encode_help[] =
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
     "                       [--scale S] [--relative]\n"
-    "                       [--coder range|ms|rice|auto] [-q]\n"
+    "                       [--coder range|ms|rice|auto] [--segments N] [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
     "\n"
@@ -85,6 +85,11 @@ static const char encode_help[] =
     "                    --lossless, --max-error or a fixed --basis; not --level-in)\n"
     "  --relative        with --bytes or --ratio, float input > 0: code log(value),\n"
     "                    so the budget buys relative rather than absolute accuracy\n"
+    "  --segments N      split the body into N segments (about; whole coefficient\n"
+    "                    vectors in coding order, coarse levels first), each with\n"
+    "                    its length and CRC-32 and decodable alone: a damaged or\n"
+    "                    missing segment costs its own coefficients only (decode\n"
+    "                    rebuilds the rest and reports what was lost); format 7\n"
     "  --coder C         entropy coder: range (the default on the host: the smallest\n"
     "                    payload); ms (multi-symbol range coder, format 7: about a\n"
     "                    third fewer instructions per sample on the device, about\n"
@@ -294,6 +299,7 @@ int bw_cmd_encode(int argc, char **argv)
     int n_max_rel = 0, n_rel_floor = 0;
     uint32_t bytes = 0, drop = 0;
     int has_drop = 0, quiet = 0, has_effort = 0, effort = 0;
+    uint32_t segments = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = CODER_UNSET;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
@@ -327,6 +333,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"firmware", 0, CLI_STRING, .dest = &firmware},
         {"drop-chunk", 0, CLI_U32, .dest = &drop, .lo = 0, .hi = 65535, .seen = &has_drop},
         {"stream", 0, CLI_FLAG, .dest = &stream},
+        {"segments", 0, CLI_U32, .dest = &segments, .lo = 1, .hi = 1u << 28},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
          .what = "--coder must be range, ms, rice or auto"},
@@ -373,6 +380,7 @@ int bw_cmd_encode(int argc, char **argv)
         coder = device != DEV_HOST ? CODER_AUTO : 0u;
     o.coder = coder == CODER_AUTO ? BW_CODER_AUTO : BW_CODER_BY_FLAGS;
     coder = coder == CODER_AUTO ? 0u : coder;
+    o.segments = segments;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
     uint64_t device_instructions = 0;

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "bwh_decode.h"
 #include "bwh_exact.h"
 #include "bwh_ext.h"
 #include "bwh_guarantee.h"
@@ -58,7 +59,8 @@ int bw_cmd_info(int argc, char **argv)
     if (bwh_read_file(path, &p, &len) != 0)
         return cli_fail("%s", bwh_last_error());
     bw_header_t h;
-    int hs = bw_header_read(p, len, &h);
+    int whole = bw_header_read(p, len, &h) == BW_OK;
+    int hs = whole ? BW_OK : bwh_header_salvage(p, len, &h);
     if (hs != BW_OK) {
         free(p);
         return cli_fail("%s: %s", path, bw_strerror(hs));
@@ -79,12 +81,27 @@ int bw_cmd_info(int argc, char **argv)
     bwh_meta_t meta;
     int ms = bwh_meta_of_payload(p, len, &h, &meta);
     size_t meta_bytes = metadata_bytes(p, &h);
+    /* each segment's length, from the table (its CRC vouched for it) */
+    char *seg_lens = h.segment_vectors ? malloc((size_t)h.segments * 11u + 1u) : NULL;
+    if (seg_lens) {
+        size_t k = 0;
+        for (uint32_t sg = 0; sg < h.segments; sg++) {
+            const uint8_t *e = p + h.header_len + (size_t)sg * 8u;
+            k += (size_t)sprintf(seg_lens + k, "%s%u", sg ? "," : "",
+                                 (unsigned)e[0] | (unsigned)e[1] << 8 | (unsigned)e[2] << 16 |
+                                     (unsigned)e[3] << 24);
+        }
+        seg_lens[k] = 0;
+    }
     free(p);
-    if (ms != 0)
+    if (ms != 0) {
+        free(seg_lens);
         return cli_fail("%s: %s", path, bwh_last_error());
+    }
     char *mj = NULL;
     if (json && bwh_meta_to_json(&meta, &mj) != 0) {
         bwh_meta_free(&meta);
+        free(seg_lens);
         return cli_fail("%s", bwh_last_error());
     }
     size_t n = bw_dims_samples(&h.dims);
@@ -106,6 +123,18 @@ int bw_cmd_info(int argc, char **argv)
     cli_kv_str(&kv, "mode", bwh_mode_name(h.mode));
     cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
     cli_kv_str(&kv, "coder", bwh_coder_name(h.flags));
+    if (h.segment_vectors) {
+        cli_kv_uint(&kv, "segments", h.segments);
+        cli_kv_uint(&kv, "segment_vectors", h.segment_vectors);
+        /* where the segment table lies, and each segment's length (the
+         * table's CRC vouched for them) */
+        cli_kv_uint(&kv, "segment_table_offset", h.header_len);
+        if (seg_lens)
+            cli_kv_str(&kv, "segment_bytes", seg_lens);
+    }
+    if (!whole)
+        cli_kv_str(&kv, "damaged", "yes: not whole (cut or changed); decode rebuilds what the "
+                                   "whole segments hold");
     cli_kv_str(&kv, "symmetry", bwh_symmetry_name(h.flags));
     char values[96];
     if (map == BWH_EXACT_PLANES)
@@ -148,5 +177,6 @@ int bw_cmd_info(int argc, char **argv)
     if (!json)
         bwh_meta_print(&meta, stdout);
     bwh_meta_free(&meta);
+    free(seg_lens);
     return CLI_EXIT_OK;
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_decode.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
@@ -131,14 +132,20 @@ static int load_payload(const char *path, data_t *m)
     size_t len;
     if (bwh_read_file(path, &p, &len) != 0)
         return -1;
-    if (len < 2 || p[0] != 'B' || p[1] != 'W' || bw_header_read(p, len, &m->h) != BW_OK) {
+    if (len < 2 || p[0] != 'B' || p[1] != 'W' || bwh_header_salvage(p, len, &m->h) != BW_OK) {
         free(p);
         return 0;
     }
-    int rc = bwh_decode(p, len, &m->h, NULL, &m->v);
+    /* a damaged or cut payload in segments: what its whole segments hold */
+    bwh_salvage_t sv;
+    int rc = bwh_decode_salvage(p, len, 0, &m->h, NULL, &m->v, NULL, &sv);
     free(p);
-    if (rc != 0)
+    if (rc < 0)
         return bwh_fail("%s: %s", path, bwh_last_error());
+    if (rc == 1)
+        fprintf(stderr, "brdfwave plot: %s: damaged or cut: %u of %u segments lost; the picture "
+                        "shows what the rest rebuilds (%zu samples approximate, %zu missing)\n",
+                path, sv.lost_segments, sv.segments, sv.approx, sv.missing);
     m->d = m->h.dims;
     m->n = bw_dims_samples(&m->d);
     m->payload = 1;

@@ -5,17 +5,46 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "bw_crc32.h"
 #include "bwh_error.h"
 #include "bwh_exact.h"
 #include "bwh_ext.h"
 #include "bwh_logmap.h"
 #include "bwh_values.h"
 
-/* The header of p[len], checked, and its sample count against the limit. */
-static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
+/* The header of p[len], checked (with salvage, the fields alone when the
+ * payload is not whole: the segment table's CRC vouches for them), and its
+ * sample count against the limit. */
+int bwh_header_salvage(const uint8_t *p, size_t len, bw_header_t *h)
 {
     int st = bw_header_read(p, len, h);
+    bw_header_t f;
+    if ((st == BW_ERR_CRC || st == BW_ERR_HEADER) && bw_header_parse_fields(p, len, &f) == BW_OK &&
+        f.segment_vectors) {
+        size_t t = (size_t)f.header_len + BW_SEGMENT_TABLE_SIZE(f.segments) - 4u;
+        if (t + 4u <= len && bw_crc32(p, t) == ((uint32_t)p[t] | (uint32_t)p[t + 1] << 8 |
+                                                 (uint32_t)p[t + 2] << 16 |
+                                                 (uint32_t)p[t + 3] << 24)) {
+            *h = f;
+            st = BW_OK;
+        }
+    }
+    return st;
+}
+
+static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                         bool salvage)
+{
+    int st = salvage ? bwh_header_salvage(p, len, h) : bw_header_read(p, len, h);
+    if (st == BW_ERR_CRC && !salvage) {
+        bw_header_t f;
+        if (bwh_header_salvage(p, len, &f) == BW_OK)
+            return bwh_fail("%s: its segments can still be decoded in part (brdfwave decode, "
+                            "or salvage=True in Python)",
+                            bw_strerror(st));
+    }
     if (st != BW_OK)
         return bwh_fail("%s", bw_strerror(st));
     size_t n = bw_dims_samples(&h->dims);
@@ -29,45 +58,130 @@ static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_he
 }
 
 /* The integer samples of p[len] in *w (allocated, the decoder's work
- * bound: the samples first), its header in *h. */
+ * bound: the samples first), its header in *h. With sv (salvage): what a
+ * damaged or cut segmented payload holds, the lost samples in *mask (may
+ * be NULL); returns 1 when segments were lost. */
 static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
-                       int32_t **w)
+                       int32_t **w, uint8_t **mask, bwh_salvage_t *sv)
 {
     *w = NULL;
-    if (header_within(p, len, max_samples, h) != 0)
+    if (mask)
+        *mask = NULL;
+    if (header_within(p, len, max_samples, h, sv != NULL) != 0)
         return -1;
     size_t wb = bw_work_bound(bw_dims_samples(&h->dims), h->dims.bands);
     int32_t *b = malloc(wb * sizeof *b);
     if (!b)
         return bwh_fail("out of memory");
-    int st = bw_decode(p, len, b, wb, b, wb, h);
-    if (st != BW_OK) {
-        free(b);
-        return bwh_fail("%s", bw_strerror(st));
+    if (!sv) {
+        int st = bw_decode(p, len, b, wb, b, wb, h);
+        if (st != BW_OK) {
+            free(b);
+            return bwh_fail("%s", bw_strerror(st));
+        }
+        *w = b;
+        return 0;
     }
+    memset(sv, 0, sizeof *sv);
+    size_t nv = (size_t)h->dims.n_in * h->dims.n_out, n = bw_dims_samples(&h->dims);
+    uint8_t *lost = malloc(nv ? nv : 1), *seg_ok = malloc(h->segments);
+    bw_ctx_t *ctx = malloc(sizeof *ctx);
+    int st = !lost || !seg_ok || !ctx ? BW_ERR_ARG
+                                      : bw_decode_salvage(ctx, p, len, b, wb, b, wb, h, seg_ok,
+                                                          h->segments, lost);
+    free(ctx);
+    if (st != BW_OK && st != BW_ERR_INCOMPLETE) {
+        free(b);
+        free(lost);
+        free(seg_ok);
+        return bwh_fail("%s", !lost || !seg_ok ? "out of memory" : bw_strerror(st));
+    }
+    sv->segments = h->segments;
+    for (uint32_t s = 0; s < h->segments; s++)
+        sv->lost_segments += !seg_ok[s];
+    free(seg_ok);
+    /* per direction pair, then per sample */
+    uint8_t *dm = malloc(nv ? nv : 1), *sm = mask ? malloc(n ? n : 1) : NULL;
+    int32_t *tmp = malloc((nv ? nv : 1) * sizeof *tmp);
+    if (!dm || !tmp || (mask && !sm)) {
+        free(dm);
+        free(sm);
+        free(tmp);
+        free(lost);
+        free(b);
+        return bwh_fail("out of memory");
+    }
+    bw_salvage_mask(h, lost, dm, tmp);
+    free(tmp);
+    free(lost);
+    uint32_t bands = h->dims.bands;
+    for (size_t v = 0; v < nv; v++) {
+        sv->approx += dm[v] == BW_SAMPLE_APPROX ? bands : 0u;
+        sv->missing += dm[v] == BW_SAMPLE_MISSING ? bands : 0u;
+        if (sm)
+            memset(sm + v * bands, dm[v], bands);
+    }
+    free(dm);
+    if (mask)
+        *mask = sm;
     *w = b;
-    return 0;
+    return st == BW_ERR_INCOMPLETE ? 1 : 0;
 }
 
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
 {
     int32_t *w;
-    if (decode_ints(p, len, max_samples, h, &w) != 0)
+    if (decode_ints(p, len, max_samples, h, &w, NULL, NULL) != 0)
         return -1;
     free(w);
     return 0;
 }
 
+/* The samples and values of a decode (decode_ints), *w taken over. */
+static int values_of(const uint8_t *p, bw_header_t *h, int32_t *w, int32_t **samples,
+                     float **values);
+static int decode_any(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                      int32_t **samples, float **values, uint8_t **mask, bwh_salvage_t *sv);
+
 int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
                      int32_t **samples, float **values)
+{
+    return decode_any(p, len, max_samples, h, samples, values, NULL, NULL);
+}
+
+int bwh_decode_salvage(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                       int32_t **samples, float **values, uint8_t **mask, bwh_salvage_t *info)
+{
+    bwh_salvage_t tmp;
+    return decode_any(p, len, max_samples, h, samples, values, mask,
+                                     info ? info : &tmp);
+}
+
+static int decode_any(const uint8_t *p, size_t len, size_t max_samples,
+                                     bw_header_t *h, int32_t **samples, float **values,
+                                     uint8_t **mask, bwh_salvage_t *sv)
 {
     if (samples)
         *samples = NULL;
     if (values)
         *values = NULL;
     int32_t *w;
-    if (decode_ints(p, len, max_samples, h, &w) != 0)
+    int got = decode_ints(p, len, max_samples, h, &w, mask, sv);
+    if (got < 0)
         return -1;
+    if (values_of(p, h, w, samples, values) != 0) {
+        if (mask) {
+            free(*mask);
+            *mask = NULL;
+        }
+        return -1;
+    }
+    return got;
+}
+
+static int values_of(const uint8_t *p, bw_header_t *h, int32_t *w, int32_t **samples,
+                     float **values)
+{
     size_t n = bw_dims_samples(&h->dims);
     if (values) {
         float scale = bwh_bits_to_float(h->scale_bits), off = bwh_bits_to_float(h->offset_bits);
@@ -134,4 +248,58 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
 int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values)
 {
     return bwh_decode_limit(p, len, 0, h, samples, values);
+}
+
+int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
+                        int32_t **samples, float **values)
+{
+    if (samples)
+        *samples = NULL;
+    if (values)
+        *values = NULL;
+    /* in segments the core checks the CRCs of what it reads (the table's,
+     * the segments'), not the whole payload's */
+    bw_header_t f;
+    if (bw_header_parse_fields(p, len, &f) == BW_OK && f.segment_vectors) {
+        *h = f;
+        if (bw_dims_samples(&f.dims) > BWH_MAX_SAMPLES_DEFAULT)
+            return bwh_fail("the payload decodes to %zu samples, more than the limit of %zu",
+                            bw_dims_samples(&f.dims), BWH_MAX_SAMPLES_DEFAULT);
+    } else if (header_within(p, len, 0, h, false) != 0) {
+        return -1;
+    }
+    const bw_dims_t *d = &h->dims;
+    const uint8_t *xd;
+    uint32_t xl;
+    if (d->shape == BW_SHAPE_REFLECTANCE)
+        return bwh_fail("a reflectance has no incoming directions to choose from");
+    if (in >= d->n_in)
+        return bwh_fail("%s %u is past the last (%u)",
+                        d->shape == BW_SHAPE_SPECTRA ? "spectrum" : "incoming direction", in,
+                        d->n_in - 1u);
+    if (h->flags & BW_FLAG_RECIPROCAL)
+        return bwh_fail("a full BRDF coded with the reciprocity step: every incoming direction "
+                        "depends on all the others; decode it whole");
+    if (bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl) == 1)
+        return bwh_fail("float values kept bit for bit in the payload's tail: decode it whole");
+    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands), rn = (size_t)d->n_out * d->bands;
+    int32_t *w = malloc(wb * sizeof *w), *r = malloc(rn * sizeof *r);
+    bw_ctx_t *ctx = malloc(sizeof *ctx);
+    int st = !w || !r || !ctx ? BW_ERR_ARG
+                              : bw_decode_incoming(ctx, p, len, in, r, rn, w, wb, NULL);
+    free(w);
+    free(ctx);
+    if (st != BW_OK) {
+        free(r);
+        return bwh_fail("%s", !w || !ctx ? "out of memory" : bw_strerror(st));
+    }
+    memset(row, 0, sizeof *row);
+    if (d->shape == BW_SHAPE_SPECTRA)
+        bw_dims_make(row, BW_SHAPE_SPECTRA, 0, 0, 1, d->bands);
+    else
+        bw_dims_make(row, BW_SHAPE_REFLECTANCE, d->level_out, 0, 1, d->bands);
+    /* the values of the row: the payload's maps, on a header of its size */
+    bw_header_t hr = *h;
+    hr.dims = *row;
+    return values_of(p, &hr, r, samples, values);
 }

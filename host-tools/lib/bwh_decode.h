@@ -26,6 +26,40 @@ int bwh_decode_limit(const uint8_t *p, size_t len, size_t max_samples, bw_header
 /* bwh_decode_limit with the default limit */
 int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, float **values);
 
+/* The header of p[len] (bw_header_read), or, for a segmented payload that
+ * is not whole, its fields as they read when the segment table's CRC-32
+ * (which covers the header) vouches for them: BW_OK, else the status of
+ * bw_header_read. */
+int bwh_header_salvage(const uint8_t *p, size_t len, bw_header_t *h);
+
+/* What bwh_decode_salvage found. */
+typedef struct {
+    uint32_t segments;      /* the payload's segments (1: a body in one piece) */
+    uint32_t lost_segments; /* of them lost: damaged, or cut off */
+    size_t approx, missing; /* samples rebuilt from coarser levels; samples lost */
+} bwh_salvage_t;
+
+/* As bwh_decode_limit, for a payload that may be damaged or cut (a file
+ * received over a lossy link): a segmented payload (`encode --segments`)
+ * whose header and segment table are intact decodes every segment that is
+ * whole, and rebuilds the rest from the coarser levels it has. Returns 0
+ * for a whole payload, 1 when segments were lost (the samples and values
+ * hold what was rebuilt), -1 on error (a payload without segments that is
+ * not whole is lost whole). *mask (may be NULL; allocated): per sample,
+ * [incoming][outgoing][band], BW_SAMPLE_EXACT, _APPROX or _MISSING. */
+int bwh_decode_salvage(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
+                       int32_t **samples, float **values, uint8_t **mask, bwh_salvage_t *info);
+
+/* One incoming direction of a BRDF, or one spectrum of a set (row `in` of
+ * [incoming][outgoing][band]), decoded alone (bw_decode_incoming: only the
+ * segments and blocks it depends on): *samples and *values as
+ * bwh_decode_limit's (either may be NULL), n_out * bands of them, and the
+ * row's own dimensions in *row (a reflectance, or one spectrum). Not for a
+ * full BRDF with the reciprocity step, nor a float payload that keeps bits
+ * in a tail (record 0x01): those decode whole. 0, or -1. */
+int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
+                        int32_t **samples, float **values);
+
 /* Checks a payload as a receiver must before it stores and acknowledges it:
  * header, CRC, the sample limit (0: the default) and a full decode. */
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h);

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "bwh_error.h"
+#include "bwh_ext.h"
 
 static char *program_dir;
 
@@ -276,6 +277,7 @@ int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p
 {
     memset(r, 0, sizeof *r);
     int rc = -1;
+    uint8_t *seg_ext = NULL;
     char input[] = "/tmp/brdfwave-sensor-XXXXXX";
     int in_fd = mkstemp(input);
     if (in_fd < 0)
@@ -296,6 +298,21 @@ int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p
     }
     bw_job_t job;
     bw_job_make(&job, dims, p);
+    /* segments: the job's first record (bw_job_params) */
+    if (p->segment_vectors) {
+        seg_ext = malloc(p->ext_len + 7u);
+        if (!seg_ext) {
+            bwh_fail("out of memory");
+            goto out;
+        }
+        size_t k = bwh_varint_put(seg_ext + 2, p->segment_vectors);
+        seg_ext[0] = BW_EXT_SEGMENTS;
+        seg_ext[1] = (uint8_t)k;
+        if (p->ext_len)
+            memcpy(seg_ext + 2 + k, p->ext, p->ext_len);
+        job.ext = seg_ext;
+        job.ext_len = p->ext_len + 2u + (uint32_t)k;
+    }
     strcpy(job.source, input); /* shorter than the field */
     if (job.ext_len > BW_JOB_EXT_MAX) {
         /* more records than the JOB frame holds: JOB_EXT frames first */
@@ -327,6 +344,7 @@ int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p
     }
     rc = 0;
 out:
+    free(seg_ext);
     close(in_fd);
     unlink(input);
     return rc;

@@ -77,6 +77,10 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.basis = (uint8_t)o->basis;
     p.effort = (uint8_t)o->effort;
     p.coder = (uint8_t)o->coder;
+    if (o->segments > 1u) {
+        uint32_t nv = dims->n_in * dims->n_out;
+        p.segment_vectors = (nv - 1u) / o->segments + 1u;
+    }
     p.scale_bits = bwh_float_to_bits(scale);
     p.offset_bits = bwh_float_to_bits(offset);
     p.flags = (uint8_t)(o->flags & BW_FLAGS_KNOWN);
@@ -110,6 +114,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     size_t wb = bw_work_bound(n, dims->bands), cap = bw_payload_bound(n);
     if (o->ext_len)
         cap += o->ext_len + BW_EXT_OVERHEAD;
+    if (p.segment_vectors)
+        cap += BW_SEGMENT_OVERHEAD((dims->n_in * dims->n_out - 1u) / p.segment_vectors + 1u);
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
     uint8_t *buf = malloc(cap);
     if (!work || !ver || !buf) {

@@ -51,6 +51,9 @@ typedef struct {
     /* bw_coder_choice_t: BW_CODER_BY_FLAGS (0, the coder `flags` names) or
      * BW_CODER_AUTO (the encoder chooses; `flags` then names none) */
     unsigned coder;
+    /* 0 or 1: the body in one piece; n > 1: about n segments, each decodable
+     * alone (bw_params_t.segment_vectors: ceil(vectors / n) vectors each) */
+    uint32_t segments;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

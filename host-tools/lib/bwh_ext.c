@@ -97,6 +97,12 @@ int bwh_ext_add(uint8_t **pp, size_t *plen, const uint8_t *recs, size_t rlen, co
     memcpy(o + k, recs, rlen);
     k += rlen;
     memcpy(o + k, p + h.header_len, h.body_len + rest);
+    if (h.segment_vectors) { /* the segment table's CRC covers the header */
+        size_t t = k + BW_SEGMENT_TABLE_SIZE(h.segments) - 4u;
+        uint32_t tc = bw_crc32(o, t);
+        for (unsigned b = 0; b < 4; b++)
+            o[t + b] = (uint8_t)(tc >> (8 * b));
+    }
     k += h.body_len + rest;
     if (tlen)
         memcpy(o + k, tail, tlen);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bwh_encode.h"
+#include "bwh_decode.h"
 #include "bwh_error.h"
 #include "bwh_i2c.h"
 #include "bwh_input.h"
@@ -24,6 +25,7 @@ size_t bwh_abi_size(const char *name)
         {"bwh_encode_opts_t", sizeof(bwh_encode_opts_t)},
         {"bwh_i2c_t", sizeof(bwh_i2c_t)},
         {"bwh_i2c_payload_t", sizeof(bwh_i2c_payload_t)},
+        {"bwh_salvage_t", sizeof(bwh_salvage_t)},
     };
     for (size_t i = 0; name && i < sizeof sizes / sizeof *sizes; i++)
         if (!strcmp(name, sizes[i].name))
@@ -45,19 +47,34 @@ int bwh_meta_area_from_json(const char *json, const bw_dims_t *d, uint8_t **area
     return rc;
 }
 
-int bwh_meta_json_of_payload(const uint8_t *p, size_t len, char **json)
+/* The metadata of a payload (of row `row` alone, -1: all) as JSON. The
+ * header as bwh_header_salvage reads it: the record is in what the segment
+ * table's CRC vouches for. */
+static int meta_json(const uint8_t *p, size_t len, int64_t row, char **json)
 {
     *json = NULL;
     bw_header_t h;
-    bw_status_t st = bw_header_read(p, len, &h);
+    bw_status_t st = bwh_header_salvage(p, len, &h);
     if (st != BW_OK)
         return bwh_fail("%s", bw_strerror(st));
     bwh_meta_t m;
     if (bwh_meta_of_payload(p, len, &h, &m) != 0)
         return -1;
-    int rc = bwh_meta_to_json(&m, json);
+    int rc = (row >= 0 && bwh_meta_row(&m, &h.dims, (uint32_t)row)) || bwh_meta_to_json(&m, json)
+                 ? -1
+                 : 0;
     bwh_meta_free(&m);
     return rc;
+}
+
+int bwh_meta_json_of_payload(const uint8_t *p, size_t len, char **json)
+{
+    return meta_json(p, len, -1, json);
+}
+
+int bwh_meta_row_json(const uint8_t *p, size_t len, uint32_t in, char **json)
+{
+    return meta_json(p, len, in, json);
 }
 
 int bwh_read_flat(const char *const *paths, int n, const char *format, int level, int channel,

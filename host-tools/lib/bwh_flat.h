@@ -30,6 +30,8 @@ int bwh_meta_area_from_json(const char *json, const bw_dims_t *d, uint8_t **area
 /* The metadata of payload p[len] as JSON ("{}" without), allocated. 0, or
  * -1 (a malformed payload or record). */
 int bwh_meta_json_of_payload(const uint8_t *p, size_t len, char **json);
+/* The same for row `in` alone (bwh_meta_row): what `decode --incoming` keeps. */
+int bwh_meta_row_json(const uint8_t *p, size_t len, uint32_t in, char **json);
 
 /* Reads the files paths[n] (bwh_measure_read; format a name of
  * bwh_input.h, NULL or "auto": detected; level -1: the default; channel,

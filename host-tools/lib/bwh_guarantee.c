@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bwh_decode.h"
 #include "bwh_error.h"
 #include "bwh_ext.h"
 #include "bwh_values.h"
@@ -141,7 +142,7 @@ int bwh_guarantee_of(const uint8_t *p, const bw_header_t *h, bwh_guarantee_t *g)
 int bwh_guarantee_read(const uint8_t *p, size_t len, bwh_guarantee_t *g)
 {
     bw_header_t h;
-    int st = bw_header_read(p, len, &h);
+    int st = bwh_header_salvage(p, len, &h);
     if (st != BW_OK)
         return bwh_fail("%s", bw_strerror(st));
     return bwh_guarantee_of(p, &h, g);

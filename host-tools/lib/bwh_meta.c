@@ -269,6 +269,54 @@ int bwh_meta_append_spectra(bwh_meta_t *d, size_t n_dst, const bwh_meta_t *s, si
                : 0;
 }
 
+/* keeps item k of a list of one per row (none: stays none) */
+static int keep_number(bwh_numbers_t *l, size_t k)
+{
+    if (l->n <= k) {
+        free_numbers(l);
+        return 0;
+    }
+    l->v[0] = l->v[k];
+    l->n = 1;
+    return 0;
+}
+
+static int keep_string(bwh_strings_t *l, size_t k)
+{
+    if (l->n <= k) {
+        free_strings(l);
+        return 0;
+    }
+    char *x = l->s[k];
+    l->s[k] = NULL;
+    free_strings(l);
+    l->s = calloc(1, sizeof(char *));
+    if (!l->s) {
+        free(x);
+        return bwh_fail("out of memory");
+    }
+    l->s[0] = x;
+    l->n = 1;
+    return 0;
+}
+
+int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in)
+{
+    free(m->missing);
+    m->missing = NULL;
+    m->n_missing = 0;
+    m->present &= ~BWH_M_MISSING;
+    if (d->shape != BW_SHAPE_SPECTRA) {
+        free_numbers(&m->incidence);
+        return 0;
+    }
+    return keep_string(&m->spectrum_names, in) || keep_number(&m->spectrum_times, in) ||
+                   keep_number(&m->spectrum_lat, in) || keep_number(&m->spectrum_lon, in) ||
+                   keep_number(&m->spectrum_alt, in)
+               ? -1
+               : 0;
+}
+
 /* ---- names -------------------------------------------------------------- */
 
 static const char *const quantity_names[BWH_Q_COUNT] = {

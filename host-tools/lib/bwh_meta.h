@@ -146,6 +146,12 @@ int bwh_meta_add_missing_run(bwh_meta_t *m, uint64_t start, uint64_t len);
  * and src's n_src: lists that only one side has are filled with "" and NaN */
 int bwh_meta_append_spectra(bwh_meta_t *dst, size_t n_dst, const bwh_meta_t *src, size_t n_src);
 
+/* The metadata of row `in` alone of a measurement of dimensions d (a
+ * spectrum of a set keeps its own name, time and location; an incoming
+ * direction of a BRDF becomes a reflectance: no incidence list), missing
+ * runs left out. 0, or -1. */
+int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in);
+
 /* The metadata fits a measurement of these dimensions: one wavelength,
  * bandwidth and band name per band, one incidence angle per incoming
  * direction of an isotropic BRDF, one name, time and location per spectrum

@@ -555,5 +555,54 @@ PY
 expect_error "decode of LOG_VALUE beyond float32" "$BW" decode -i "$T/log.bwv" -o "$T/log.f32"
 grep -q "beyond float32" "$T/err" && ok || bad "LOG_VALUE overflow message: $(cat "$T/err")"
 
+# segments: a payload cut or damaged on the way decodes in part, says so
+# (one line, exit 3), writes its output and a mask, and every sample marked
+# exact is the whole payload's
+"$BW" synth --model phong --level 4 --incoming 8 -o "$T/seg.f32" >/dev/null
+expect_ok "encode in segments" "$BW" encode -q -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --max-error 0.001 --segments 4 -o "$T/seg.bwv"
+"$BW" info "$T/seg.bwv" >"$T/seginfo"
+grep -q "^segments: 4$" "$T/seginfo" && grep -q "^segment_vectors: 2048$" "$T/seginfo" && ok || bad "info of a payload in segments: $(grep segment "$T/seginfo")"
+expect_ok "decode in segments" "$BW" decode -i "$T/seg.bwv" -o "$T/seg.i32" --output-format i32
+head -c $(($(stat -c %s "$T/seg.bwv") * 3 / 4)) "$T/seg.bwv" >"$T/segcut.bwv"
+"$BW" decode -i "$T/segcut.bwv" -o "$T/segcut.i32" --output-format i32 --mask "$T/segcut.mask" 2>"$T/err"
+rc=$?
+[ "$rc" = 3 ] && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "segments lost" "$T/err" && ok || bad "decode of a cut payload in segments: exit $rc: $(cat "$T/err")"
+$PY - "$T/seg.i32" "$T/segcut.i32" "$T/segcut.mask" <<'PY' && ok || bad "cut payload: the samples marked exact differ, or the mask is wrong"
+import sys
+import numpy as np
+a, b = np.fromfile(sys.argv[1], '<i4'), np.fromfile(sys.argv[2], '<i4')
+m = np.fromfile(sys.argv[3], np.uint8)
+# 8 incidences in 4 segments of 2: the first 3/4 of the bytes hold the first
+# segments whole; the others' incidences are missing (no coarser level)
+sys.exit(0 if m.size == a.size and (m == 0).any() and (m == 2).any() and set(np.unique(m)) <= {0, 2}
+         and np.array_equal(a[m == 0], b[m == 0]) else 1)
+PY
+"$BW" info "$T/segcut.bwv" | grep -q "^damaged: yes" && ok || bad "info of a cut payload in segments"
+$PY -c "
+b = bytearray(open('$T/seg.bwv', 'rb').read()); b[len(b) // 2] ^= 0x40
+open('$T/segbad.bwv', 'wb').write(bytes(b))"
+"$BW" decode -i "$T/segbad.bwv" -o "$T/segbad.f32" 2>"$T/err"
+[ $? = 3 ] && grep -q "1 of 4 segments lost" "$T/err" && [ -s "$T/segbad.f32" ] && ok || bad "decode of a damaged payload in segments: $(cat "$T/err")"
+# without segments a damaged payload is lost whole, as ever
+"$BW" encode -q -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --max-error 0.001 -o "$T/one.bwv"
+head -c 900 "$T/one.bwv" >"$T/onecut.bwv"
+expect_error "decode of a cut payload in one piece" "$BW" decode -i "$T/onecut.bwv" -o "$T/onecut.f32"
+[ ! -e "$T/onecut.f32" ] && ok || bad "a lost payload left an output file"
+# the header or the table hit: nothing to salvage
+head -c 40 "$T/seg.bwv" >"$T/seghead.bwv"
+expect_error "decode of a payload in segments cut in its table" "$BW" decode -i "$T/seghead.bwv" -o "$T/seghead.f32"
+# one incoming direction alone: the row of the whole decode, as a reflectance
+"$BW" decode -i "$T/seg.bwv" -o "$T/segall.f32" 2>/dev/null
+expect_ok "decode --incoming" "$BW" decode -i "$T/seg.bwv" --incoming 5 -o "$T/row5.f32"
+$PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/segall.f32', '<f4').reshape(8, 1024)
+r = np.fromfile('$T/row5.f32', '<f4')
+sys.exit(0 if np.array_equal(a[5], r) else 1)" && ok || bad "decode --incoming 5 is not row 5 of the whole decode"
+expect_error "decode --incoming past the last" "$BW" decode -i "$T/seg.bwv" --incoming 8 -o "$T/row8.f32"
+grep -q "past the last" "$T/err" && ok || bad "--incoming 8 message: $(cat "$T/err")"
+expect_error "decode --incoming with --mask" "$BW" decode -i "$T/seg.bwv" --incoming 1 --mask "$T/m" -o "$T/row1.f32"
+expect_error "segments 0" "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --segments 0 -o "$T/x.bwv"
+
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

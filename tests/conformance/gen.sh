@@ -69,6 +69,9 @@ spectra_lossless_53_ms       -i $T/spectra.u16 --input-format u16 --bands 37 -- 
 refl_maxerr_haar_stream_ms   -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis haar --stream --coder ms --symmetry none
 iso_maxerr_mirror_ms         -i $T/iso.f32 --bands 1 --level 2 --incoming 8 -- --max-error 0.01 --symmetry mirror --coder ms
 full_bytes_both_ms           -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --bytes 200 --symmetry both --coder ms
+full_maxerr_both_segments    -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.005 --symmetry both --segments 5
+spectra_lossless_pred_segments_rice -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis pred --coder rice --segments 3
+refl_maxerr_53_segments_ms   -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis 53 --coder ms --symmetry none --segments 7
 EOF2
 # version 7: the first vector with an ancillary extension record (type 0xC3,
 # unassigned: a decoder skips it) in front of the same body

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "bw_codec.h"
+#include "bw_config.h"
 
 #define FUZZ_MAX_SAMPLES ((size_t)1 << 20)
 
@@ -37,7 +38,7 @@ static void require(int cond, const char *what, int st)
     }
 }
 
-static int known(int st) { return st <= BW_OK && st >= BW_ERR_NOT_BUILT; }
+static int known(int st) { return st <= BW_OK && st >= BW_ERR_INCOMPLETE; }
 
 static int same_dims(const bw_dims_t *a, const bw_dims_t *b)
 {
@@ -100,6 +101,46 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     } else if (st_read == BW_OK) {
         /* a valid header and CRC: only the body can be wrong */
         require(st1 == BW_ERR_CORRUPT, "valid header, but an error other than CORRUPT", st1);
+    }
+    /* the salvage decode: a known status; on a whole payload the same
+     * samples, every segment whole and nothing lost */
+    if (BW_CFG_SALVAGE) {
+        size_t nv = (size_t)hf.dims.n_in * hf.dims.n_out;
+        uint8_t *lost = malloc(nv ? nv : 1), ok[64], *mask = malloc(nv ? nv : 1);
+        static bw_ctx_t ctx;
+        bw_header_t hs;
+        if (!lost || !mask)
+            abort();
+        int st = bw_decode_salvage(&ctx, data, size, s2, n, w2, wb, &hs, ok, sizeof ok, lost);
+        require(known(st), "bw_decode_salvage: unknown status", st);
+        if (st1 == BW_OK) {
+            require(st == BW_OK && memcmp(s1, s2, n * sizeof *s1) == 0,
+                    "bw_decode_salvage differs from bw_decode on a whole payload", st);
+            for (size_t v = 0; v < nv; v++)
+                require(!lost[v], "a whole payload with a lost vector", st);
+        }
+        if (st == BW_OK || st == BW_ERR_INCOMPLETE) {
+            int32_t *tmp = malloc((nv ? nv : 1) * sizeof *tmp);
+            if (!tmp)
+                abort();
+            bw_salvage_mask(&hs, lost, mask, tmp);
+            free(tmp);
+        }
+        free(lost);
+        free(mask);
+    }
+    /* one incoming direction (row) alone: a known status; on a whole
+     * payload, the row of the whole decode (or a refusal it documents) */
+    if (hf.dims.n_in && hf.dims.shape != BW_SHAPE_REFLECTANCE) {
+        static bw_ctx_t rctx;
+        uint32_t in = (uint32_t)(size * 2654435761u) % hf.dims.n_in;
+        size_t row = (size_t)hf.dims.n_out * hf.dims.bands;
+        int st = bw_decode_incoming(&rctx, data, size, in, s2, n, w2, wb, NULL);
+        require(known(st), "bw_decode_incoming: unknown status", st);
+        if (st1 == BW_OK)
+            require((st == BW_OK && memcmp(s2, s1 + (size_t)in * row, row * sizeof *s1) == 0) ||
+                        (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
+                    "bw_decode_incoming differs from the whole decode's row", st);
     }
     /* undersized buffers are refused */
     if (st1 == BW_OK) {

@@ -7,7 +7,9 @@
  *   byte 1     levels                         level_out = b % 4, level_in = (b >> 2) % 3
  *   bytes 2-3  bands (little-endian)          1 + v % 2151, then cut so that
  *                                             n <= FUZZ_MAX_SAMPLES
- *   byte 4     n_in (spectra, BRDF_ISO)       1 + b % 32
+ *   byte 4     n_in (spectra, BRDF_ISO)       1 + b % 32; bits 5-6 segments: none,
+ *                                             1 or 3 vectors each, or about 4
+ *                                             segments; bit 7 the mirror
  *   byte 5     mode, basis                    b % 4, (b >> 2) % 4 (3 = AUTO); bit 4:
  *                                             prediction instead, where it applies
  *                                             (spectra, lossless or max-error)
@@ -26,7 +28,10 @@
  * without the verify buffer differ (except AUTO in byte-budget mode, which
  * ranks the bases differently when it can decode), the header does not
  * describe the input, or the decoded samples break the guarantee (bit-exact;
- * within E; bit-exact when a budget allowed step 1).
+ * within E; bit-exact when a budget allowed step 1). A segmented payload is
+ * then damaged (a byte changed) and cut where the input says, and decoded
+ * in part: a known status, and every direction pair marked exact holds the
+ * samples of the whole payload.
  *
  * Built like fuzz_decode.c (see tests/fuzz/run.sh), including the replay
  * main under BW_FUZZ_REPLAY.
@@ -71,6 +76,50 @@ static uint8_t next_byte(src_t *src)
 }
 
 static int32_t clamp_sample(int64_t v) { return v > SMAX ? SMAX : v < -SMAX ? -SMAX : (int32_t)v; }
+
+static int known(int st) { return st <= BW_OK && st >= BW_ERR_INCOMPLETE; }
+
+/* A segmented payload damaged (a byte changed) and cut, where the input
+ * says: the salvage decode ends in a known status, and every direction
+ * pair it marks exact holds the whole payload's samples y. */
+static void salvage_check(const uint8_t *pl, size_t len, const bw_header_t *h, const int32_t *y,
+                          const uint8_t *data, size_t size)
+{
+    size_t n = bw_dims_samples(&h->dims), wb = bw_work_bound(n, h->dims.bands);
+    size_t nv = (size_t)h->dims.n_in * h->dims.n_out;
+    uint8_t *q = malloc(len), *lost = malloc(nv), *mask = malloc(nv), *ok = malloc(h->segments);
+    int32_t *s = malloc(n * sizeof *s), *w = malloc(wb * sizeof *w), *tmp = malloc(nv * 4);
+    static bw_ctx_t ctx;
+    if (!q || !lost || !mask || !ok || !s || !w || !tmp)
+        abort();
+    uint32_t r = (uint32_t)size * 2654435761u ^ data[size - 1];
+    for (int k = 0; k < 2; k++) {
+        memcpy(q, pl, len);
+        size_t ql = len;
+        if (k == 0)
+            q[h->header_len + r % (len - h->header_len)] ^= (uint8_t)(1u + r % 255u);
+        else
+            ql = h->header_len + (r >> 8) % (len - h->header_len);
+        bw_header_t hh;
+        int st = bw_decode_salvage(&ctx, q, ql, s, n, w, wb, &hh, ok, h->segments, lost);
+        require(known(st), "bw_decode_salvage: unknown status", st);
+        if (st != BW_OK && st != BW_ERR_INCOMPLETE)
+            continue;
+        bw_salvage_mask(&hh, lost, mask, tmp);
+        uint32_t b = h->dims.bands;
+        for (size_t v = 0; v < nv; v++)
+            if (mask[v] == BW_SAMPLE_EXACT)
+                require(memcmp(s + v * b, y + v * b, b * sizeof *s) == 0,
+                        "a salvaged pair marked exact differs", st);
+    }
+    free(q);
+    free(lost);
+    free(mask);
+    free(ok);
+    free(s);
+    free(w);
+    free(tmp);
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -121,6 +170,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pa.flags |= coder_flags[(data[5] >> 5) & 3u];
     if (((data[5] >> 5) & 3u) == 3u)
         pa.coder = BW_CODER_AUTO;
+    /* segments (bits 5-6 of the n_in byte): none, one vector each, three,
+     * or about four segments */
+    size_t nvec = (size_t)d.n_in * d.n_out;
+    unsigned seg_sel = (data[4] >> 5) & 3u;
+    pa.segment_vectors = seg_sel == 1u ? 1u : seg_sel == 2u ? 3u
+                         : seg_sel == 3u ? (uint32_t)(nvec / 4u + 1u) : 0u;
     if (mode == BW_MODE_MAX_ERROR)
         pa.max_error = p < 0xF000u ? 1u + p % 1000u
                                    : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
@@ -158,7 +213,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
 
-    size_t wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n);
+    size_t wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD(nvec);
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
     uint8_t *out = malloc(cap), *out2 = malloc(cap);
     int32_t *y = malloc(n * sizeof *y);
@@ -225,6 +280,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         st = bw_decode_unchecked(pl, pl_len, work, wb, work, wb);
         require(st == BW_OK && memcmp(work, y, n * sizeof *y) == 0,
                 "bw_decode_unchecked differs from bw_decode", st);
+        if (pass == 0 && h.segment_vectors)
+            salvage_check(pl, pl_len, &h, y, data, size);
     }
 
 done:

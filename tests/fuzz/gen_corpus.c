@@ -46,31 +46,37 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param;
     uint8_t flags; /* BW_FLAG_MIRROR, BW_FLAG_RICE, BW_FLAG_MS */
+    uint32_t seg;  /* vectors per segment (0: one body) */
 } seed_t;
 
 static const seed_t seeds[] = {
-    {"spectra_1x1_lossless_haar", 0, 0, 0, 1, 1, 0, 0, 0, 0},
-    {"spectra_3x17_maxerr2_97", 0, 0, 0, 3, 17, 1, 2, 2, 0},
-    {"spectra_2x81_bytes_53", 0, 0, 0, 2, 81, 2, 1, 300, 0},
-    {"spectra_4x9_step_haar", 0, 0, 0, 4, 9, 3, 0, 2048, 0},
-    {"refl_l0x5_lossless_53", 1, 0, 0, 1, 5, 0, 1, 0, 0},
-    {"refl_l1x3_maxerr1_haar", 1, 1, 0, 1, 3, 1, 0, 1, 0},
-    {"refl_l2x1_lossless_97", 1, 2, 0, 1, 1, 0, 2, 0, 0},
-    {"refl_l1x12_bytes_97", 1, 1, 0, 1, 12, 2, 2, 400, 0},
-    {"refl_l1x8_auto", 1, 1, 0, 1, 8, 0, 255, 0, 0},
-    {"iso_2xl1x4_step_53", 2, 1, 0, 2, 4, 3, 1, 4096, 0},
-    {"iso_3xl0x7_maxerr16_97", 2, 0, 0, 3, 7, 1, 2, 16, 0},
-    {"full_l0l0x3_lossless_haar", 3, 0, 0, 0, 3, 0, 0, 0, 0},
-    {"full_l1l0x2_bytes_53", 3, 1, 0, 0, 2, 2, 1, 250, 0},
-    {"full_l0l1x2_maxerr4_97", 3, 0, 1, 0, 2, 1, 2, 4, 0},
-    {"iso_3xl2x5_mirror_lossless_53", 2, 2, 0, 3, 5, 0, 1, 0, BW_FLAG_MIRROR},
-    {"full_l1l1x2_mirror_maxerr2_haar", 3, 1, 1, 0, 2, 1, 0, 2, BW_FLAG_MIRROR},
-    {"spectra_3x40_lossless_pred", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, 0},
-    {"spectra_2x33_maxerr5_pred", 0, 0, 0, 2, 33, 1, BW_BASIS_PRED, 5, 0},
-    {"refl_l1x12_maxerr2_53_rice", 1, 1, 0, 1, 12, 1, 1, 2, BW_FLAG_RICE},
-    {"refl_l1x12_lossless_97_ms", 1, 1, 0, 1, 12, 0, 2, 0, BW_FLAG_MS},
-    {"iso_3xl2x5_mirror_maxerr3_haar_ms", 2, 2, 0, 3, 5, 1, 0, 3, BW_FLAG_MIRROR | BW_FLAG_MS},
-    {"spectra_3x40_lossless_pred_ms", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, BW_FLAG_MS},
+    {"spectra_1x1_lossless_haar", 0, 0, 0, 1, 1, 0, 0, 0, 0, 0},
+    {"spectra_3x17_maxerr2_97", 0, 0, 0, 3, 17, 1, 2, 2, 0, 0},
+    {"spectra_2x81_bytes_53", 0, 0, 0, 2, 81, 2, 1, 300, 0, 0},
+    {"spectra_4x9_step_haar", 0, 0, 0, 4, 9, 3, 0, 2048, 0, 0},
+    {"refl_l0x5_lossless_53", 1, 0, 0, 1, 5, 0, 1, 0, 0, 0},
+    {"refl_l1x3_maxerr1_haar", 1, 1, 0, 1, 3, 1, 0, 1, 0, 0},
+    {"refl_l2x1_lossless_97", 1, 2, 0, 1, 1, 0, 2, 0, 0, 0},
+    {"refl_l1x12_bytes_97", 1, 1, 0, 1, 12, 2, 2, 400, 0, 0},
+    {"refl_l1x8_auto", 1, 1, 0, 1, 8, 0, 255, 0, 0, 0},
+    {"iso_2xl1x4_step_53", 2, 1, 0, 2, 4, 3, 1, 4096, 0, 0},
+    {"iso_3xl0x7_maxerr16_97", 2, 0, 0, 3, 7, 1, 2, 16, 0, 0},
+    {"full_l0l0x3_lossless_haar", 3, 0, 0, 0, 3, 0, 0, 0, 0, 0},
+    {"full_l1l0x2_bytes_53", 3, 1, 0, 0, 2, 2, 1, 250, 0, 0},
+    {"full_l0l1x2_maxerr4_97", 3, 0, 1, 0, 2, 1, 2, 4, 0, 0},
+    {"iso_3xl2x5_mirror_lossless_53", 2, 2, 0, 3, 5, 0, 1, 0, BW_FLAG_MIRROR, 0},
+    {"full_l1l1x2_mirror_maxerr2_haar", 3, 1, 1, 0, 2, 1, 0, 2, BW_FLAG_MIRROR, 0},
+    {"spectra_3x40_lossless_pred", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, 0, 0},
+    {"spectra_2x33_maxerr5_pred", 0, 0, 0, 2, 33, 1, BW_BASIS_PRED, 5, 0, 0},
+    {"refl_l1x12_maxerr2_53_rice", 1, 1, 0, 1, 12, 1, 1, 2, BW_FLAG_RICE, 0},
+    {"refl_l1x12_lossless_97_ms", 1, 1, 0, 1, 12, 0, 2, 0, BW_FLAG_MS, 0},
+    {"iso_3xl2x5_mirror_maxerr3_haar_ms", 2, 2, 0, 3, 5, 1, 0, 3, BW_FLAG_MIRROR | BW_FLAG_MS, 0},
+    {"spectra_3x40_lossless_pred_ms", 0, 0, 0, 3, 40, 0, BW_BASIS_PRED, 0, BW_FLAG_MS, 0},
+    {"spectra_6x17_maxerr2_53_seg1", 0, 0, 0, 6, 17, 1, 1, 2, 0, 1},
+    {"refl_l2x3_lossless_haar_seg3_rice", 1, 2, 0, 1, 3, 0, 0, 0, BW_FLAG_RICE, 3},
+    {"full_l1l1x2_mirror_maxerr2_haar_seg17_ms", 3, 1, 1, 0, 2, 1, 0, 2,
+     BW_FLAG_MIRROR | BW_FLAG_MS, 17},
+    {"spectra_5x24_lossless_pred_seg1", 0, 0, 0, 5, 24, 0, BW_BASIS_PRED, 0, 0, 1},
 };
 
 int main(int argc, char **argv)
@@ -96,7 +102,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "%s: %s\n", sd->name, bw_strerror(st));
             return 1;
         }
-        size_t n = bw_dims_samples(&d), wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n);
+        size_t n = bw_dims_samples(&d), wb = bw_work_bound(n, d.bands),
+               cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD((size_t)d.n_in * d.n_out);
         int32_t *x = malloc(n * sizeof *x), *work = malloc(wb * sizeof *work);
         uint8_t *out = malloc(cap);
         if (!x || !work || !out)
@@ -117,6 +124,7 @@ int main(int argc, char **argv)
         p.step_q8 = sd->mode == BW_MODE_STEP ? sd->param : 0u;
         p.scale_bits = 0x3727C5ACu;
         p.flags = sd->flags;
+        p.segment_vectors = sd->seg;
         size_t len;
         st = bw_encode(&d, &p, x, work, NULL, out, cap, &len);
         if (st != BW_OK) {
@@ -139,7 +147,8 @@ int main(int argc, char **argv)
         in[1] = (uint8_t)(sd->level_out | sd->level_in << 2);
         in[2] = (uint8_t)bands_field;
         in[3] = (uint8_t)(bands_field >> 8);
-        in[4] = (uint8_t)((sd->n_in ? sd->n_in - 1u : 0u) | (sd->flags & BW_FLAG_MIRROR ? 0x80u : 0u));
+        in[4] = (uint8_t)((sd->n_in ? sd->n_in - 1u : 0u) | (sd->flags & BW_FLAG_MIRROR ? 0x80u : 0u) |
+                          (sd->seg == 1u ? 0x20u : sd->seg == 3u ? 0x40u : sd->seg ? 0x60u : 0u));
         in[5] = (uint8_t)(sd->mode |
                           (sd->basis == BW_BASIS_PRED ? 0x10u
                                                       : (sd->basis == 255 ? 3u : sd->basis) << 2) |

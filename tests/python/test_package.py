@@ -156,6 +156,48 @@ def prediction_codes_spectra_within_the_bound_and_names_its_basis():
 
 
 @case
+def a_payload_in_segments_decodes_in_part_with_its_mask():
+    bw("synth", "--model", "phong", "--level", "4", "--incoming", "8", "-o", tmp("seg.f32"))
+    x = np.fromfile(tmp("seg.f32"), dtype="<f4").reshape(8, 1024, 1)
+    p = brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=4)
+    assert p == brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=4)
+    whole = brdfwave.decode_bytes(p)
+    assert whole.header["segments"] == 4 and whole.mask is None, whole.header
+    m = brdfwave.decode_bytes(p, salvage=True)
+    assert m.segments == 4 and m.lost_segments == 0 and not m.mask.any()
+    cut = p[:len(p) * 3 // 4]
+    try:
+        brdfwave.decode_bytes(cut)
+    except brdfwave.BrdfwaveError as e:
+        assert "salvage" in str(e), e
+    else:
+        raise AssertionError("a cut payload decoded without salvage")
+    m = brdfwave.decode_bytes(cut, salvage=True)
+    assert m.mask.shape == m.shape and m.lost_segments >= 1, (m.mask.shape, m.lost_segments)
+    exact = m.mask == 0
+    assert exact.any() and (m.mask == 2).any()
+    assert np.array_equal(np.asarray(m)[exact], np.asarray(whole)[exact])
+    # one incoming direction alone: that row of the whole decode
+    r = brdfwave.decode_bytes(p, incoming=5)
+    assert r.layout == "reflectance" and r.shape == (1024, 1), (r.layout, r.shape)
+    assert np.array_equal(np.asarray(r), np.asarray(whole)[5])
+    for bad_row in (8, -1):
+        try:
+            brdfwave.decode_bytes(p, incoming=bad_row)
+        except brdfwave.BrdfwaveError:
+            pass
+        else:
+            raise AssertionError("incoming=%d accepted" % bad_row)
+    for bad in (0, -1, 2.5, 1 << 29):
+        try:
+            brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=bad)
+        except brdfwave.BrdfwaveError:
+            pass
+        else:
+            raise AssertionError("segments=%r accepted" % (bad,))
+
+
+@case
 def float_lossless_keeps_every_bit_and_says_so():
     rng = np.random.default_rng(32)
     x = (rng.standard_normal((7, 33)) * 10.0 ** rng.integers(-30, 30, (7, 33))).astype(np.float32)

@@ -86,6 +86,10 @@ same_payload "phong 256 x 1024 streamed" -i "$T/p256.f32" --bands 1 --level 4 --
 same_payload "field spectra lossless, rice" --input-format sed -i $DATA/*.sed --lossless --basis 53 --coder rice
 same_payload "reflectance streamed, rice" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --coder rice
 "$BW" info "$T/dev.bwv" | grep -q "^order: streamed" && ok || bad "streamed payload not marked in info"
+# segments: in the job's records; the device's payload is the host's, streamed or not
+same_payload "field spectra in segments, prediction" --input-format sed -i $DATA/*.sed --lossless --basis pred --segments 6
+same_payload "reflectance streamed in segments" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --segments 9
+"$BW" info "$T/dev.bwv" | grep -q "^segments: 9" && ok || bad "the device's payload has not its 9 segments"
 
 # resend: the host loses a chunk and asks for it again
 "$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&

@@ -26,7 +26,8 @@ class Header(ctypes.Structure):
                 ("scale_bits", ctypes.c_uint32), ("offset_bits", ctypes.c_uint32),
                 ("payload_len", ctypes.c_uint32), ("header_len", ctypes.c_uint32),
                 ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32),
-                ("ext_off", ctypes.c_uint32), ("ext_len", ctypes.c_uint32)]
+                ("ext_off", ctypes.c_uint32), ("ext_len", ctypes.c_uint32),
+                ("segment_vectors", ctypes.c_uint32), ("segments", ctypes.c_uint32)]
 
 
 class Shape(ctypes.Structure):
@@ -50,7 +51,14 @@ class EncodeOpts(ctypes.Structure):
                 ("device", ctypes.POINTER(DeviceJob)),
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
                 ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t),
-                ("effort", ctypes.c_uint), ("coder", ctypes.c_uint)]
+                ("effort", ctypes.c_uint), ("coder", ctypes.c_uint),
+                ("segments", ctypes.c_uint32)]
+
+
+class Salvage(ctypes.Structure):
+    """bwh_salvage_t (host-tools/lib/bwh_decode.h): what a decode in part found."""
+    _fields_ = [("segments", ctypes.c_uint32), ("lost_segments", ctypes.c_uint32),
+                ("approx", ctypes.c_size_t), ("missing", ctypes.c_size_t)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)
@@ -113,6 +121,7 @@ def lib():
     L = ctypes.CDLL(_find())
     from . import _abi
     _abi.check(L, {"bw_dims_t": Dims, "bw_header_t": Header, "bwh_shape_t": Shape,
+                   "bwh_salvage_t": Salvage,
                    "bwh_encode_opts_t": EncodeOpts, "bwh_i2c_t": I2C,
                    "bwh_i2c_payload_t": I2CPayload})
     _abi.declare(L)
@@ -125,6 +134,17 @@ def lib():
     L.bwh_decode_limit.restype = ctypes.c_int
     L.bwh_decode_limit.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_size_t, P(Header),
                                    P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
+    L.bwh_decode_incoming.restype = ctypes.c_int
+    L.bwh_decode_incoming.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
+                                      P(Header), P(Dims), P(P(ctypes.c_int32)),
+                                      P(P(ctypes.c_float))]
+    L.bwh_meta_row_json.restype = ctypes.c_int
+    L.bwh_meta_row_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
+                                    P(ctypes.c_char_p)]
+    L.bwh_decode_salvage.restype = ctypes.c_int
+    L.bwh_decode_salvage.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_size_t,
+                                     P(Header), P(P(ctypes.c_int32)), P(P(ctypes.c_float)),
+                                     P(P(ctypes.c_uint8)), P(Salvage)]
     L.bwh_encode_f32.restype = ctypes.c_int
     L.bwh_encode_f32.argtypes = [P(Dims), P(ctypes.c_float), P(EncodeOpts),
                                  P(P(ctypes.c_uint8)), P(ctypes.c_size_t)]
@@ -191,7 +211,10 @@ def _header_dict(h):
             "max_error": h.max_error * scale if h.mode == 1 else 0.0,
             "max_error_samples": h.max_error, "scale": scale,
             "offset": _float_of(h.offset_bits), "payload_len": h.payload_len,
-            "header_len": h.header_len, "body_len": h.body_len, "crc": h.crc}
+            "header_len": h.header_len, "body_len": h.body_len, "crc": h.crc,
+            # the body in segments (encode(..., segments=N)): how many, and
+            # vectors in each (0: one body)
+            "segments": h.segments, "segment_vectors": h.segment_vectors}
 
 
 def header_of(payload):

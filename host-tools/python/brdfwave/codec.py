@@ -22,7 +22,8 @@ import tempfile
 
 import numpy as np
 
-from ._lib import (BrdfwaveError, DeviceJob, Dims, EncodeOpts, Header, Shape, _header_dict,
+from ._lib import (BrdfwaveError, DeviceJob, Dims, EncodeOpts, Header, Salvage, Shape,
+                   _header_dict,
                    free, last_error, lib)
 from .guarantee import guarantee
 
@@ -76,10 +77,14 @@ class Measurement(np.ndarray):
       header           the payload header as a dict (decoded payloads)
       guarantee        what the payload promises of every value (brdfwave.guarantee),
                        for decoded payloads
+      mask             decode(..., salvage=True): per value 0 exact, 1 approximate
+                       (rebuilt from coarser levels), 2 missing; else None
+      segments, lost_segments   decode(..., salvage=True): the payload's segments,
+                       and how many of them were lost
     """
 
     _ATTRS = ("metadata", "header", "layout", "level", "level_in", "directions", "incoming",
-              "guarantee")
+              "guarantee", "mask", "segments", "lost_segments")
 
     def __new__(cls, values, metadata=None, layout=None, level=None, level_in=None,
                 header=None, wavelengths=None):
@@ -94,6 +99,7 @@ class Measurement(np.ndarray):
         obj.directions = _directions(level) if layout and layout != "spectra" else None
         obj.incoming = _directions(level_in) if layout == "brdf-full" else None
         obj.guarantee = None
+        obj.mask = obj.segments = obj.lost_segments = None
         return obj
 
     def __array_finalize__(self, obj):
@@ -190,12 +196,15 @@ def _put_missing(values, meta):
         flat[start:start + n] = miss["value"]
 
 
-def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0):
+def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0, salvage=False,
+                 incoming=None):
     """Decodes a payload held in memory; see decode()."""
-    return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples)
+    return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples,
+                  salvage=salvage, incoming=incoming)
 
 
-def decode(source, *, wavelengths=None, integers=False, max_samples=0):
+def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=False,
+           incoming=None):
     """Decodes a payload (bytes, or the path of a payload file) to a
     Measurement: float32 values (integers=True: the codec's int32 samples) in
     the layout of `brdfwave decode`, [incoming][outgoing][band], with the
@@ -204,24 +213,98 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0):
     given in. Samples the source marked missing get its missing value back.
     wavelengths: for payloads without them. Payloads that decode to more
     than max_samples samples (0: the library's default, 2**26) are refused
-    before anything is allocated."""
+    before anything is allocated. salvage=True: a payload coded in segments
+    (encode(..., segments=N)) that is damaged or cut decodes in part: every
+    whole segment is decoded, the rest rebuilt from the coarser levels it
+    has; the Measurement's `mask` (uint8, the values' shape) is then 0 where
+    a value is exact, 1 approximate, 2 missing, and `lost_segments` and
+    `segments` count the segments (without salvage such a payload is
+    refused, as every payload that is not whole). incoming=K: only incoming
+    direction K of a BRDF (a reflectance, (n_out, bands)) or spectrum K of a
+    set of spectra ((1, bands)), decoding only what it depends on (with
+    segments, only the segments that hold it); not for a full BRDF coded
+    with the reciprocity step."""
     payload, path = _read_bytes(source)
     try:
-        return _decode(payload, wavelengths, integers, max_samples)
+        if incoming is not None:
+            if salvage:
+                raise BrdfwaveError("incoming= decodes a whole payload: not with salvage=True")
+            return _decode_row(payload, incoming, wavelengths, integers)
+        return _decode(payload, wavelengths, integers, max_samples, salvage)
     except BrdfwaveError as e:
         if path is None:
             raise
         raise BrdfwaveError("%s: %s" % (path, e)) from None
 
 
-def _decode(payload, wavelengths, integers, max_samples):
+def _meta_of(payload, row=None):
+    """The payload's metadata as a dict (of one row alone: what decode with
+    incoming= keeps)."""
+    L = lib()
+    j = ctypes.c_char_p()
+    rc = (L.bwh_meta_json_of_payload(payload, len(payload), ctypes.byref(j)) if row is None else
+          L.bwh_meta_row_json(payload, len(payload), int(row), ctypes.byref(j)))
+    if rc != 0:
+        raise _error()
+    try:
+        return json.loads(j.value.decode("utf-8"))
+    finally:
+        free(j)
+
+
+def _wavelengths_for(wavelengths, bands):
+    """The caller's wavelengths for a payload without them: one per band."""
+    if wavelengths is None:
+        return None
+    wavelengths = np.asarray(wavelengths, dtype=np.float64)
+    if wavelengths.shape != (bands,):
+        raise BrdfwaveError("%d wavelengths given for %d bands" % (wavelengths.size, bands))
+    return wavelengths
+
+
+def _decode_row(payload, incoming, wavelengths, integers):
+    L = lib()
+    if not (isinstance(incoming, (int, np.integer)) and 0 <= incoming < 2 ** 32 - 1):
+        raise BrdfwaveError("incoming must be a whole number from 0")
+    h, d = Header(), Dims()
+    s = ctypes.POINTER(ctypes.c_int32)()
+    v = ctypes.POINTER(ctypes.c_float)()
+    if L.bwh_decode_incoming(payload, len(payload), int(incoming), ctypes.byref(h),
+                             ctypes.byref(d), ctypes.byref(s) if integers else None,
+                             None if integers else ctypes.byref(v)) != 0:
+        raise _error()
+    try:
+        n = d.n_out * d.bands
+        vals = np.ctypeslib.as_array(s if integers else v, shape=(n,)).copy()
+    finally:
+        free(s)
+        free(v)
+    meta = _meta_of(payload, incoming)
+    if d.shape == 0:
+        vals = vals.reshape(1, d.bands)
+    else:
+        vals = vals.reshape(d.n_out, d.bands)
+    wavelengths = _wavelengths_for(wavelengths, d.bands)
+    m = Measurement(vals, meta, _SHAPE_NAMES[d.shape], d.level_out if d.shape > 0 else None,
+                    None, _header_dict(h), wavelengths)
+    m.guarantee = guarantee(payload)
+    return m
+
+
+def _decode(payload, wavelengths, integers, max_samples, salvage=False):
     L = lib()
     h = Header()
     s = ctypes.POINTER(ctypes.c_int32)()
     v = ctypes.POINTER(ctypes.c_float)()
-    if L.bwh_decode_limit(payload, len(payload), int(max_samples), ctypes.byref(h),
-                          ctypes.byref(s) if integers else None,
-                          None if integers else ctypes.byref(v)) != 0:
+    mk = ctypes.POINTER(ctypes.c_uint8)()
+    sv = Salvage()
+    args = (payload, len(payload), int(max_samples), ctypes.byref(h),
+            ctypes.byref(s) if integers else None, None if integers else ctypes.byref(v))
+    if salvage:
+        rc = L.bwh_decode_salvage(*args, ctypes.byref(mk), ctypes.byref(sv))
+    else:
+        rc = L.bwh_decode_limit(*args)
+    if rc < 0:
         raise _error()
     try:
         d = h.dims
@@ -230,16 +313,12 @@ def _decode(payload, wavelengths, integers, max_samples):
             vals = np.ctypeslib.as_array(s, shape=(n,)).copy()
         else:
             vals = np.ctypeslib.as_array(v, shape=(n,)).copy()
+        mask = np.ctypeslib.as_array(mk, shape=(n,)).copy() if salvage and n else None
     finally:
         free(s)
         free(v)
-    j = ctypes.c_char_p()
-    if L.bwh_meta_json_of_payload(payload, len(payload), ctypes.byref(j)) != 0:
-        raise _error()
-    try:
-        meta = json.loads(j.value.decode("utf-8"))
-    finally:
-        free(j)
+        free(mk)
+    meta = _meta_of(payload)
     if d.shape == 0:
         shape = (d.n_in, d.bands)
     elif d.shape == 1:
@@ -248,14 +327,15 @@ def _decode(payload, wavelengths, integers, max_samples):
         shape = (d.n_in, d.n_out, d.bands)
     vals = vals.reshape(shape)
     _put_missing(vals, meta)
-    if wavelengths is not None:
-        wavelengths = np.asarray(wavelengths, dtype=np.float64)
-        if wavelengths.shape != (d.bands,):
-            raise BrdfwaveError("%d wavelengths given for %d bands" % (wavelengths.size, d.bands))
+    if mask is not None:
+        mask = mask.reshape(shape)
+    wavelengths = _wavelengths_for(wavelengths, d.bands)
     m = Measurement(vals, meta, _SHAPE_NAMES[d.shape],
                        d.level_out if d.shape > 0 else None,
                        d.level_in if d.shape == 3 else None, _header_dict(h), wavelengths)
     m.guarantee = guarantee(payload)
+    if salvage:
+        m.mask, m.segments, m.lost_segments = mask, int(sv.segments), int(sv.lost_segments)
     return m
 
 
@@ -305,7 +385,7 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder=None,
            stream=False, symmetry="auto", path=None, device=None, firmware=None,
-           max_rel_error=None, rel_floor=None, effort=None):
+           max_rel_error=None, rel_floor=None, effort=None, segments=None):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
     given), as `brdfwave encode` does, with its metadata.
 
@@ -335,7 +415,9 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     each encode's size); None: "best" on this host, "fast" with device;
     coder: "range", "ms", "rice" or "auto" (rice for prediction errors of a
     bit or more a sample, else ms); None: "range" on this host, "auto" with
-    device; stream=True: streamed order; symmetry: "auto",
+    device; segments=N: the body in about N segments, each decodable alone,
+    so that a payload damaged or cut on its way still decodes in part
+    (decode(..., salvage=True)); stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
     --device`; firmware: its image, else found beside the library or named by
@@ -436,6 +518,10 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         o.scale = float(scale)
     if stream:
         o.flags |= 0x02
+    if segments is not None:
+        if not (isinstance(segments, (int, np.integer)) and 1 <= segments <= 1 << 28):
+            raise BrdfwaveError("segments must be a whole number from 1 to 2**28")
+        o.segments = int(segments)
     sym = L.bwh_symmetry_from_name(symmetry.encode()) if isinstance(symmetry, str) else -1
     if sym < 0:
         raise BrdfwaveError("symmetry must be auto, mirror, reciprocal, both or none")

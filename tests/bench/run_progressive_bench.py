@@ -1,0 +1,329 @@
+# SPDX-License-Identifier: BSD-2-Clause
+"""Payloads in segments (docs/FORMAT.md, Segments): what they cost, and what a
+lost part of a payload costs (make bench-progressive).
+
+For each set and mode, with the host's defaults:
+- bytes: the payload in 1 (no segments), 4, 16 and 64 segments;
+- loss: the payload in 16 segments, each segment lost in turn (its bytes
+  zeroed), then each 1 KiB chunk lost in turn (zeroed): `brdfwave decode`
+  writes what is left with its mask; every sample the mask marks exact must
+  equal the whole payload's (else the row says so), and the share of samples
+  affected (approximate or missing) is set against the share of bytes lost.
+- one incoming direction (one spectrum) decoded alone against the whole
+  decode, on the host, in the same run;
+- on the device: the level-4 x 81-band reflectance encoded by the emulated
+  board's streaming encoder (`encode --device qemu --stream`), without and
+  with segments: instructions per sample (QEMU -icount), bytes, and the
+  streaming encoder's RAM (its context in the firmware image, and the
+  caller's memory BW_STREAM_MEM_BOUND).
+Writes build/bench/progressive.md and progressive.csv. Environment: BW (the
+brdfwave CLI), BENCH_DIR, FIRMWARE (build/qemu/brdfwave-fw.elf).
+"""
+import csv
+import glob
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+BW = os.environ.get("BW", os.path.join(ROOT, "build/host/brdfwave"))
+OUT = os.environ.get("BENCH_DIR", os.path.join(ROOT, "build/bench"))
+TMP = tempfile.mkdtemp(prefix="bw_prog_")
+SEGMENTS = (1, 4, 16, 64)
+LOSS_SEGMENTS = 16
+CHUNK = 1024
+
+
+def run(args, ok=(0,)):
+    r = subprocess.run([BW] + args, capture_output=True)
+    if r.returncode not in ok:
+        sys.exit("bench-progressive: brdfwave %s: exit %d: %s"
+                 % (" ".join(args), r.returncode, r.stderr.decode().strip()))
+    return r
+
+
+def tmp(name):
+    return os.path.join(TMP, name)
+
+
+def sets():
+    """(key, description, encode input arguments)"""
+    out = []
+    sed = sorted(glob.glob(os.path.join(ROOT, "tests/data/field_psr3500/*.sed")))
+    args = []
+    for p in sed:
+        args += ["-i", p]
+    out.append(("field", "%d PSR-3500 field spectra (.sed) x 1024 bands" % len(sed),
+                args + ["--input-format", "sed"], ["--max-error", "0.001"]))
+    a = np.loadtxt(os.path.join(ROOT, "tests/data/spectralon/BRF_normalization_factor.csv"),
+                   delimiter=",")[:, 1:]
+    a.astype("<f4").tofile(tmp("spectralon.f32"))
+    out.append(("spectralon", "Spectralon A(theta_i, lambda): %d incidences x %d bands, as "
+                "spectra" % a.shape, ["-i", tmp("spectralon.f32"), "--bands", str(a.shape[1])],
+                ["--max-error", "0.0005"]))
+    run(["synth", "--model", "phong", "--kd", "0.75", "--ks", "0.25", "--n", "20", "--level", "4",
+         "--incoming", "16", "-o", tmp("phong.f32")])
+    out.append(("phong", "Phong kd 0.75 ks 0.25 n 20, 16 incoming x 1024 outgoing",
+                ["-i", tmp("phong.f32"), "--bands", "1", "--level", "4", "--incoming", "16"],
+                ["--max-error", "0.001"]))
+    run(["synth", "--model", "ward", "--ax", "0.35", "--ay", "0.05", "--kd", "0.75", "--ks",
+         "0.25", "--level", "4", "--level-in", "4", "-o", tmp("ward.f32")])
+    out.append(("ward", "Ward ax 0.35 ay 0.05, 1024 incoming x 1024 outgoing (full BRDF)",
+                ["-i", tmp("ward.f32"), "--bands", "1", "--level", "4", "--level-in", "4"],
+                ["--max-error", "0.001"]))
+    g = run(["grid", "--level", "4"]).stdout.decode().splitlines()[1:]
+    z = np.array([float(l.split(",")[5]) for l in g])
+    wl = np.linspace(0, 1, 81)
+    refl = (0.2 + 0.5 * z[:, None] * (0.6 + 0.4 * np.sin(6 * wl[None, :])) +
+            0.05 * z[:, None] ** 8)
+    refl.astype("<f4").tofile(tmp("refl81.f32"))
+    out.append(("refl81", "a reflectance at level 4 (1024 directions) x 81 bands",
+                ["-i", tmp("refl81.f32"), "--bands", "81", "--level", "4"],
+                ["--max-error", "0.0005"]))
+    return out
+
+
+def decode_i32(payload, mask=None):
+    out = tmp("d.i32")
+    args = ["decode", "-i", payload, "-o", out, "--output-format", "i32"]
+    if mask:
+        args += ["--mask", mask]
+    r = run(args, ok=(0, 1, 3))
+    if r.returncode == 1:
+        return None, None, r.stderr.decode().strip()
+    m = np.fromfile(mask, np.uint8) if mask else None
+    return np.fromfile(out, "<i4"), m, ""
+
+
+def loss_rows(key, mode, payload):
+    """Each segment, then each 1 KiB chunk, lost in turn."""
+    data = open(payload, "rb").read()
+    ref, _, _ = decode_i32(payload)
+    info = run(["info", payload]).stdout.decode().splitlines()
+    kv = dict(l.split(": ", 1) for l in info if ": " in l)
+    segs = int(kv["segments"])
+    hl = int(kv["segment_table_offset"])
+    lens = [int(x) for x in kv["segment_bytes"].split(",")]
+    starts = np.cumsum([hl + 8 * segs + 4] + lens[:-1])
+    rows = []
+    for what, spans in (("segment", [(int(s), int(s) + l) for s, l in zip(starts, lens)]),
+                        ("1 KiB chunk", [(c, min(c + CHUNK, len(data)))
+                                         for c in range(0, len(data), CHUNK)])):
+        shares, byte_shares, exact_ok, whole_lost, t0 = [], [], True, 0, time.time()
+        for a, b in spans:
+            if b <= a:
+                continue
+            q = bytearray(data)
+            q[a:b] = bytes(b - a)
+            p = tmp("lost.bwv")
+            open(p, "wb").write(q)
+            got, m, err = decode_i32(p, tmp("lost.mask"))
+            byte_shares.append((b - a) / len(data))
+            if got is None:  # header or table hit: the payload is lost whole
+                whole_lost += 1
+                shares.append(1.0)
+                continue
+            if not np.array_equal(got[m == 0], ref[m == 0]):
+                exact_ok = False
+            shares.append(float(np.mean(m != 0)))
+        shares, byte_shares = np.array(shares), np.array(byte_shares)
+        rows.append({"set": key, "mode": mode, "segments": segs, "lost": what,
+                     "cases": len(shares), "bytes_lost_mean_pct": 100 * byte_shares.mean(),
+                     "samples_affected_mean_pct": 100 * shares.mean(),
+                     "samples_affected_max_pct": 100 * shares.max(),
+                     "lost_whole": whole_lost, "exact_elsewhere": "yes" if exact_ok else "NO",
+                     "seconds": time.time() - t0})
+    return rows
+
+
+def partial_rows():
+    """One incoming direction (one spectrum) decoded alone against the whole
+    decode, through the library (the Python package's ctypes calls), in this
+    run: the best of 5 whole decodes against the mean over rows spread over
+    the measurement; each row checked against the whole decode's."""
+    import ctypes
+    sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
+    from brdfwave._lib import Dims, Header, free, lib
+    L = lib()
+    cases = [("ward", "mirror, 1024 segments (one incoming block each)",
+              ["--symmetry", "mirror", "--segments", "1024", "--max-error", "0.001"]),
+             ("ward", "mirror, one body", ["--symmetry", "mirror", "--max-error", "0.001"]),
+             ("field", "lossless, 60 segments (a spectrum each)", ["--lossless", "--segments",
+                                                                   "60"]),
+             ("field", "lossless, one body", ["--lossless"])]
+    inputs = {k: inp for k, _, inp, _ in sets()}
+    rows = []
+    for key, what, args in cases:
+        pth = tmp("part_%s_%d.bwv" % (key, len(rows)))
+        run(["encode", "-q"] + inputs[key] + args + ["-o", pth])
+        p = open(pth, "rb").read()
+
+        def whole():
+            h, v = Header(), ctypes.POINTER(ctypes.c_float)()
+            if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
+                sys.exit("bench-progressive: whole decode failed")
+            n = h.dims.n_in * h.dims.n_out * h.dims.bands
+            a = np.ctypeslib.as_array(v, shape=(n,)).copy()
+            free(v)
+            return a, h
+
+        def one(k):
+            h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
+            if L.bwh_decode_incoming(p, len(p), k, ctypes.byref(h), ctypes.byref(d), None,
+                                     ctypes.byref(v)) != 0:
+                sys.exit("bench-progressive: decode of row %d failed" % k)
+            a = np.ctypeslib.as_array(v, shape=(d.n_out * d.bands,)).copy()
+            free(v)
+            return a
+
+        times = []
+        for _ in range(5):
+            t0 = time.perf_counter()
+            ref, h = whole()
+            times.append(time.perf_counter() - t0)
+        n_in, row = h.dims.n_in, h.dims.n_out * h.dims.bands
+        ks = list(range(0, n_in, max(1, n_in // 64)))
+        t0 = time.perf_counter()
+        got = [one(k) for k in ks]
+        per = (time.perf_counter() - t0) / len(ks)
+        same = all(np.array_equal(g, ref[k * row:(k + 1) * row]) for k, g in zip(ks, got))
+        rows.append({"set": key, "payload": what, "bytes": len(p), "rows": len(ks),
+                     "whole_ms": 1e3 * min(times), "row_ms": 1e3 * per,
+                     "ratio": min(times) / per, "same": "yes" if same else "NO"})
+    return rows
+
+
+FIRMWARE = os.environ.get("FIRMWARE", os.path.join(ROOT, "build/qemu/brdfwave-fw.elf"))
+
+
+def device_rows(refl_args):
+    """The streaming encoder on the emulated board, with 1 (none), 4, 16 and
+    64 segments."""
+    rows = []
+    for s in SEGMENTS:
+        p = tmp("dev_%d.bwv" % s)
+        seg = ["--segments", str(s)] if s > 1 else []
+        r = run(["encode", "--device", "qemu", "--firmware", FIRMWARE, "--stream", "--basis",
+                 "53", "--max-error", "0.0005"] + refl_args + seg + ["-o", p])
+        line = [l for l in r.stdout.decode().splitlines() if "instructions (" in l][0]
+        per = float(line.split("instructions (")[1].split()[0])
+        h = tmp("host_%d.bwv" % s)
+        run(["encode", "-q", "--coder", "auto", "--effort", "fast", "--stream", "--basis", "53",
+             "--max-error", "0.0005"] + refl_args + seg + ["-o", h])
+        same = open(p, "rb").read() == open(h, "rb").read()
+        rows.append({"segments": s, "bytes": os.path.getsize(p), "instr_per_sample": per,
+                     "same": "yes" if same else "NO"})
+    return rows
+
+
+def stream_ram():
+    """The streaming encoder's RAM in the firmware: its context (the app's
+    static `stream`) and the caller's memory (`stream_mem`)."""
+    r = subprocess.run(["arm-none-eabi-nm", "-S", FIRMWARE], capture_output=True, text=True)
+    size = {}
+    for l in r.stdout.splitlines():
+        f = l.split()
+        if len(f) == 4 and f[3] in ("stream", "stream_mem"):
+            size[f[3]] = int(f[1], 16)
+    return size
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    size_rows, loss = [], []
+    for key, desc, inp, lossy in sets():
+        for mode, margs in (("lossless", ["--lossless"]), ("max-error", lossy)):
+            sizes = {}
+            for s in SEGMENTS:
+                p = tmp("%s_%s_%d.bwv" % (key, mode, s))
+                run(["encode", "-q"] + inp + margs + ["--segments", str(s), "-o", p])
+                sizes[s] = os.path.getsize(p)
+            size_rows.append({"set": key, "desc": desc, "mode": mode,
+                              **{"bytes_%d" % s: sizes[s] for s in SEGMENTS}})
+            loss += loss_rows(key, mode, tmp("%s_%s_%d.bwv" % (key, mode, LOSS_SEGMENTS)))
+            print("bench-progressive: %s %s done" % (key, mode), flush=True)
+    part = partial_rows()
+    refl = [x for x in sets() if x[0] == "refl81"][0]
+    dev = device_rows(refl[2])
+    ram = stream_ram()
+    with open(os.path.join(OUT, "progressive.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(loss[0].keys()))
+        w.writeheader()
+        w.writerows(loss)
+    md = ["# Payloads in segments", "",
+          "`make bench-progressive` (tests/bench/run_progressive_bench.py): the host's encoder "
+          "with its defaults and `--segments N`; `brdfwave decode --mask` on payloads with a "
+          "part lost (its bytes zeroed).", "",
+          "## What segments cost", "",
+          "Payload bytes in 1 (no segments), 4, 16 and 64 segments, and the growth against 1.",
+          "", "| set | mode | 1 | 4 | 16 | 64 |", "|---|---|---|---|---|---|"]
+    for r in size_rows:
+        b1 = r["bytes_1"]
+        md.append("| %s | %s | %d | %s |" % (r["set"], r["mode"], b1, " | ".join(
+            "%d (+%.1f %%)" % (r["bytes_%d" % s], 100.0 * (r["bytes_%d" % s] / b1 - 1))
+            for s in SEGMENTS[1:])))
+    md += ["", "Sets: " + "; ".join("%s: %s" % (r["set"], r["desc"]) for r in size_rows[::2]),
+           "", "## What a lost part costs", "",
+           "The payload in %d segments; each segment, then each %d-byte chunk, lost in turn. "
+           "*affected*: samples the mask marks approximate (rebuilt from coarser levels) or "
+           "missing; a chunk that hits the header or the segment table loses the payload whole "
+           "(counted as 100 %%). *exact elsewhere*: every sample marked exact equals the whole "
+           "payload's, in every case." % (LOSS_SEGMENTS, CHUNK), "",
+           "| set | mode | lost | cases | bytes lost, mean | samples affected, mean | max | "
+           "lost whole | exact elsewhere |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in loss:
+        md.append("| %s | %s | %s | %d | %.2f %% | %.2f %% | %.2f %% | %d | %s |" % (
+            r["set"], r["mode"], r["lost"], r["cases"], r["bytes_lost_mean_pct"],
+            r["samples_affected_mean_pct"], r["samples_affected_max_pct"], r["lost_whole"],
+            r["exact_elsewhere"]))
+    md += ["", "## Decoding one incoming direction", "",
+           "One incoming direction of a BRDF (one spectrum of a set) decoded alone "
+           "(`bwh_decode_incoming`, `decode --incoming K`, `decode(..., incoming=K)`) against "
+           "the whole decode (`bwh_decode_limit`), float values out, in this run: the best of 5 "
+           "whole decodes, the mean over the rows decoded (spread over the measurement); "
+           "*same*: every row equals that row of the whole decode. The Ward set coded with the "
+           "mirror step only (the reciprocity step, which the host's encoder picks for it by "
+           "default, ties every row to every other: such a payload decodes whole).", "",
+           "| set | payload | bytes | rows | whole decode | one row | ratio | same |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in part:
+        md.append("| %s | %s | %d | %d | %.2f ms | %.3f ms | %.1f x | %s |" % (
+            r["set"], r["payload"], r["bytes"], r["rows"], r["whole_ms"], r["row_ms"],
+            r["ratio"], r["same"]))
+    d1 = dev[0]
+    md += ["", "## On the device", "",
+           "The refl81 set (%s) encoded by the emulated board's streaming encoder: `brdfwave "
+           "encode --device qemu --stream --basis 53 --max-error 0.0005 [--segments N]`, "
+           "instructions per sample counted by QEMU -icount (the encoder's, the sensor "
+           "reads included); *as the host's*: the payload byte for byte that of the host's "
+           "encoder with the device's defaults (`--coder auto --effort fast`)." % refl[1], "",
+           "| segments | bytes | instructions per sample | against none | as the host's |",
+           "|---|---|---|---|---|"]
+    for r in dev:
+        md.append("| %d | %d | %.1f | %.3f x | %s |" % (
+            r["segments"], r["bytes"], r["instr_per_sample"],
+            r["instr_per_sample"] / d1["instr_per_sample"], r["same"]))
+    mem = (4 * (4 + 1) + 3) * 81 * 4  # BW_STREAM_MEM_BOUND(4, 81) int32
+    md += ["", "RAM of the streaming encoder for level 4 x 81 bands: its context, "
+           "`bw_stream_t` (the app's static `stream` in the firmware image, `arm-none-eabi-nm "
+           "-S build/qemu/brdfwave-fw.elf`), %d bytes, the segments' state in it three "
+           "fields; and its memory, BW_STREAM_MEM_BOUND(4, 81) int32 = %d bytes: %d bytes "
+           "(%.1f KiB) in all, with or without segments, whose table (8 bytes a segment) "
+           "lies in the payload's own buffer." % (ram.get("stream", 0), mem,
+                                                  ram.get("stream", 0) + mem,
+                                                  (ram.get("stream", 0) + mem) / 1024.0)]
+    bad = ([r for r in loss if r["exact_elsewhere"] != "yes"] +
+           [r for r in dev if r["same"] != "yes"] + [r for r in part if r["same"] != "yes"])
+    md += ["", "Exact outside the lost part in every case: %s." % ("yes" if not bad else
+                                                                    "NO (%d rows)" % len(bad))]
+    open(os.path.join(OUT, "progressive.md"), "w").write("\n".join(md) + "\n")
+    print("bench-progressive: wrote %s" % os.path.join(OUT, "progressive.md"))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
