@@ -46,7 +46,8 @@
  *   bw_header.c        the payload's header and its CRC
  *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
  *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
- *   bw_decode.c        bw_decode, and bw_decode_salvage (segments)
+ *   bw_decode.c        bw_decode, bw_decode_salvage (segments), the partial
+ *                      decodes (bw_decode_incoming, bw_decode_level)
  *   bw_salvage.c       what a decode in part rebuilt (bw_salvage_mask)
  *   bw_stream.c        the streaming encoder (bw_stream_*)
  *   bw_crc32.c         CRC-32
@@ -430,6 +431,22 @@ bw_status_t bw_decode_salvage(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
 bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
                                int32_t *samples, size_t samples_cap, int32_t *work,
                                size_t work_cap, bw_header_t *hdr_out);
+
+/*
+ * Decodes a directional measurement (a reflectance, a BRDF) at a coarser
+ * outgoing level (level of detail): n_in * 4 4^level * bands samples in
+ * the layout of a measurement of that level, each the Bio-Haar scaling
+ * value of its triangle (the area-weighted mean of the samples below it, up
+ * to the lifting's rounding): exactly the whole decode's samples taken up
+ * the tree to that level, or with the mirror step (whose differences are
+ * taken at the finest level) within a few units. Only the coefficients of the
+ * levels above are decoded (in segments, only the segments that hold them:
+ * the first of a reflectance's) and inverted. level 0..level_out;
+ * BW_ERR_ARG without an outgoing hemisphere, or with the reciprocity step.
+ */
+bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
+                            int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                            bw_header_t *hdr_out);
 
 /* What bw_decode_salvage rebuilt, per direction pair (every band alike):
  * exact (as the whole payload decodes), approximate (rebuilt from the

@@ -214,49 +214,77 @@ static void sort_u32(uint32_t *v, unsigned n)
         }
 }
 
-/* Decodes the vectors [r[k][0], r[k][1]) of the coding order (ranges sorted,
- * each within the measurement): the segments that hold them, or a body in
- * one piece up to the last. */
+/* What a partial decode wants of the coding order: the vectors
+ * [r[k][0], r[k][1]) (sorted), or, without them (nr 0), the first `coarse`
+ * vectors of every incoming block. */
+typedef struct {
+    size_t (*r)[2];
+    unsigned nr;
+    size_t coarse;
+} want_t;
+
+/* Whether vectors [a, b) hold any wanted one. */
+static bool wanted(const want_t *w, size_t no, size_t a, size_t b)
+{
+    if (!w->nr) /* a's block's first ones, or the next block's */
+        return a % no < w->coarse || b > (a / no + 1u) * no;
+    for (unsigned k = 0; k < w->nr; k++)
+        if (w->r[k][0] < b && a < w->r[k][1])
+            return true;
+    return false;
+}
+
+/* Decodes the wanted vectors: the segments that hold them, or a body in one
+ * piece up to the last of them. */
 static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t *p,
-                                 const bw_header_t *h, bw_models_t *m, size_t (*r)[2],
-                                 unsigned nr)
+                                 const bw_header_t *h, bw_models_t *m, const want_t *w)
 {
     uint32_t b = pl->dims.bands, V = pl->seg_vec;
     unsigned coder = bw_coder_of(h->flags);
     bw_iter_t it;
+    size_t no = pl->dims.n_out, nv = (size_t)pl->dims.n_in * no;
     if (!V) { /* whole strips: a strip's presence is of all its 32 values */
-        size_t c = (r[nr - 1u][1] * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
+        size_t last = w->nr ? w->r[w->nr - 1u][1] : nv;
+        size_t c = (last * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
         bw_iter_init(&it, pl, x);
         return bw_decode_coefs(&it, c < pl->n ? c : pl->n, p + h->header_len, h->body_len,
                                coder, m);
     }
     const uint8_t *t = p + h->header_len;
-    size_t tab = bw_segment_table_size(h->segments), nv = (size_t)pl->dims.n_in * pl->dims.n_out;
+    size_t tab = bw_segment_table_size(h->segments), pos = tab;
     if (tab > h->body_len || bw_get_u32(t + tab - 4u) != bw_crc32(p, h->header_len + tab - 4u))
         return BW_ERR_CRC;
-    size_t pos = tab; /* where segment `next` begins */
-    uint32_t next = 0;
-    for (unsigned k = 0; k < nr; k++) {
-        for (size_t s = r[k][0] / V; s <= (r[k][1] - 1u) / V; s++) {
-            if (s < next)
-                continue; /* decoded for an earlier range */
-            for (; next < s; next++)
-                pos += bw_get_u32(t + (size_t)next * BW_SEG_ENTRY);
-            uint32_t sl = bw_get_u32(t + s * BW_SEG_ENTRY);
-            if (pos > h->body_len || sl > h->body_len - pos ||
-                bw_crc32(t + pos, sl) != bw_get_u32(t + s * BW_SEG_ENTRY + 4u))
+    for (size_t s = 0; s < h->segments; s++) {
+        size_t first = s * V, cnt = nv - first < V ? nv - first : V;
+        uint32_t sl = bw_get_u32(t + s * BW_SEG_ENTRY);
+        if (pos > h->body_len || sl > h->body_len - pos)
+            return BW_ERR_CRC;
+        if (wanted(w, no, first, first + cnt)) {
+            if (bw_crc32(t + pos, sl) != bw_get_u32(t + s * BW_SEG_ENTRY + 4u))
                 return BW_ERR_CRC;
-            size_t first = s * V, cnt = nv - first < V ? nv - first : V;
             bw_iter_at(&it, pl, x, first);
             bw_iter_segment(&it);
             bw_status_t st = bw_decode_coefs(&it, cnt * b, t + pos, sl, coder, m);
             if (st != BW_OK)
                 return st;
-            pos += sl;
-            next = (uint32_t)s + 1u;
         }
+        pos += sl;
     }
     return BW_OK;
+}
+
+/* The header of a partial decode: in segments the CRCs of the table and of
+ * the segments read vouch for what is used (no pass over the whole
+ * payload); a body in one piece, its CRC. */
+static bw_status_t partial_header(const uint8_t *payload, size_t len, bw_header_t *h,
+                                  bw_header_t *hdr_out)
+{
+    bw_status_t st = bw_header_parse_fields(payload, len, h);
+    if (st == BW_OK && !(BW_CFG_SEGMENTS && h->segment_vectors))
+        st = bw_header_read(payload, len, h);
+    if (hdr_out)
+        *hdr_out = *h;
+    return st;
 }
 
 bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
@@ -264,15 +292,9 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
                                size_t work_cap, bw_header_t *hdr_out)
 {
     bw_header_t h;
-    if (!ctx || !payload || !samples || !work)
-        return BW_ERR_ARG;
-    /* in segments, the table's CRC and those of the segments read vouch
-     * for what is used: no pass over the whole payload */
-    bw_status_t st = bw_header_parse_fields(payload, len, &h);
-    if (st == BW_OK && !(BW_CFG_SEGMENTS && h.segment_vectors))
-        st = bw_header_read(payload, len, &h);
-    if (hdr_out)
-        *hdr_out = h;
+    bw_status_t st = !ctx || !payload || !samples || !work
+                         ? BW_ERR_ARG
+                         : partial_header(payload, len, &h, hdr_out);
     if (st != BW_OK)
         return st;
     const bw_dims_t *d = &h.dims;
@@ -310,7 +332,8 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
             r[nr][0] = (size_t)(k || pl.basis != BW_BASIS_PRED ? ci[k] : first) * no;
             r[nr++][1] = ((size_t)ci[k] + 1u) * no;
         }
-    st = decode_ranges(&pl, work, payload, &h, &ctx->models, r, nr);
+    want_t w = {r, nr, 0};
+    st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
     int32_t *x = work + (size_t)in * row;
@@ -349,6 +372,61 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
     uint32_t pq = pl.basis == BW_BASIS_PRED ? 1u : pl.prequant; /* prediction: none left */
     for (size_t k = 0; k < row; k++) {
         int64_t v = (int64_t)x[k] * pq;
+        samples[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
+    }
+    return BW_OK;
+}
+
+/* ---- a coarser outgoing level ---------------------------------------------- */
+
+bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
+                            int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                            bw_header_t *hdr_out)
+{
+    bw_header_t h;
+    bw_status_t st = !ctx || !payload || !samples || !work
+                         ? BW_ERR_ARG
+                         : partial_header(payload, len, &h, hdr_out);
+    if (st != BW_OK)
+        return st;
+    const bw_dims_t *d = &h.dims;
+    size_t n = bw_dims_samples(d), b = d->bands, nc = (size_t)4u << (2u * level);
+    if (!bw_has_out(d) || level > d->level_out || (h.flags & BW_FLAG_RECIPROCAL))
+        return BW_ERR_ARG;
+    if (samples_cap < (size_t)d->n_in * nc * b || work_cap < bw_work_bound(n, b))
+        return BW_ERR_WORK;
+    bw_plan_t pl;
+    bw_plan_make(&pl, d, h.basis, h.mode, h.mode == BW_MODE_MAX_ERROR ? h.max_error : h.step_q8,
+                 h.flags, 0u, work + n, work + n);
+    pl.seg_vec = BW_CFG_SEGMENTS ? h.segment_vectors : 0u;
+    bw_plan_tables(&pl);
+    memset(work, 0, n * sizeof *work);
+    /* the first 4 4^level vectors of each block in coarse-to-fine order are
+     * the coefficients of the levels above (streamed order: all) */
+    want_t w = {NULL, 0, pl.stream ? d->n_out : nc};
+    st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
+    if (st != BW_OK)
+        return st;
+    if (pl.step_q8 > BW_STEP_ONE_Q8)
+        bw_quantise(&pl, work, false);
+    /* the coarse coefficients into a level's layout: at level L, position
+     * t << 2 (L - level) of the same coefficient at `level` */
+    unsigned sh = 2u * (d->level_out - level);
+    for (uint32_t i = 0; i < d->n_in; i++)
+        for (size_t t = 0; t < nc; t++)
+            memmove(work + ((size_t)i * nc + t) * b,
+                    work + ((size_t)i * d->n_out + (t << sh)) * b, b * sizeof *work);
+    bw_dims_t dl = *d;
+    dl.level_out = (uint8_t)level;
+    dl.n_out = (uint32_t)nc;
+    bw_plan_t pc = pl;
+    pc.dims = dl;
+    pc.n = bw_dims_samples(&dl);
+    bw_transform_inv(&pc, work);
+    if (pc.mirror)
+        bw_symmetry(&pc, work, false);
+    for (size_t k = 0; k < pc.n; k++) {
+        int64_t v = (int64_t)work[k] * pl.prequant;
         samples[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
     }
     return BW_OK;

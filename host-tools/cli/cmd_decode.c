@@ -15,7 +15,7 @@
 
 static const char decode_help[] =
     "usage: brdfwave decode -i IN.bwv -o OUT [--output-format F] [--max-samples N]\n"
-    "                       [--mask MASK.u8] [--incoming K]\n"
+    "                       [--mask MASK.u8] [--incoming K | --level L]\n"
     "\n"
     "Decodes a payload in the encoder's layout, [incoming][outgoing][band], with\n"
     "its metadata (wavelengths, units, incidence angles, ...: 'brdfwave info').\n"
@@ -39,6 +39,11 @@ static const char decode_help[] =
     "                     of a set of spectra), as a reflectance (one spectrum): only\n"
     "                     what it depends on is decoded (with --segments, only the\n"
     "                     segments that hold it)\n"
+    "  --level L          decode at a coarser outgoing level L (level of detail):\n"
+    "                     each triangle's value is the mean of the samples below it\n"
+    "                     (its Bio-Haar scaling value); only the coarser levels'\n"
+    "                     coefficients are decoded (with --segments, only the\n"
+    "                     segments that hold them)\n"
     "A payload coded in segments (encode --segments) that arrives damaged or cut\n"
     "still decodes: every whole segment is decoded, the rest is rebuilt from the\n"
     "coarser levels it has, and decode says how many samples that touched and\n"
@@ -75,8 +80,8 @@ int bw_cmd_decode(int argc, char **argv)
 {
     const char *inp = NULL, *outp = NULL, *maskp = NULL;
     int fmt = -1;
-    uint32_t max_samples = 0, incoming = 0;
-    int has_incoming = 0;
+    uint32_t max_samples = 0, incoming = 0, lod = 0;
+    int has_incoming = 0, has_lod = 0;
     const cli_opt_t opts[] = {
         {"input", 'i', CLI_STRING, .dest = &inp},
         {"output", 'o', CLI_STRING, .dest = &outp},
@@ -86,6 +91,7 @@ int bw_cmd_decode(int argc, char **argv)
         {"mask", 0, CLI_STRING, .dest = &maskp},
         {"incoming", 0, CLI_U32, .dest = &incoming, .lo = 0, .hi = UINT32_MAX - 1u,
          .seen = &has_incoming},
+        {"level", 0, CLI_U32, .dest = &lod, .lo = 0, .hi = BW_MAX_LEVEL, .seen = &has_lod},
         {NULL}};
     int st;
     if (!cli_parse(argc, argv, opts, decode_help, NULL, &st))
@@ -94,8 +100,10 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_usage("needs -i IN.bwv and -o OUT");
     if (fmt < 0)
         fmt = format_of_name(outp);
-    if (has_incoming && maskp)
-        return cli_usage("--mask is for a whole decode, not with --incoming");
+    if ((has_incoming || has_lod) && maskp)
+        return cli_usage("--mask is for a whole decode, not with --incoming or --level");
+    if (has_incoming && has_lod)
+        return cli_usage("give --incoming or --level, not both");
     if (fmt == BWH_OUT_ENVI && !strcmp(outp, "-"))
         return cli_usage("--output-format envi writes a header beside its data: not to '-'");
     uint8_t *p;
@@ -116,6 +124,7 @@ int bw_cmd_decode(int argc, char **argv)
     bw_dims_t rowd;
     int got = has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
                                                  ints_only ? NULL : &v)
+              : has_lod    ? bwh_decode_level(p, len, lod, &h, &rowd, &s, ints_only ? NULL : &v)
                            : bwh_decode_salvage(p, len, max_samples, &h, &s,
                                                 ints_only ? NULL : &v, maskp ? &mask : NULL, &sv);
     if (got < 0 || bwh_meta_of_payload(p, len, &h, &meta) != 0 ||
@@ -128,8 +137,14 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_fail("%s: %s", inp, bwh_last_error());
     }
     free(p);
-    if (has_incoming)
+    if (has_incoming || has_lod)
         h.dims = rowd;
+    if (has_lod) { /* the source's missing samples are at its own level */
+        free(meta.missing);
+        meta.missing = NULL;
+        meta.n_missing = 0;
+        meta.present &= ~BWH_M_MISSING;
+    }
     size_t n = bw_dims_samples(&h.dims);
     if (v)
         bwh_meta_put_missing(&meta, v, n);

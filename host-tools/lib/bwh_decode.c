@@ -250,15 +250,16 @@ int bwh_decode(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples, 
     return bwh_decode_limit(p, len, 0, h, samples, values);
 }
 
-int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
-                        int32_t **samples, float **values)
+/* The header for a partial decode: in segments the core checks the CRCs
+ * of what it reads (the table's, the segments'), not the whole payload's;
+ * then the refusals every partial decode shares. */
+static int header_partial(const uint8_t *p, size_t len, bw_header_t *h, int32_t **samples,
+                          float **values)
 {
     if (samples)
         *samples = NULL;
     if (values)
         *values = NULL;
-    /* in segments the core checks the CRCs of what it reads (the table's,
-     * the segments'), not the whole payload's */
     bw_header_t f;
     if (bw_header_parse_fields(p, len, &f) == BW_OK && f.segment_vectors) {
         *h = f;
@@ -268,38 +269,95 @@ int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *
     } else if (header_within(p, len, 0, h, false) != 0) {
         return -1;
     }
-    const bw_dims_t *d = &h->dims;
     const uint8_t *xd;
     uint32_t xl;
+    if (h->flags & BW_FLAG_RECIPROCAL)
+        return bwh_fail("a full BRDF coded with the reciprocity step: every incoming direction "
+                        "depends on all the others; decode it whole");
+    if (bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl) == 1)
+        return bwh_fail("float values kept bit for bit in the payload's tail: decode it whole");
+    return 0;
+}
+
+/* Runs a partial decode of rn samples into *r (allocated), the full work
+ * area lent to it. */
+typedef bw_status_t (*partial_fn)(bw_ctx_t *ctx, const uint8_t *p, size_t len, uint32_t arg,
+                                  int32_t *out, size_t cap, int32_t *work, size_t wcap,
+                                  bw_header_t *h);
+
+static int run_partial(partial_fn fn, const uint8_t *p, size_t len, uint32_t arg,
+                       const bw_header_t *h, size_t rn, int32_t **r)
+{
+    size_t n = bw_dims_samples(&h->dims), wb = bw_work_bound(n, h->dims.bands);
+    int32_t *w = malloc(wb * sizeof *w);
+    bw_ctx_t *ctx = malloc(sizeof *ctx);
+    *r = malloc((rn ? rn : 1) * sizeof **r);
+    int st = !w || !*r || !ctx ? BW_ERR_ARG : fn(ctx, p, len, arg, *r, rn, w, wb, NULL);
+    bool oom = !w || !*r || !ctx;
+    free(w);
+    free(ctx);
+    if (st != BW_OK) {
+        free(*r);
+        *r = NULL;
+        return bwh_fail("%s", oom ? "out of memory" : bw_strerror(st));
+    }
+    return 0;
+}
+
+/* The values of a partial decode's samples r: the payload's maps, on a
+ * header of the dimensions decoded. */
+static int partial_values(const uint8_t *p, const bw_header_t *h, const bw_dims_t *dims,
+                          int32_t *r, int32_t **samples, float **values)
+{
+    bw_header_t hp = *h;
+    hp.dims = *dims;
+    return values_of(p, &hp, r, samples, values);
+}
+
+static bw_status_t level_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, uint32_t arg,
+                            int32_t *out, size_t cap, int32_t *work, size_t wcap, bw_header_t *h)
+{
+    return bw_decode_level(ctx, p, len, arg, out, cap, work, wcap, h);
+}
+
+int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
+                     int32_t **samples, float **values)
+{
+    if (header_partial(p, len, h, samples, values) != 0)
+        return -1;
+    const bw_dims_t *d = &h->dims;
+    if (d->shape == BW_SHAPE_SPECTRA)
+        return bwh_fail("a set of spectra has no outgoing hemisphere to coarsen");
+    if (level > d->level_out)
+        return bwh_fail("level %u is finer than the payload's own (%u)", level, d->level_out);
+    *lod = *d;
+    lod->level_out = (uint8_t)level;
+    lod->n_out = 4u << (2u * level);
+    int32_t *r;
+    if (run_partial(level_fn, p, len, level, h, bw_dims_samples(lod), &r) != 0)
+        return -1;
+    return partial_values(p, h, lod, r, samples, values);
+}
+
+int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
+                        int32_t **samples, float **values)
+{
+    if (header_partial(p, len, h, samples, values) != 0)
+        return -1;
+    const bw_dims_t *d = &h->dims;
     if (d->shape == BW_SHAPE_REFLECTANCE)
         return bwh_fail("a reflectance has no incoming directions to choose from");
     if (in >= d->n_in)
         return bwh_fail("%s %u is past the last (%u)",
                         d->shape == BW_SHAPE_SPECTRA ? "spectrum" : "incoming direction", in,
                         d->n_in - 1u);
-    if (h->flags & BW_FLAG_RECIPROCAL)
-        return bwh_fail("a full BRDF coded with the reciprocity step: every incoming direction "
-                        "depends on all the others; decode it whole");
-    if (bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl) == 1)
-        return bwh_fail("float values kept bit for bit in the payload's tail: decode it whole");
-    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands), rn = (size_t)d->n_out * d->bands;
-    int32_t *w = malloc(wb * sizeof *w), *r = malloc(rn * sizeof *r);
-    bw_ctx_t *ctx = malloc(sizeof *ctx);
-    int st = !w || !r || !ctx ? BW_ERR_ARG
-                              : bw_decode_incoming(ctx, p, len, in, r, rn, w, wb, NULL);
-    free(w);
-    free(ctx);
-    if (st != BW_OK) {
-        free(r);
-        return bwh_fail("%s", !w || !ctx ? "out of memory" : bw_strerror(st));
-    }
+    int32_t *r;
+    if (run_partial(bw_decode_incoming, p, len, in, h, (size_t)d->n_out * d->bands, &r) != 0)
+        return -1;
     memset(row, 0, sizeof *row);
     if (d->shape == BW_SHAPE_SPECTRA)
         bw_dims_make(row, BW_SHAPE_SPECTRA, 0, 0, 1, d->bands);
     else
         bw_dims_make(row, BW_SHAPE_REFLECTANCE, d->level_out, 0, 1, d->bands);
-    /* the values of the row: the payload's maps, on a header of its size */
-    bw_header_t hr = *h;
-    hr.dims = *row;
-    return values_of(p, &hr, r, samples, values);
+    return partial_values(p, h, row, r, samples, values);
 }

@@ -60,6 +60,13 @@ int bwh_decode_salvage(const uint8_t *p, size_t len, size_t max_samples, bw_head
 int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
                         int32_t **samples, float **values);
 
+/* A directional measurement at a coarser outgoing level (bw_decode_level):
+ * *samples and *values as bwh_decode_limit's for n_in * 4 4^level * bands
+ * samples, *lod the dimensions of that level. Not with the reciprocity
+ * step, nor a float payload that keeps bits in a tail. 0, or -1. */
+int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
+                     int32_t **samples, float **values);
+
 /* Checks a payload as a receiver must before it stores and acknowledges it:
  * header, CRC, the sample limit (0: the default) and a full decode. */
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h);

@@ -197,6 +197,51 @@ def partial_rows():
     return rows
 
 
+def lod_rows():
+    """A coarser outgoing level (bwh_decode_level) against the whole decode,
+    in this run (best of 5 each)."""
+    import ctypes
+    sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
+    from brdfwave._lib import Dims, Header, free, lib
+    L = lib()
+    inputs = {k: inp for k, _, inp, _ in sets()}
+    out = []
+    for key, args in (("refl81", ["--max-error", "0.0005", "--segments", "16"]),
+                      ("ward", ["--symmetry", "mirror", "--max-error", "0.001",
+                                "--segments", "1024"])):
+        pth = tmp("lod_%s.bwv" % key)
+        run(["encode", "-q"] + inputs[key] + args + ["-o", pth])
+        p = open(pth, "rb").read()
+
+        def timed(fn):
+            best = None
+            for _ in range(5):
+                t0 = time.perf_counter()
+                fn()
+                t = time.perf_counter() - t0
+                best = t if best is None else min(best, t)
+            return best
+
+        def whole():
+            h, v = Header(), ctypes.POINTER(ctypes.c_float)()
+            if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
+                sys.exit("bench-progressive: whole decode failed")
+            free(v)
+
+        tw = timed(whole)
+        for lv in (0, 2):
+            def coarse():
+                h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
+                if L.bwh_decode_level(p, len(p), lv, ctypes.byref(h), ctypes.byref(d), None,
+                                      ctypes.byref(v)) != 0:
+                    sys.exit("bench-progressive: level %d decode failed" % lv)
+                free(v)
+            tl = timed(coarse)
+            out.append({"set": key, "payload": " ".join(args), "level": lv,
+                        "whole_ms": 1e3 * tw, "lod_ms": 1e3 * tl, "ratio": tw / tl})
+    return out
+
+
 FIRMWARE = os.environ.get("FIRMWARE", os.path.join(ROOT, "build/qemu/brdfwave-fw.elf"))
 
 
@@ -247,6 +292,7 @@ def main():
             loss += loss_rows(key, mode, tmp("%s_%s_%d.bwv" % (key, mode, LOSS_SEGMENTS)))
             print("bench-progressive: %s %s done" % (key, mode), flush=True)
     part = partial_rows()
+    lods = lod_rows()
     refl = [x for x in sets() if x[0] == "refl81"][0]
     dev = device_rows(refl[2])
     ram = stream_ram()
@@ -294,6 +340,14 @@ def main():
         md.append("| %s | %s | %d | %d | %.2f ms | %.3f ms | %.1f x | %s |" % (
             r["set"], r["payload"], r["bytes"], r["rows"], r["whole_ms"], r["row_ms"],
             r["ratio"], r["same"]))
+    md += ["", "A coarser outgoing level (`bwh_decode_level`, `decode --level L`, "
+           "`decode(..., level=L)`) against the whole decode, the best of 5 each, in this run "
+           "(level 4 payloads):", "",
+           "| set | payload | level | whole decode | coarser level | ratio |",
+           "|---|---|---|---|---|---|"]
+    for r in lods:
+        md.append("| %s | `%s` | %d | %.2f ms | %.3f ms | %.1f x |" % (
+            r["set"], r["payload"], r["level"], r["whole_ms"], r["lod_ms"], r["ratio"]))
     d1 = dev[0]
     md += ["", "## On the device", "",
            "The refl81 set (%s) encoded by the emulated board's streaming encoder: `brdfwave "

@@ -602,6 +602,15 @@ sys.exit(0 if np.array_equal(a[5], r) else 1)" && ok || bad "decode --incoming 5
 expect_error "decode --incoming past the last" "$BW" decode -i "$T/seg.bwv" --incoming 8 -o "$T/row8.f32"
 grep -q "past the last" "$T/err" && ok || bad "--incoming 8 message: $(cat "$T/err")"
 expect_error "decode --incoming with --mask" "$BW" decode -i "$T/seg.bwv" --incoming 1 --mask "$T/m" -o "$T/row1.f32"
+# a coarser level: 8 incidences x 64 triangles, each near the mean of its 16
+expect_ok "decode --level 2" "$BW" decode -i "$T/seg.bwv" --level 2 -o "$T/lod2.f32"
+$PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/segall.f32', '<f4').reshape(8, 64, 16)
+c = np.fromfile('$T/lod2.f32', '<f4')
+sys.exit(0 if c.size == 8 * 64 and np.max(np.abs(c.reshape(8, 64) - a.mean(axis=2))) < 0.05 else 1)" && ok || bad "decode --level 2 is not the coarser level"
+expect_error "decode --level finer than the payload" "$BW" decode -i "$T/seg.bwv" --level 5 -o "$T/lod5.f32"
+grep -q "finer than" "$T/err" && ok || bad "--level 5 message: $(cat "$T/err")"
 expect_error "segments 0" "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --segments 0 -o "$T/x.bwv"
 
 echo "RESULT: $pass passed, $fail failed"

@@ -142,6 +142,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                         (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
                     "bw_decode_incoming differs from the whole decode's row", st);
     }
+    /* a coarser level: a known status, and on a whole payload it decodes
+     * (or is refused as documented) */
+    if (hf.dims.shape != BW_SHAPE_SPECTRA && hf.dims.level_out <= BW_MAX_LEVEL) {
+        static bw_ctx_t lctx;
+        unsigned lv = (unsigned)(size % (hf.dims.level_out + 1u));
+        int st = bw_decode_level(&lctx, data, size, lv, s2, n, w2, wb, NULL);
+        require(known(st), "bw_decode_level: unknown status", st);
+        if (st1 == BW_OK)
+            require(st == BW_OK || (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
+                    "bw_decode_level refuses a whole payload", st);
+    }
     /* undersized buffers are refused */
     if (st1 == BW_OK) {
         int st = bw_decode(data, size, s1, n - 1, w1, wb, NULL);

@@ -181,6 +181,11 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
     r = brdfwave.decode_bytes(p, incoming=5)
     assert r.layout == "reflectance" and r.shape == (1024, 1), (r.layout, r.shape)
     assert np.array_equal(np.asarray(r), np.asarray(whole)[5])
+    # a coarser level: each triangle the mean of what lies below it
+    c = brdfwave.decode_bytes(p, level=2)
+    assert c.shape == (8, 64, 1) and c.level == 2, (c.shape, c.level)
+    fine = np.asarray(whole).reshape(8, 64, 16)
+    assert np.max(np.abs(np.asarray(c)[..., 0] - fine.mean(axis=2))) < 0.05
     for bad_row in (8, -1):
         try:
             brdfwave.decode_bytes(p, incoming=bad_row)

@@ -138,6 +138,9 @@ def lib():
     L.bwh_decode_incoming.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
                                       P(Header), P(Dims), P(P(ctypes.c_int32)),
                                       P(P(ctypes.c_float))]
+    L.bwh_decode_level.restype = ctypes.c_int
+    L.bwh_decode_level.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint, P(Header),
+                                   P(Dims), P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
     L.bwh_meta_row_json.restype = ctypes.c_int
     L.bwh_meta_row_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
                                     P(ctypes.c_char_p)]

@@ -197,14 +197,14 @@ def _put_missing(values, meta):
 
 
 def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0, salvage=False,
-                 incoming=None):
+                 incoming=None, level=None):
     """Decodes a payload held in memory; see decode()."""
     return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples,
-                  salvage=salvage, incoming=incoming)
+                  salvage=salvage, incoming=incoming, level=level)
 
 
 def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=False,
-           incoming=None):
+           incoming=None, level=None):
     """Decodes a payload (bytes, or the path of a payload file) to a
     Measurement: float32 values (integers=True: the codec's int32 samples) in
     the layout of `brdfwave decode`, [incoming][outgoing][band], with the
@@ -223,13 +223,17 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     direction K of a BRDF (a reflectance, (n_out, bands)) or spectrum K of a
     set of spectra ((1, bands)), decoding only what it depends on (with
     segments, only the segments that hold it); not for a full BRDF coded
-    with the reciprocity step."""
+    with the reciprocity step. level=L: a directional measurement at a
+    coarser outgoing level L (level of detail), each triangle's value the
+    mean of the samples below it, decoding only the coarser levels."""
     payload, path = _read_bytes(source)
     try:
+        if (incoming is not None) + (level is not None) + bool(salvage) > 1:
+            raise BrdfwaveError("give one of incoming=, level= and salvage=True")
         if incoming is not None:
-            if salvage:
-                raise BrdfwaveError("incoming= decodes a whole payload: not with salvage=True")
             return _decode_row(payload, incoming, wavelengths, integers)
+        if level is not None:
+            return _decode_lod(payload, level, wavelengths, integers)
         return _decode(payload, wavelengths, integers, max_samples, salvage)
     except BrdfwaveError as e:
         if path is None:
@@ -260,6 +264,33 @@ def _wavelengths_for(wavelengths, bands):
     if wavelengths.shape != (bands,):
         raise BrdfwaveError("%d wavelengths given for %d bands" % (wavelengths.size, bands))
     return wavelengths
+
+
+def _decode_lod(payload, level, wavelengths, integers):
+    L = lib()
+    if not (isinstance(level, (int, np.integer)) and 0 <= level <= 6):
+        raise BrdfwaveError("level must be a whole number from 0 to 6")
+    h, d = Header(), Dims()
+    s = ctypes.POINTER(ctypes.c_int32)()
+    v = ctypes.POINTER(ctypes.c_float)()
+    if L.bwh_decode_level(payload, len(payload), int(level), ctypes.byref(h), ctypes.byref(d),
+                          ctypes.byref(s) if integers else None,
+                          None if integers else ctypes.byref(v)) != 0:
+        raise _error()
+    try:
+        n = d.n_in * d.n_out * d.bands
+        vals = np.ctypeslib.as_array(s if integers else v, shape=(n,)).copy()
+    finally:
+        free(s)
+        free(v)
+    meta = _meta_of(payload)
+    meta.pop("missing", None)
+    shape = (d.n_out, d.bands) if d.shape == 1 else (d.n_in, d.n_out, d.bands)
+    m = Measurement(vals.reshape(shape), meta, _SHAPE_NAMES[d.shape], d.level_out,
+                    d.level_in if d.shape == 3 else None, _header_dict(h),
+                    _wavelengths_for(wavelengths, d.bands))
+    m.guarantee = guarantee(payload)
+    return m
 
 
 def _decode_row(payload, incoming, wavelengths, integers):
