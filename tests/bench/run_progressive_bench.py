@@ -149,7 +149,9 @@ def partial_rows():
     sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
     from brdfwave._lib import Dims, Header, free, lib
     L = lib()
-    cases = [("ward", "mirror, 1024 segments (one incoming block each)",
+    cases = [("ward", "no symmetry step, 1024 segments (one incoming block each)",
+              ["--symmetry", "none", "--segments", "1024", "--max-error", "0.001"]),
+             ("ward", "mirror, 1024 segments (one incoming block each)",
               ["--symmetry", "mirror", "--segments", "1024", "--max-error", "0.001"]),
              ("ward", "mirror, one body", ["--symmetry", "mirror", "--max-error", "0.001"]),
              ("field", "lossless, 60 segments (a spectrum each)", ["--lossless", "--segments",
@@ -331,9 +333,11 @@ def main():
            "(`bwh_decode_incoming`, `decode --incoming K`, `decode(..., incoming=K)`) against "
            "the whole decode (`bwh_decode_limit`), float values out, in this run: the best of 5 "
            "whole decodes, the mean over the rows decoded (spread over the measurement); "
-           "*same*: every row equals that row of the whole decode. The Ward set coded with the "
-           "mirror step only (the reciprocity step, which the host's encoder picks for it by "
-           "default, ties every row to every other: such a payload decodes whole).", "",
+           "*same*: every row equals that row of the whole decode. The Ward set coded without "
+           "the symmetry steps or with the mirror step only (the reciprocity step, which the "
+           "host's encoder picks for it by default, ties every row to every other: such a "
+           "payload decodes whole; with the mirror a row in the mirrored half needs the "
+           "mirrored row's blocks too).", "",
            "| set | payload | bytes | rows | whole decode | one row | ratio | same |",
            "|---|---|---|---|---|---|---|---|"]
     for r in part:
