@@ -264,8 +264,8 @@ typedef struct {
 } quant_cache_t;
 
 /* The block of coarse-to-fine incoming index i, forward or back. */
-static void quant_block(const bw_plan_t *pl, quant_cache_t *qc, int32_t *x,
-                        uint32_t i, bool forward, uint64_t thr)
+static BW_ALWAYS_INLINE void quant_block(const bw_plan_t *pl, quant_cache_t *qc, int32_t *x,
+                                         uint32_t i, bool forward, uint64_t thr)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands;
