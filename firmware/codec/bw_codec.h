@@ -492,8 +492,8 @@ typedef struct {
     size_t cap;
     bw_status_t err;
     /* segments (params.segment_vectors): the vectors coded, the segment
-     * being coded and where it begins in the body */
-    size_t emitted, seg_at;
+     * being coded and where it begins in the body, the header's length */
+    size_t emitted, seg_at, hl;
     uint32_t seg;
     bw_strip_enc_t se;
 } bw_stream_t;

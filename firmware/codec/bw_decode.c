@@ -12,6 +12,18 @@
 #include "bw_le.h"
 #include "bw_strip_coder.h"
 
+/* The plan of a payload's header, its tables after the n coefficients of
+ * work. */
+static void plan_of(bw_plan_t *pl, const bw_header_t *h, int32_t *work, size_t n)
+{
+    bw_plan_make(pl, &h->dims, h->basis, h->mode,
+                 h->mode == BW_MODE_MAX_ERROR ? h->max_error : h->step_q8, h->flags, 0u, work + n,
+                 work + n);
+    if (BW_CFG_SEGMENTS) /* (0 from bw_plan_make: a core without them refuses them) */
+        pl->seg_vec = h->segment_vectors;
+    bw_plan_tables(pl);
+}
+
 /* What the segments of a decode came to (bw_decode_salvage's outputs). */
 typedef struct {
     bool salvage;     /* the payload may be damaged or cut: decode what is whole */
@@ -83,11 +95,7 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, size_t len,
     if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    bw_plan_make(&pl, d, h->basis, h->mode,
-                 h->mode == BW_MODE_MAX_ERROR ? h->max_error : h->step_q8, h->flags, 0u,
-                 work + n, work + n);
-    pl.seg_vec = h->segment_vectors;
-    bw_plan_tables(&pl);
+    plan_of(&pl, h, work, n);
     seg_out_t strict = {false, NULL, 0, NULL, 0};
     if (!so)
         so = &strict;
@@ -273,12 +281,15 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
     return BW_OK;
 }
 
-/* The header of a partial decode: in segments the CRCs of the table and of
- * the segments read vouch for what is used (no pass over the whole
- * payload); a body in one piece, its CRC. */
-static bw_status_t partial_header(const uint8_t *payload, size_t len, bw_header_t *h,
+/* The arguments and the header of a partial decode: in segments the CRCs
+ * of the table and of the segments read vouch for what is used (no pass
+ * over the whole payload); a body in one piece, its CRC. */
+static bw_status_t partial_header(const bw_ctx_t *ctx, const uint8_t *payload, size_t len,
+                                  const int32_t *samples, const int32_t *work, bw_header_t *h,
                                   bw_header_t *hdr_out)
 {
+    if (!ctx || !payload || !samples || !work)
+        return BW_ERR_ARG;
     bw_status_t st = bw_header_parse_fields(payload, len, h);
     if (st == BW_OK && !(BW_CFG_SEGMENTS && h->segment_vectors))
         st = bw_header_read(payload, len, h);
@@ -292,9 +303,7 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
                                size_t work_cap, bw_header_t *hdr_out)
 {
     bw_header_t h;
-    bw_status_t st = !ctx || !payload || !samples || !work
-                         ? BW_ERR_ARG
-                         : partial_header(payload, len, &h, hdr_out);
+    bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
     if (st != BW_OK)
         return st;
     const bw_dims_t *d = &h.dims;
@@ -304,10 +313,7 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
     if (samples_cap < row || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    bw_plan_make(&pl, d, h.basis, h.mode, h.mode == BW_MODE_MAX_ERROR ? h.max_error : h.step_q8,
-                 h.flags, 0u, work + n, work + n);
-    pl.seg_vec = BW_CFG_SEGMENTS ? h.segment_vectors : 0u;
-    bw_plan_tables(&pl);
+    plan_of(&pl, &h, work, n);
     bool full = bw_has_in(d);
     unsigned Li = d->level_in, nb = 0, nrow = 1;
     /* the rows: this one, and the one a full BRDF's mirrored half was coded
@@ -384,9 +390,7 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
                             bw_header_t *hdr_out)
 {
     bw_header_t h;
-    bw_status_t st = !ctx || !payload || !samples || !work
-                         ? BW_ERR_ARG
-                         : partial_header(payload, len, &h, hdr_out);
+    bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
     if (st != BW_OK)
         return st;
     const bw_dims_t *d = &h.dims;
@@ -396,10 +400,7 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
     if (samples_cap < (size_t)d->n_in * nc * b || work_cap < bw_work_bound(n, b))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    bw_plan_make(&pl, d, h.basis, h.mode, h.mode == BW_MODE_MAX_ERROR ? h.max_error : h.step_q8,
-                 h.flags, 0u, work + n, work + n);
-    pl.seg_vec = BW_CFG_SEGMENTS ? h.segment_vectors : 0u;
-    bw_plan_tables(&pl);
+    plan_of(&pl, &h, work, n);
     memset(work, 0, n * sizeof *work);
     /* the first 4 4^level vectors of each block in coarse-to-fine order are
      * the coefficients of the levels above (streamed order: all) */

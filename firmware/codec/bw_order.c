@@ -89,42 +89,45 @@ static void iter_vec(bw_iter_t *it)
         }
     }
     size_t b = pl->dims.bands, base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
+    unsigned L = pl->dims.level_out;
     it->prev = pl->stream || b == 1u ? NULL : it->vec;
     it->vec = it->x + (base + pos_out) * b;
     /* the parent: the vector at the position with this level's digit cleared
      * (coded before, at a coarser level) */
-    it->par = level < 0 || pl->stream
-                  ? NULL
-                  : it->x + (base + (pos_out &
-                                     ~(3u << (2u * (pl->dims.level_out - 1u - (unsigned)level))))) *
-                                b;
+    uint32_t par_pos = level < 0 ? 0u : pos_out & ~(3u << (2u * (L - 1u - (unsigned)level)));
+    it->par = level < 0 || pl->stream ? NULL : it->x + (base + par_pos) * b;
     it->cls_dir = bw_level_cls(pl, level);
     /* no context from before the segment: the parent of a segment that
      * began in this block may lie before it */
     size_t first = (size_t)it->i * pl->dims.n_out;
-    unsigned L = pl->dims.level_out;
-    if (BW_CFG_SEGMENTS && it->par && it->seg0 > first &&
-        first + bw_cf_index(pos_out & ~(3u << (2u * (L - 1u - (unsigned)level))), L) < it->seg0)
+    if (BW_CFG_SEGMENTS && it->par && it->seg0 > first && first + bw_cf_index(par_pos, L) < it->seg0)
         it->par = NULL;
     if (BW_CFG_SEGMENTS && it->vi == it->seg0)
         it->prev = NULL;
 }
 
-void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi)
+/* The iterator at the first vector of incoming block i. */
+static void iter_start(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, uint32_t i)
 {
-    /* the first vector of vi's block, then a step at a time to vi */
-    uint32_t no = pl->dims.n_out;
     it->pl = pl;
     it->x = x;
-    it->i = (uint32_t)(vi / no);
+    it->i = i;
     it->o = it->k = 0;
     it->leaf = 0;
     it->qi = it->q.n = 0;
     bw_walk_init(&it->w);
     it->vec = NULL;
-    it->vi = it->seg0 = (size_t)it->i * no;
-    if (it->i < pl->dims.n_in)
+    it->vi = it->seg0 = (size_t)i * pl->dims.n_out;
+    if (i < pl->dims.n_in)
         iter_vec(it);
+}
+
+void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x) { iter_start(it, pl, x, 0u); }
+
+void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi)
+{
+    /* the first vector of vi's block, then a step at a time to vi */
+    iter_start(it, pl, x, (uint32_t)(vi / pl->dims.n_out));
     while (it->vi < vi)
         bw_iter_next_vec(it);
 }
@@ -136,18 +139,6 @@ void bw_iter_segment(bw_iter_t *it)
     it->par = NULL; /* coded before this vector, so before the segment */
 }
 
-void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x)
-{
-    it->pl = pl;
-    it->x = x;
-    it->i = it->o = it->k = 0;
-    it->leaf = 0;
-    it->qi = it->q.n = 0;
-    bw_walk_init(&it->w);
-    it->vec = NULL;
-    it->vi = it->seg0 = 0;
-    iter_vec(it);
-}
 
 void bw_iter_next_vec(bw_iter_t *it)
 {

@@ -44,9 +44,9 @@ static void coder_at(bw_stream_t *s, size_t hl, size_t at)
 }
 
 /* Ends the segment being coded: its length and CRC into the table. */
-static void segment_end(bw_stream_t *s, size_t hl)
+static void segment_end(bw_stream_t *s)
 {
-    size_t len = bw_strip_enc_finish(&s->se), room = s->cap - hl - BW_TRAILER_SIZE;
+    size_t hl = s->hl, len = bw_strip_enc_finish(&s->se), room = s->cap - hl - BW_TRAILER_SIZE;
     uint8_t *e = s->out + hl + (size_t)s->seg * BW_SEG_ENTRY;
     if (bw_strip_enc_overflow(&s->se) || s->seg_at + len > room) {
         s->err = BW_ERR_OUTPUT_FULL;
@@ -100,6 +100,8 @@ bw_status_t bw_stream_init(bw_stream_t *s, const bw_dims_t *dims, const bw_param
     s->out = out;
     s->cap = cap;
     s->seg_at = body_at(&pl, hl) - hl;
+    if (BW_CFG_SEGMENTS)
+        s->hl = hl;
     coder_at(s, hl, s->seg_at);
     s->err = BW_OK;
     return BW_OK;
@@ -112,9 +114,8 @@ static void stream_emit(bw_stream_t *s, const bw_plan_t *pl, int32_t *v, int j)
 {
     if (BW_CFG_SEGMENTS && pl->seg_vec && s->emitted && s->emitted % pl->seg_vec == 0u) {
         /* the next segment: a coder of its own */
-        size_t hl = bw_header_write(NULL, pl, &s->params, s->params.mode);
-        segment_end(s, hl);
-        coder_at(s, hl, s->seg_at);
+        segment_end(s);
+        coder_at(s, s->hl, s->seg_at);
     }
     s->emitted++;
     bw_quant_vector(pl, v, j);
@@ -186,7 +187,7 @@ bw_status_t bw_stream_finish(bw_stream_t *s, size_t *len)
     stream_plan(s, &pl);
     size_t body;
     if (BW_CFG_SEGMENTS && pl.seg_vec) {
-        segment_end(s, bw_header_write(NULL, &pl, &s->params, s->params.mode));
+        segment_end(s);
         if (s->err != BW_OK)
             return s->err;
         body = s->seg_at;

@@ -89,17 +89,27 @@ static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_head
     int st = !lost || !seg_ok || !ctx ? BW_ERR_ARG
                                       : bw_decode_salvage(ctx, p, len, b, wb, b, wb, h, seg_ok,
                                                           h->segments, lost);
+    bool oom = !lost || !seg_ok || !ctx;
     free(ctx);
     if (st != BW_OK && st != BW_ERR_INCOMPLETE) {
         free(b);
         free(lost);
         free(seg_ok);
-        return bwh_fail("%s", !lost || !seg_ok ? "out of memory" : bw_strerror(st));
+        return bwh_fail("%s", oom ? "out of memory" : bw_strerror(st));
     }
     sv->segments = h->segments;
     for (uint32_t s = 0; s < h->segments; s++)
         sv->lost_segments += !seg_ok[s];
     free(seg_ok);
+    if (st == BW_OK) { /* whole: every sample exact */
+        free(lost);
+        if (mask && !(*mask = calloc(n ? n : 1, 1))) {
+            free(b);
+            return bwh_fail("out of memory");
+        }
+        *w = b;
+        return 0;
+    }
     /* per direction pair, then per sample */
     uint8_t *dm = malloc(nv ? nv : 1), *sm = mask ? malloc(n ? n : 1) : NULL;
     int32_t *tmp = malloc((nv ? nv : 1) * sizeof *tmp);

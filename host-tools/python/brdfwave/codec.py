@@ -266,16 +266,32 @@ def _wavelengths_for(wavelengths, bands):
     return wavelengths
 
 
-def _decode_lod(payload, level, wavelengths, integers):
-    L = lib()
-    if not (isinstance(level, (int, np.integer)) and 0 <= level <= 6):
-        raise BrdfwaveError("level must be a whole number from 0 to 6")
+def _shape_of(d):
+    """The array shape of a measurement of dims d."""
+    if d.shape == 0:
+        return (d.n_in, d.bands)
+    if d.shape == 1:
+        return (d.n_out, d.bands)
+    return (d.n_in, d.n_out, d.bands)
+
+
+def _measurement(vals, meta, d, h, payload, wavelengths):
+    """The Measurement of decoded values of dims d from a payload of header h."""
+    m = Measurement(vals.reshape(_shape_of(d)), meta, _SHAPE_NAMES[d.shape],
+                    d.level_out if d.shape > 0 else None, d.level_in if d.shape == 3 else None,
+                    _header_dict(h), _wavelengths_for(wavelengths, d.bands))
+    m.guarantee = guarantee(payload)
+    return m
+
+
+def _decode_part(call, payload, arg, integers):
+    """A partial decode (bwh_decode_incoming, bwh_decode_level): its values
+    (or integers), the payload's header and the dims decoded."""
     h, d = Header(), Dims()
     s = ctypes.POINTER(ctypes.c_int32)()
     v = ctypes.POINTER(ctypes.c_float)()
-    if L.bwh_decode_level(payload, len(payload), int(level), ctypes.byref(h), ctypes.byref(d),
-                          ctypes.byref(s) if integers else None,
-                          None if integers else ctypes.byref(v)) != 0:
+    if call(payload, len(payload), int(arg), ctypes.byref(h), ctypes.byref(d),
+            ctypes.byref(s) if integers else None, None if integers else ctypes.byref(v)) != 0:
         raise _error()
     try:
         n = d.n_in * d.n_out * d.bands
@@ -283,43 +299,23 @@ def _decode_lod(payload, level, wavelengths, integers):
     finally:
         free(s)
         free(v)
+    return vals, h, d
+
+
+def _decode_lod(payload, level, wavelengths, integers):
+    if not (isinstance(level, (int, np.integer)) and 0 <= level <= 6):
+        raise BrdfwaveError("level must be a whole number from 0 to 6")
+    vals, h, d = _decode_part(lib().bwh_decode_level, payload, level, integers)
     meta = _meta_of(payload)
-    meta.pop("missing", None)
-    shape = (d.n_out, d.bands) if d.shape == 1 else (d.n_in, d.n_out, d.bands)
-    m = Measurement(vals.reshape(shape), meta, _SHAPE_NAMES[d.shape], d.level_out,
-                    d.level_in if d.shape == 3 else None, _header_dict(h),
-                    _wavelengths_for(wavelengths, d.bands))
-    m.guarantee = guarantee(payload)
-    return m
+    meta.pop("missing", None)  # the source's missing samples are at its own level
+    return _measurement(vals, meta, d, h, payload, wavelengths)
 
 
 def _decode_row(payload, incoming, wavelengths, integers):
-    L = lib()
     if not (isinstance(incoming, (int, np.integer)) and 0 <= incoming < 2 ** 32 - 1):
         raise BrdfwaveError("incoming must be a whole number from 0")
-    h, d = Header(), Dims()
-    s = ctypes.POINTER(ctypes.c_int32)()
-    v = ctypes.POINTER(ctypes.c_float)()
-    if L.bwh_decode_incoming(payload, len(payload), int(incoming), ctypes.byref(h),
-                             ctypes.byref(d), ctypes.byref(s) if integers else None,
-                             None if integers else ctypes.byref(v)) != 0:
-        raise _error()
-    try:
-        n = d.n_out * d.bands
-        vals = np.ctypeslib.as_array(s if integers else v, shape=(n,)).copy()
-    finally:
-        free(s)
-        free(v)
-    meta = _meta_of(payload, incoming)
-    if d.shape == 0:
-        vals = vals.reshape(1, d.bands)
-    else:
-        vals = vals.reshape(d.n_out, d.bands)
-    wavelengths = _wavelengths_for(wavelengths, d.bands)
-    m = Measurement(vals, meta, _SHAPE_NAMES[d.shape], d.level_out if d.shape > 0 else None,
-                    None, _header_dict(h), wavelengths)
-    m.guarantee = guarantee(payload)
-    return m
+    vals, h, d = _decode_part(lib().bwh_decode_incoming, payload, incoming, integers)
+    return _measurement(vals, _meta_of(payload, incoming), d, h, payload, wavelengths)
 
 
 def _decode(payload, wavelengths, integers, max_samples, salvage=False):
@@ -350,23 +346,11 @@ def _decode(payload, wavelengths, integers, max_samples, salvage=False):
         free(v)
         free(mk)
     meta = _meta_of(payload)
-    if d.shape == 0:
-        shape = (d.n_in, d.bands)
-    elif d.shape == 1:
-        shape = (d.n_out, d.bands)
-    else:
-        shape = (d.n_in, d.n_out, d.bands)
-    vals = vals.reshape(shape)
-    _put_missing(vals, meta)
-    if mask is not None:
-        mask = mask.reshape(shape)
-    wavelengths = _wavelengths_for(wavelengths, d.bands)
-    m = Measurement(vals, meta, _SHAPE_NAMES[d.shape],
-                       d.level_out if d.shape > 0 else None,
-                       d.level_in if d.shape == 3 else None, _header_dict(h), wavelengths)
-    m.guarantee = guarantee(payload)
+    m = _measurement(vals, meta, d, h, payload, wavelengths)
+    _put_missing(m, meta)
     if salvage:
-        m.mask, m.segments, m.lost_segments = mask, int(sv.segments), int(sv.lost_segments)
+        m.mask = None if mask is None else mask.reshape(m.shape)
+        m.segments, m.lost_segments = int(sv.segments), int(sv.lost_segments)
     return m
 
 
