@@ -8,6 +8,7 @@
  *                                    ^      |
  *                                    +------+ RESEND (chunks), or silence
  *                                             for ACK_WAIT instructions
+ *   idle --RESEND (the payload kept)--> send --> ...
  *   idle --QUIT--> exit
  *
  * A job in stream order with a fixed basis and an exact or bounded-error
@@ -134,6 +135,16 @@ static void send_payload(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t 
 
 static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent);
 
+/* The payload in the buffer that the host has not acknowledged (id 0:
+ * none): after MAX_SENDS sends it stays until the next job, and a RESEND
+ * or ACK for it is still answered (the host may come back for the chunks
+ * it missed, docs/LINK.md). */
+static struct {
+    uint32_t id;
+    size_t len;
+    uint64_t spent;
+} kept;
+
 /* Reads exactly n samples from the sensor; false if it delivers fewer. */
 static bool read_samples(const bw_hal_t *hal, int32_t *dst, size_t n)
 {
@@ -151,6 +162,7 @@ static bool read_samples(const bw_hal_t *hal, int32_t *dst, size_t n)
 static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
 {
     bw_hal_offer(hal, 0, NULL, 0, 0); /* the payload buffer is about to be reused */
+    kept.id = 0;
     bw_dims_t d;
     bw_status_t st = bw_dims_make(&d, (bw_shape_t)job->shape, job->level_out, job->level_in,
                                   job->n_in, job->bands);
@@ -203,38 +215,56 @@ static int run_job(const bw_hal_t *hal, const bw_job_t *job, uint32_t id)
     return deliver(hal, id, len, spent);
 }
 
-/* Sends a payload and keeps it until the host acknowledges it; 0 when it
- * did, 1 when the host said QUIT instead. */
+/* Answers a RESEND for the kept payload: the chunks it names, then END;
+ * none named, the whole payload. */
+static void resend(const bw_hal_t *hal)
+{
+    if (frame.len == 4) {
+        send_payload(hal, kept.id, kept.len, kept.spent);
+        return;
+    }
+    for (uint16_t i = 4; i + 1u < frame.len; i += 2) {
+        uint16_t c = bw_get_u16(frame.data + i);
+        if (c < chunks_of(kept.len))
+            send_chunk(hal, kept.len, c);
+    }
+    uint8_t e[4];
+    bw_put_u32(e, kept.id);
+    send(hal, BW_FT_END, 0, e, 4);
+}
+
+/* Whether the frame is a RESEND or an ACK of the kept payload. */
+static bool for_kept(uint8_t type)
+{
+    return kept.id && frame.type == type && frame.len >= 4 && bw_get_u32(frame.data) == kept.id &&
+           (type != BW_FT_ACK || frame.len == 4);
+}
+
+/* Sends a payload and keeps it until the host acknowledges it, answering
+ * RESEND, and sends it again after ACK_WAIT instructions of silence; 0
+ * when acknowledged, 1 when the host said QUIT instead, -1 after MAX_SENDS
+ * sends (the payload stays kept: bw_app_run still answers for it). */
 static int deliver(const bw_hal_t *hal, uint32_t id, size_t len, uint64_t spent)
 {
+    kept.id = id;
+    kept.len = len;
+    kept.spent = spent;
     bw_hal_offer(hal, id, payload, len, 0);
     send_payload(hal, id, len, spent);
-    unsigned sends = 1;
-    for (;;) {
+    for (unsigned sends = 1;;) {
         if (!receive(hal, ACK_WAIT)) {
             if (++sends > MAX_SENDS)
-                return -1; /* the payload stays until the next job */
-            send_payload(hal, id, len, spent);
+                return -1;
+            send_payload(hal, kept.id, kept.len, kept.spent);
             continue;
         }
-        if (frame.type == BW_FT_ACK && frame.len == 4 && bw_get_u32(frame.data) == id) {
+        if (for_kept(BW_FT_ACK)) {
             bw_hal_offer(hal, 0, NULL, 0, 0);
+            kept.id = 0;
             return 0;
         }
-        if (frame.type == BW_FT_RESEND && frame.len >= 4 && bw_get_u32(frame.data) == id) {
-            if (frame.len == 4) {
-                send_payload(hal, id, len, spent);
-            } else {
-                for (uint16_t i = 4; i + 1u < frame.len; i += 2) {
-                    uint16_t c = bw_get_u16(frame.data + i);
-                    if (c < chunks_of(len))
-                        send_chunk(hal, len, c);
-                }
-                uint8_t e[4];
-                bw_put_u32(e, id);
-                send(hal, BW_FT_END, 0, e, 4);
-            }
-        }
+        if (for_kept(BW_FT_RESEND))
+            resend(hal);
         if (frame.type == BW_FT_QUIT)
             return 1;
     }
@@ -249,6 +279,16 @@ int bw_app_run(const bw_hal_t *hal)
         receive(hal, 0);
         if (frame.type == BW_FT_QUIT)
             return 0;
+        if (for_kept(BW_FT_RESEND) || for_kept(BW_FT_ACK)) {
+            /* the host back for the payload it did not finish */
+            if (frame.type == BW_FT_RESEND) {
+                resend(hal);
+            } else {
+                bw_hal_offer(hal, 0, NULL, 0, 0);
+                kept.id = 0;
+            }
+            continue;
+        }
         if (frame.type == BW_FT_HELLO) {
             uint8_t d[BW_HELLO_SIZE];
             send(hal, BW_FT_HELLO, 0, d, (uint16_t)bw_hello_pack(&limits, d));

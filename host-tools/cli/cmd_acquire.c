@@ -17,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bw_crc32.h"
 #include "bw_features.h"
 #include "bw_i2cmap.h"
 #include "bwh_i2c.h"
@@ -34,6 +35,7 @@
 static const char acquire_help[] =
     "usage: brdfwave acquire --bus N --chip CHIP --line L --out DIR [--addr 0xNN]\n"
     "                        [--once] [--timeout S] [--retries R] [--retry-interval S]\n"
+    "                        [--resume DIR/payload-ID-CRC.part]\n"
     "\n"
     "Stores the payloads the co-processor offers over I2C (docs/I2C.md): waits for\n"
     "a rising edge of its data-ready line (GPIO CHIP, line L), reads the payload\n"
@@ -41,12 +43,21 @@ static const char acquire_help[] =
     "for again), the payload's CRC-32 and header, decodes it, stores it as\n"
     "DIR/payload-ID-CRC.bwv (a temporary file, fsync, then a link that never\n"
     "replaces a file) and then acknowledges it. Runs until SIGTERM or SIGINT.\n"
+    "A page that never verifies (or a device that stops answering) leaves the\n"
+    "payload incomplete: what arrived is kept as DIR/payload-ID-CRC.part.bwv (the\n"
+    "missing pages zero; `brdfwave decode` decodes the segments it holds) and\n"
+    "DIR/payload-ID-CRC.part (which pages are missing), and the next attempt\n"
+    "reads only the missing pages of that payload (the device offers it until\n"
+    "it is acknowledged); once whole it is stored and both files removed.\n"
     "  --addr A            device address (default 0x42)\n"
-    "  --once              one payload, then exit (status 1 if it fails)\n"
+    "  --once              one payload, then exit (status 1 if it fails, 3 if it\n"
+    "                      stays incomplete)\n"
     "  --timeout S         with --once: seconds to wait for data-ready (default: forever)\n"
     "  --retries R         reads of a bad page after the first (default 3)\n"
     "  --retry-interval S  seconds before a failed payload is tried again (default 5)\n"
     "  --max-samples N     refuse payloads that decode to more samples (default 67108864)\n"
+    "  --resume FILE       an incomplete payload kept before (its .part or .part.bwv):\n"
+    "                      if the device still offers it, only its missing pages are read\n"
     "On a terminal a progress line shows how long it has waited for data-ready.\n";
 
 static volatile sig_atomic_t stop_now;
@@ -118,7 +129,7 @@ int bw_cmd_acquire(int argc, char **argv)
 {
     uint32_t bus = 0, addr = BW_I2C_ADDR, line = 0, retries = 3, max_samples = 0;
     int has_bus = 0, has_line = 0, once = 0;
-    const char *chip = NULL, *dir = NULL;
+    const char *chip = NULL, *dir = NULL, *resume = NULL;
     double timeout = 0, interval = 5;
     const cli_opt_t opts[] = {
         {"bus", 0, CLI_U32, .dest = &bus, .hi = INT32_MAX, .seen = &has_bus},
@@ -132,6 +143,7 @@ int bw_cmd_acquire(int argc, char **argv)
         {"retries", 0, CLI_U32, .dest = &retries, .hi = 100},
         {"retry-interval", 0, CLI_REAL, .dest = &interval, .lo = 0, .hi = 1e9},
         {"max-samples", 0, CLI_U32, .dest = &max_samples, .lo = 1, .hi = UINT32_MAX},
+        {"resume", 0, CLI_STRING, .dest = &resume},
         {NULL}};
     int st;
     if (!cli_parse(argc, argv, opts, acquire_help, NULL, &st))
@@ -141,6 +153,12 @@ int bw_cmd_acquire(int argc, char **argv)
     struct stat sb;
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return cli_fail("%s is not a directory", dir);
+    /* what arrived of a payload not yet whole: its missing pages are read
+     * next (bwh_i2c_read_partial) */
+    bwh_partial_t part;
+    memset(&part, 0, sizeof part);
+    if (resume && bwh_partial_load(resume, &part) != 0)
+        return cli_fail("%s", bwh_last_error());
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal; /* no SA_RESTART: a wait returns early */
@@ -150,10 +168,13 @@ int bw_cmd_acquire(int argc, char **argv)
     char bus_name[32];
     snprintf(bus_name, sizeof bus_name, "/dev/i2c-%u", bus);
     int fd = open(bus_name, O_RDWR);
-    if (fd < 0)
+    if (fd < 0) {
+        bwh_partial_free(&part);
         return cli_fail("cannot open %s: %s", bus_name, strerror(errno));
+    }
     if (ioctl(fd, I2C_SLAVE, (unsigned long)addr) != 0) {
         close(fd);
+        bwh_partial_free(&part);
         return cli_fail("cannot address 0x%02x on %s: %s", addr, bus_name, strerror(errno));
     }
     const bwh_i2c_t dev = {read_word, write_byte, write_word, log_line, stop_asked, &fd,
@@ -161,6 +182,7 @@ int bw_cmd_acquire(int argc, char **argv)
     struct gpiod_chip *gc = gpiod_chip_open_lookup(chip);
     if (!gc) {
         close(fd);
+        bwh_partial_free(&part);
         return cli_fail("cannot open GPIO chip %s: %s", chip, strerror(errno));
     }
     struct gpiod_line *gl = gpiod_chip_get_line(gc, (unsigned)line);
@@ -168,6 +190,7 @@ int bw_cmd_acquire(int argc, char **argv)
         int e = errno;
         gpiod_chip_close(gc);
         close(fd);
+        bwh_partial_free(&part);
         return cli_fail("cannot request line %u of %s: %s", line, chip, strerror(e));
     }
     double t_end = once && timeout > 0 ? now_s() + timeout : 0, holdoff = 0;
@@ -216,19 +239,36 @@ int bw_cmd_acquire(int argc, char **argv)
         cli_progress_end();
         waiting = 0;
         bwh_i2c_payload_t got;
-        int r = bwh_i2c_read_payload(&dev, retries, max_samples, &got);
+        int r = bwh_i2c_read_partial(&dev, retries, max_samples, &part, &got);
+        char path[4096];
+        if (r == 1) { /* kept as it is; its missing pages read next time */
+            char why[600];
+            snprintf(why, sizeof why, "%s", bwh_last_error());
+            if (bwh_partial_store(dir, &part, path, sizeof path) != 0)
+                logmsg("%s; what arrived could not be kept: %s", why, bwh_last_error());
+            else
+                logmsg("%s; kept as %s.bwv, %u of %u pages missing%s", why, path,
+                       bwh_partial_missing(&part), part.parts,
+                       once ? "" : "; they are read again next");
+        }
         if (r != 0) {
             if (r == BWH_I2C_STOPPED || stop_now)
                 break;
-            logmsg("%s", bwh_last_error());
+            if (r < 0)
+                logmsg("%s", bwh_last_error());
             if (once) {
-                rc = CLI_EXIT_FAIL;
+                rc = r == 1 ? CLI_EXIT_INCOMPLETE : CLI_EXIT_FAIL;
                 break;
             }
             holdoff = now_s() + interval;
             continue;
         }
-        char path[4096];
+        /* whole now: what was kept of it goes */
+        snprintf(path, sizeof path, "%s/payload-%u-%08x.part", dir, got.id,
+                 bw_crc32(got.payload, got.len));
+        bwh_partial_remove(path);
+        if (resume)
+            bwh_partial_remove(resume);
         int kept = bwh_store_payload(dir, got.id, got.payload, got.len, path, sizeof path);
         free(got.payload);
         if (kept < 0) {
@@ -254,6 +294,7 @@ int bw_cmd_acquire(int argc, char **argv)
     gpiod_line_release(gl);
     gpiod_chip_close(gc);
     close(fd);
+    bwh_partial_free(&part);
     return rc;
 }
 

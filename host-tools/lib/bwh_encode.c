@@ -145,7 +145,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     if (o->device) {
         /* the emulated co-processor encodes; the host checks what came back */
         bwh_rx_opts_t ro = {o->device->timeout > 0 ? o->device->timeout : 120.0,
-                            o->device->drop_chunk, 0, SIZE_MAX};
+                            o->device->drop_chunk, 0, SIZE_MAX, 0, NULL};
         bwh_received_t r;
         int drc = bwh_device_run(&dv, dims, &p, x, &ro, &r);
         bwh_device_close(&dv);

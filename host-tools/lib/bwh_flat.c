@@ -26,6 +26,7 @@ size_t bwh_abi_size(const char *name)
         {"bwh_i2c_t", sizeof(bwh_i2c_t)},
         {"bwh_i2c_payload_t", sizeof(bwh_i2c_payload_t)},
         {"bwh_salvage_t", sizeof(bwh_salvage_t)},
+        {"bwh_partial_t", sizeof(bwh_partial_t)},
     };
     for (size_t i = 0; name && i < sizeof sizes / sizeof *sizes; i++)
         if (!strcmp(name, sizes[i].name))

@@ -154,13 +154,19 @@ static int check_device(const bwh_i2c_t *c, unsigned *psize)
     return 0;
 }
 
-/* every page of the payload into p[len], each verified */
-static int read_pages(const bwh_i2c_t *c, uint32_t id, uint32_t len, unsigned pages,
-                      unsigned psize, unsigned retries, uint8_t *p, unsigned *bad)
+/* The pages of the payload that *pt lacks into pt->payload, each verified.
+ * With keep, a page that never verifies is left missing and the others are
+ * read; a transfer that fails ends the read (what arrived stays in *pt). */
+static int read_pages(const bwh_i2c_t *c, bwh_partial_t *pt, unsigned retries, int keep,
+                      unsigned *bad)
 {
+    unsigned pages = pt->parts, psize = pt->unit;
+    int rc = 0;
     for (unsigned pg = 1; pg <= pages; pg++) {
-        unsigned want = pg < pages ? psize : len - psize * (pages - 1);
-        uint8_t *dst = p + (size_t)(pg - 1) * psize;
+        if (pt->have[pg - 1u])
+            continue;
+        unsigned want = pg < pages ? psize : (unsigned)(pt->len - (size_t)psize * (pages - 1u));
+        uint8_t *dst = pt->payload + (size_t)(pg - 1u) * psize;
         for (unsigned attempt = 0;; attempt++) {
             if (c->stop && c->stop(c->ctx))
                 return BWH_I2C_STOPPED;
@@ -168,14 +174,23 @@ static int read_pages(const bwh_i2c_t *c, uint32_t id, uint32_t len, unsigned pa
             uint32_t pcrc = 0;
             if (read_page(c, pg, pages, psize, dst, &got, &pcrc))
                 return -1;
-            if (got == want && bw_crc32(dst, got) == pcrc)
+            if (got == want && bw_crc32(dst, got) == pcrc) {
+                pt->have[pg - 1u] = 1;
                 break;
+            }
+            memset(dst, 0, want);
             ++*bad;
-            if (attempt == retries)
-                return bwh_fail("payload %u: page %u failed its CRC-32 %u times; payload not "
-                                "acknowledged",
-                                id, pg, retries + 1);
-            logf_(c, "payload %u: page %u failed its CRC-32, asking again (%u/%u)", id, pg,
+            if (attempt == retries) {
+                rc = bwh_fail("payload %u: page %u failed its CRC-32 %u times; payload not "
+                              "acknowledged",
+                              pt->id, pg, retries + 1);
+                if (!keep)
+                    return rc;
+                logf_(c, "payload %u: page %u failed its CRC-32 %u times, left missing", pt->id,
+                      pg, retries + 1);
+                break;
+            }
+            logf_(c, "payload %u: page %u failed its CRC-32, asking again (%u/%u)", pt->id, pg,
                   attempt + 1, retries);
             if (wr_word(c, BW_I2C_RETRY, (uint16_t)pg))
                 return -1;
@@ -183,14 +198,21 @@ static int read_pages(const bwh_i2c_t *c, uint32_t id, uint32_t len, unsigned pa
             if (z < 0)
                 return -1;
             if (z == 0)
-                return bwh_fail("payload %u: the device did not answer RETRY of page %u", id, pg);
+                return bwh_fail("payload %u: the device did not answer RETRY of page %u",
+                                pt->id, pg);
         }
     }
-    return 0;
+    if (rc != 0) { /* the message of the last page left missing, with the count */
+        char why[300];
+        snprintf(why, sizeof why, "%s", bwh_last_error());
+        rc = bwh_fail("%s (%u of %u pages missing)", why, bwh_partial_missing(pt), pages);
+    }
+    return rc;
 }
 
-int bwh_i2c_read_payload(const bwh_i2c_t *c, unsigned retries, size_t max_samples,
-                         bwh_i2c_payload_t *out)
+/* Reads the offered payload into *pt (keep: as bwh_i2c_read_partial). */
+static int read_offered(const bwh_i2c_t *c, unsigned retries, size_t max_samples, int keep,
+                        bwh_partial_t *pt, bwh_i2c_payload_t *out)
 {
     memset(out, 0, sizeof *out);
     unsigned psize = 0;
@@ -202,31 +224,59 @@ int bwh_i2c_read_payload(const bwh_i2c_t *c, unsigned retries, size_t max_sample
         return -1;
     if (len == 0 || pages != (len + psize - 1) / psize)
         return bwh_fail("payload %u: length %u does not match %u pages", id, len, pages);
-    uint8_t *p = malloc(len);
-    if (!p)
-        return bwh_fail("out of memory");
+    if (pt->payload && (pt->id != id || pt->len != len || pt->crc != crc || pt->unit != psize)) {
+        logf_(c, "the device offers payload %u (%u bytes, CRC-32 %08x), not payload %u "
+                 "(%zu bytes, %08x) that arrived in part: reading it whole",
+              id, len, crc, pt->id, pt->len, pt->crc);
+        bwh_partial_free(pt);
+    }
+    if (!pt->payload && bwh_partial_init(pt, id, crc, len, psize) != 0)
+        return -1;
     unsigned bad = 0;
-    int rc = read_pages(c, id, len, pages, psize, retries, p, &bad);
-    if (rc == 0 && bw_crc32(p, len) != crc)
+    int rc = read_pages(c, pt, retries, keep, &bad);
+    out->bad_pages = bad;
+    (void)c->write_byte(c->ctx, BW_I2C_PAGE, 0);
+    if (rc == BWH_I2C_STOPPED)
+        return rc;
+    if (rc != 0 || bwh_partial_missing(pt))
+        return keep && bwh_partial_missing(pt) < pt->parts ? 1 : -1;
+    if (bw_crc32(pt->payload, len) != crc) {
+        /* every page verified, the whole does not: read it all again */
         rc = bwh_fail("payload %u: CRC-32 0x%08x, the device announced 0x%08x; payload not "
                       "acknowledged",
-                      id, bw_crc32(p, len), crc);
+                      id, bw_crc32(pt->payload, len), crc);
+        bwh_partial_free(pt);
+        return -1;
+    }
     bw_header_t h;
-    if (rc == 0 && bwh_payload_check(p, len, max_samples, &h) != 0) {
+    if (bwh_payload_check(pt->payload, len, max_samples, &h) != 0) {
         char why[400];
         snprintf(why, sizeof why, "%s", bwh_last_error());
-        rc = bwh_fail("payload %u does not decode: %s; payload not acknowledged", id, why);
-    }
-    (void)c->write_byte(c->ctx, BW_I2C_PAGE, 0);
-    if (rc != 0) {
-        free(p);
-        return rc;
+        bwh_partial_free(pt);
+        return bwh_fail("payload %u does not decode: %s; payload not acknowledged", id, why);
     }
     out->id = id;
-    out->payload = p;
+    out->payload = pt->payload;
     out->len = len;
-    out->bad_pages = bad;
+    free(pt->have);
+    memset(pt, 0, sizeof *pt);
     return 0;
+}
+
+int bwh_i2c_read_payload(const bwh_i2c_t *c, unsigned retries, size_t max_samples,
+                         bwh_i2c_payload_t *out)
+{
+    bwh_partial_t pt;
+    memset(&pt, 0, sizeof pt);
+    int rc = read_offered(c, retries, max_samples, 0, &pt, out);
+    bwh_partial_free(&pt);
+    return rc;
+}
+
+int bwh_i2c_read_partial(const bwh_i2c_t *c, unsigned retries, size_t max_samples,
+                         bwh_partial_t *part, bwh_i2c_payload_t *out)
+{
+    return read_offered(c, retries, max_samples, 1, part, out);
 }
 
 int bwh_i2c_acknowledge(const bwh_i2c_t *c, uint32_t id, double timeout_s)

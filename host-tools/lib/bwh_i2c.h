@@ -14,6 +14,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "bwh_store.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -53,6 +55,20 @@ typedef struct {
  * nothing to acknowledge); BWH_I2C_STOPPED when stop() asked for it. */
 int bwh_i2c_read_payload(const bwh_i2c_t *c, unsigned retries, size_t max_samples,
                          bwh_i2c_payload_t *out);
+
+/* As bwh_i2c_read_payload, keeping what arrives: a page that never
+ * verifies is left missing and the other pages are read, a transfer that
+ * fails ends the read; then 1, the payload in part in *part (its pages in
+ * part->have, units of the page size) and bwh_last_error() saying why. Given
+ * a *part of the payload offered now (the same id, length, CRC-32 and page
+ * size: the last call's, or a record of bwh_partial_load), only the pages
+ * it lacks are read, so a payload comes together over several calls; a
+ * *part of another payload is replaced. 0 once whole and verified (out as
+ * bwh_i2c_read_payload; *part emptied: all zero); -1 and
+ * BWH_I2C_STOPPED as there (*part keeps what it held). *part must start
+ * all zero or loaded; bwh_partial_free it. */
+int bwh_i2c_read_partial(const bwh_i2c_t *c, unsigned retries, size_t max_samples,
+                         bwh_partial_t *part, bwh_i2c_payload_t *out);
 
 /* Acknowledges payload id (ACK_LO, ACK_HI, CMD = ACK) and waits up to
  * timeout_s seconds for CMD to read 0. 1 when the device released it

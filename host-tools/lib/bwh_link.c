@@ -116,22 +116,23 @@ int bwh_acknowledge(bwh_link_t *l, uint32_t id)
     return bwh_send_frame(l->fd, BW_FT_ACK, 0, d, 4);
 }
 
-/* Asks for the chunks of payload id that have not arrived, as many as fit
+/* Asks for the chunks of a payload that have not arrived, as many as fit
  * in one frame (none missing, or all: the whole payload). */
-static int ask_missing(int fd, uint32_t id, const uint8_t *have, uint16_t chunks)
+static int ask_missing(int fd, const bwh_partial_t *c)
 {
     uint8_t d[BW_FRAME_MAX_DATA];
-    uint16_t n = 4, missing = 0;
-    bw_put_u32(d, id);
-    for (uint16_t c = 0; c < chunks; c++)
-        if (!have[c]) {
+    uint16_t n = 4;
+    uint32_t missing = 0;
+    bw_put_u32(d, c->id);
+    for (uint32_t k = 0; k < c->parts; k++)
+        if (!c->have[k]) {
             missing++;
             if (n + 2u <= sizeof d) {
-                bw_put_u16(d + n, c);
+                bw_put_u16(d + n, (uint16_t)k);
                 n += 2;
             }
         }
-    if (missing == chunks)
+    if (missing == c->parts)
         n = 4; /* everything: the short form */
     return bwh_send_frame(fd, BW_FT_RESEND, 0, d, n);
 }
@@ -140,15 +141,29 @@ int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r
 {
     memset(r, 0, sizeof *r);
     bw_frame_t f;
-    uint8_t *buf = NULL, *have = NULL;
-    uint32_t id = 0, crc = 0, bad0 = l->rx.bad_crc, dropped0 = l->rx.dropped;
-    size_t len = 0, arrived = 0;
-    uint16_t chunks = 0;
+    bwh_partial_t cur; /* the payload being received */
+    memset(&cur, 0, sizeof cur);
+    uint32_t bad0 = l->rx.bad_crc, dropped0 = l->rx.dropped, arrived = 0;
     int started = 0, dropped_once = 0;
     unsigned verify_failures = 0;
     /* silence after a start: ask again at this interval, within the timeout */
     double quiet = o->timeout_s / 8 < 0.2 ? 0.2 : o->timeout_s / 8 > 2.0 ? 2.0 : o->timeout_s / 8;
     double progress = bwh_now(), last = progress;
+    if (o->resume) { /* what arrived before; the rest asked for at once */
+        const bwh_partial_t *p = o->resume;
+        if (p->unit != BW_FRAME_MAX_DATA)
+            return bwh_fail("payload %u arrived in parts of %u bytes, not the link's %u", p->id,
+                            p->unit, (unsigned)BW_FRAME_MAX_DATA);
+        if (bwh_partial_init(&cur, p->id, p->crc, p->len, p->unit) != 0)
+            return -1;
+        memcpy(cur.payload, p->payload, p->len);
+        memcpy(cur.have, p->have, p->parts);
+        arrived = cur.parts - bwh_partial_missing(&cur);
+        started = 1;
+        r->resends++;
+        if (ask_missing(l->fd, &cur) != 0)
+            goto fail;
+    }
     for (;;) {
         double deadline = progress + o->timeout_s;
         double wake = started && last + quiet < deadline ? last + quiet : deadline;
@@ -161,13 +176,17 @@ int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r
                 if (!started)
                     bwh_fail("no payload from the device within %g s", o->timeout_s);
                 else
-                    bwh_fail("payload %u: nothing new from the device for %g s (%zu of %u "
+                    bwh_fail("payload %u: nothing new from the device for %g s (%u of %u "
                              "chunks in); not acknowledged",
-                             id, o->timeout_s, arrived, chunks);
+                             cur.id, o->timeout_s, arrived, cur.parts);
+                if (started && o->keep_partial) {
+                    r->partial = cur; /* the caller's now */
+                    memset(&cur, 0, sizeof cur);
+                }
                 goto fail;
             }
             r->resends++;
-            if (ask_missing(l->fd, id, have, chunks) != 0)
+            if (ask_missing(l->fd, &cur) != 0)
                 goto fail;
             last = t;
             continue;
@@ -185,58 +204,57 @@ int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r
             goto fail;
         }
         case BW_FT_START: {
-            if (f.len < 22 || (started && bw_get_u32(f.data) == id))
-                break; /* short, or a resend of the same payload: no progress */
-            uint32_t nid = bw_get_u32(f.data);
+            if (f.len < 22)
+                break;
+            uint32_t nid = bw_get_u32(f.data), ncrc = bw_get_u32(f.data + 10);
             size_t nlen = bw_get_u32(f.data + 4);
             uint16_t nchunks = bw_get_u16(f.data + 8);
+            if (started && nid == cur.id && nlen == cur.len && ncrc == cur.crc)
+                break; /* a resend of the same payload: no progress */
             if (nlen == 0 || nlen > ((size_t)1 << 31) ||
                 nchunks != (nlen + BW_FRAME_MAX_DATA - 1) / BW_FRAME_MAX_DATA) {
                 bwh_fail("the device announced an inconsistent payload (%zu bytes, %u chunks)",
                          nlen, nchunks);
                 goto fail;
             }
-            free(buf);
-            free(have);
-            id = nid;
-            len = nlen;
-            chunks = nchunks;
-            crc = bw_get_u32(f.data + 10);
-            r->instructions = bw_get_u32(f.data + 14) | (uint64_t)bw_get_u32(f.data + 18) << 32;
-            buf = malloc(len);
-            have = calloc(chunks, 1);
-            arrived = 0;
-            if (!buf || !have) {
-                bwh_fail("out of memory");
+            if (o->resume) { /* only the payload asked for */
+                bwh_fail("the device sends payload %u, not payload %u (which it no longer "
+                         "holds, or holds under another id); nothing stored",
+                         nid, o->resume->id);
                 goto fail;
             }
+            bwh_partial_free(&cur);
+            if (bwh_partial_init(&cur, nid, ncrc, nlen, BW_FRAME_MAX_DATA) != 0)
+                goto fail;
+            r->instructions = bw_get_u32(f.data + 14) | (uint64_t)bw_get_u32(f.data + 18) << 32;
+            arrived = 0;
             started = 1;
             progress = t;
             break;
         }
         case BW_FT_DATA: {
-            if (!started || f.seq >= chunks || have[f.seq])
+            if (!started || f.seq >= cur.parts || cur.have[f.seq])
                 break;
             if (o->drop_chunk == (int)f.seq && !dropped_once) {
                 dropped_once = 1; /* simulated loss */
                 break;
             }
             size_t off = (size_t)f.seq * BW_FRAME_MAX_DATA;
-            size_t want = len - off < BW_FRAME_MAX_DATA ? len - off : BW_FRAME_MAX_DATA;
+            size_t want = cur.len - off < BW_FRAME_MAX_DATA ? cur.len - off : BW_FRAME_MAX_DATA;
             if (f.len != want)
                 break;
-            memcpy(buf + off, f.data, want);
-            have[f.seq] = 1;
+            memcpy(cur.payload + off, f.data, want);
+            cur.have[f.seq] = 1;
             progress = t;
-            complete = ++arrived == chunks;
+            complete = ++arrived == cur.parts;
             break;
         }
         case BW_FT_END:
-            if (!started || f.len < 4 || bw_get_u32(f.data) != id)
+            if (!started || f.len < 4 || bw_get_u32(f.data) != cur.id)
                 break;
-            if (arrived < chunks) {
+            if (arrived < cur.parts) {
                 r->resends++;
-                if (ask_missing(l->fd, id, have, chunks) != 0)
+                if (ask_missing(l->fd, &cur) != 0)
                     goto fail;
             }
             break;
@@ -246,15 +264,15 @@ int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r
         if (!complete)
             continue;
         uint8_t d[4];
-        bw_put_u32(d, id);
-        if (bw_crc32(buf, len) != crc) {
+        bw_put_u32(d, cur.id);
+        if (bw_crc32(cur.payload, cur.len) != cur.crc) {
             /* every chunk arrived but the whole does not match: ask again */
             if (++verify_failures > 3) {
                 bwh_fail("payload %u: CRC-32 mismatch after %u complete transfers; not "
-                         "acknowledged", id, verify_failures);
+                         "acknowledged", cur.id, verify_failures);
                 goto fail;
             }
-            memset(have, 0, chunks);
+            memset(cur.have, 0, cur.parts);
             arrived = 0;
             r->resends++;
             if (bwh_send_frame(l->fd, BW_FT_RESEND, 0, d, 4) != 0)
@@ -264,21 +282,20 @@ int bwh_receive_payload(bwh_link_t *l, const bwh_rx_opts_t *o, bwh_received_t *r
         /* the transfer is intact; a payload that does not decode would not
          * come out better by sending it again */
         bw_header_t h;
-        if (bwh_payload_check(buf, len, o->max_samples, &h) != 0) {
+        if (bwh_payload_check(cur.payload, cur.len, o->max_samples, &h) != 0) {
             char why[400];
             snprintf(why, sizeof why, "%s", bwh_last_error());
-            bwh_fail("payload %u does not decode: %s; not acknowledged", id, why);
+            bwh_fail("payload %u does not decode: %s; not acknowledged", cur.id, why);
             goto fail;
         }
-        free(have);
-        r->id = id;
-        r->payload = buf;
-        r->len = len;
+        free(cur.have);
+        r->id = cur.id;
+        r->payload = cur.payload;
+        r->len = cur.len;
         r->bad_frames = (l->rx.bad_crc - bad0) + (l->rx.dropped != dropped0 ? 1u : 0u);
         return 0;
     }
 fail:
-    free(buf);
-    free(have);
+    bwh_partial_free(&cur);
     return -1;
 }

@@ -11,6 +11,7 @@
 
 #include "bw_codec.h"
 #include "bw_frame.h"
+#include "bwh_store.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,6 +48,11 @@ typedef struct {
     int drop_chunk;     /* >= 0: ignore the first copy of this chunk (tests resend) */
     int verbose;
     size_t max_samples; /* refuse payloads that decode to more samples (0: the default) */
+    int keep_partial;   /* on giving up after a START: what arrived into r->partial */
+    const bwh_partial_t *resume; /* may be NULL: a payload that arrived in part
+                                  * before, whose missing chunks are asked for
+                                  * first (its id, length and CRC must match
+                                  * a START the device sends again) */
 } bwh_rx_opts_t;
 
 typedef struct {
@@ -60,6 +66,9 @@ typedef struct {
     int device_error;
     int32_t device_status;
     bw_limits_t limits;
+    /* with keep_partial: the payload given up on, its chunks that arrived
+     * (partial.payload non-NULL; bwh_partial_free) */
+    bwh_partial_t partial;
 } bwh_received_t;
 
 /* Receives one payload over l: checks every frame, asks for missing or

@@ -76,6 +76,13 @@ for c in encode decode info compare grid synth receive acquire import-rgl render
     expect_status "$c: unknown option" 2 "$BW" "$c" --frobnicate
     grep -q "^brdfwave $c: unknown option '--frobnicate'" "$T/err" && ok || bad "$c: $(cat "$T/err")"
 done
+# an incomplete payload's record that is missing or not one: one clear line
+expect_status "receive --resume: no record" 1 "$BW" receive --port /dev/null --resume "$T/none.part"
+grep -q "none.part" "$T/err" && ok || bad "receive --resume: $(cat "$T/err")"
+printf 'brdfwave incomplete payload 1\nid 3\nlength 10\ncrc 00000001\nunit 1024\nmissing 0\n' >"$T/r.part"
+printf 'short' >"$T/r.part.bwv"
+expect_status "receive --resume: bytes of another length" 1 "$BW" receive --port /dev/null --resume "$T/r.part"
+grep -q "holds 5 bytes, its record 10" "$T/err" && ok || bad "receive --resume: $(cat "$T/err")"
 for c in wavedec ratios import-rgl project; do
     expect_status "bwref $c: unknown option" 2 "$BWREF" "$c" --frobnicate
 done

@@ -187,10 +187,22 @@ def a_page_that_never_verifies_is_not_acknowledged(cmd):
     out = outdir(cmd.__name__ + "-badpage")
     DEV.offer(10, A, corrupt=(2,), fix_on_retry=False)
     r = run(cmd(out, "--once", "--timeout", "20", "--retries", "2"))
-    expect(r[0] == 1 and "page 2 failed its CRC-32 3 times; payload not acknowledged" in r[2],
+    expect(r[0] == 3 and "page 2 failed its CRC-32 3 times; payload not acknowledged" in r[2],
            "no clear error", r)
-    expect(stored(out) == [] and DEV.acked == [] and DEV.retries == [2, 2],
+    # what arrived is kept as incomplete, not acknowledged
+    part = "payload-10-%08x.part" % zlib.crc32(A)
+    expect(stored(out) == [part, part + ".bwv"] and DEV.acked == [] and DEV.retries == [2, 2],
            "stored %r acked %r retries %r" % (stored(out), DEV.acked, DEV.retries), r)
+    with open(os.path.join(out, part + ".bwv"), "rb") as f:
+        held = f.read()
+    expect(held == A[:32] + bytes(32) + A[64:], "the kept bytes are not the payload's")
+    # later, the page served right: --resume reads it and completes the payload
+    DEV.offer(10, A)
+    r = run(cmd(out, "--once", "--timeout", "20", "--resume", os.path.join(out, part)))
+    expect(r[0] == 0 and "stored" in r[1], "resume failed", r)
+    expect(stored(out) == [name(10, A)], "stored files %r" % stored(out), r)
+    check_stored(out, 10, A)
+    expect(DEV.acked == [10], "acked %r" % DEV.acked, r)
 
 
 def a_payload_crc_mismatch_is_not_acknowledged(cmd):

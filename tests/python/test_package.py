@@ -16,6 +16,7 @@ import subprocess
 import sys
 import tempfile
 import traceback
+import zlib
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "host-tools", "python"))
@@ -200,6 +201,103 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
             pass
         else:
             raise AssertionError("segments=%r accepted" % (bad,))
+
+
+class FakeWindow:
+    """The register window of docs/I2C.md as an SMBus object (smbus2's
+    read_word_data / write_byte_data / write_word_data), a payload offered;
+    page `bad` reads corrupted while `bad_left` is not 0 (-1: always)."""
+
+    def __init__(self, pid, payload):
+        self.pid, self.p, self.page, self.hi, self.acked = pid, payload, 0, 0, False
+        self.bad, self.bad_left, self.page_reads = 0, 0, []
+
+    def _pages(self):
+        return (len(self.p) + 31) // 32
+
+    def _cur(self):
+        return self.p[(self.page - 1) * 32:self.page * 32] if 1 <= self.page <= self._pages() else b""
+
+    def read_word_data(self, addr, reg):
+        import zlib
+        M = i2cmap
+        crc, n = zlib.crc32(self.p), len(self.p)
+        cur = self._cur()
+        ready = 0 if self.acked else M.ST_READY
+        regs = {M.MAGIC: M.MAGIC_VALUE, M.VERSION: M.PAGE_SIZE << 8 | M.MAP_VERSION,
+                M.STATUS: ready, M.ID_LO: self.pid & 0xFFFF, M.ID_HI: self.pid >> 16,
+                M.LEN_LO: n & 0xFFFF, M.LEN_HI: n >> 16, M.PAGES: self._pages(),
+                M.CRC_LO: crc & 0xFFFF, M.CRC_HI: crc >> 16, M.PNUM: self.page if cur else 0,
+                M.PLEN: len(cur), M.PCRC_LO: zlib.crc32(cur) & 0xFFFF,
+                M.PCRC_HI: zlib.crc32(cur) >> 16, M.RETRY: 0, M.CMD: 0}
+        if M.DATA <= reg < M.DATA + 16:
+            k = reg - M.DATA
+            b = (cur + b"\xff" * 32)[2 * k:2 * k + 2]
+            v = b[0] | b[1] << 8
+            if k == 0:
+                self.page_reads.append(self.page)
+                if self.page == self.bad and self.bad_left:
+                    v ^= 0x5A
+                    self.bad_left -= self.bad_left > 0
+            return v
+        return regs.get(reg, 0)
+
+    def write_byte_data(self, addr, reg, v):
+        if reg == i2cmap.PAGE:
+            self.page = self.hi << 8 | v
+        elif reg == i2cmap.PAGE_HI:
+            self.hi = v
+        elif reg == i2cmap.CMD and v == i2cmap.CMD_ACK:
+            self.acked = True
+
+    def write_word_data(self, addr, reg, v):
+        pass
+
+
+@case
+def acquisition_keeps_an_incomplete_payload_and_reads_only_its_missing_pages():
+    from brdfwave import acquire
+    bw("encode", "--input-format", "sed", "-i", *sorted(glob.glob(os.path.join(
+        ROOT, "tests", "data", "field_psr3500", "*.sed")))[:8], "-o", tmp("acq.bwv"),
+       "--max-error", "0.002", "--segments", "4")
+    payload = open(tmp("acq.bwv"), "rb").read()
+    bus = FakeWindow(21, payload)
+    bus.bad, bus.bad_left = bus._pages() - 2, -1  # a page in the last segment, never right
+    dev = acquire.Client(bus, i2cmap.ADDR)
+    out = tempfile.mkdtemp(prefix="acq-", dir=TMP)
+    try:
+        dev.read_payload(retries=1)
+        raise AssertionError("a page that never verified was accepted")
+    except acquire.Incomplete as e:
+        assert e.pid == 21 and e.missing == 1 and e.pages == bus._pages(), (e.missing, e.pages)
+        assert "failed its CRC-32" in str(e), str(e)
+    rec = dev.keep(out)
+    assert os.path.basename(rec) == "payload-21-%08x.part" % zlib.crc32(payload), rec
+    held = open(rec + ".bwv", "rb").read()
+    lo = (bus.bad - 1) * 32
+    assert held == payload[:lo] + bytes(32) + payload[lo + 32:]
+    assert "missing %d\n" % (bus.bad - 1) in open(rec).read()
+    # what arrived decodes in part: the lost segment reported, the rest exact
+    m = brdfwave.decode_bytes(held, salvage=True)
+    whole = brdfwave.decode_bytes(payload)
+    assert m.lost_segments == 1 and (m.mask == 0).any() and (m.mask != 0).any()
+    assert np.array_equal(np.asarray(m)[m.mask == 0], np.asarray(whole)[m.mask == 0])
+    # later, in a new client from the record: only the missing page is read
+    dev.close()
+    bus.bad_left, bus.page_reads = 0, []
+    dev = acquire.Client(bus, i2cmap.ADDR)
+    dev.resume(rec)
+    pid, got, bad = dev.read_payload(retries=1)
+    assert pid == 21 and got == payload and bus.page_reads == [bus.bad], bus.page_reads
+    path, before = acquire.store(out, pid, got)
+    assert not before and open(path, "rb").read() == payload
+    assert sorted(os.listdir(out)) == [os.path.basename(path)], os.listdir(out)
+    dev.close()
+    try:
+        dev.resume(rec)
+        raise AssertionError("a removed record loaded")
+    except acquire.AcquireError as e:
+        assert rec in str(e), str(e)
 
 
 @case

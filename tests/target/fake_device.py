@@ -15,6 +15,11 @@ Modes:
               nothing new: it answers every request by repeating START and
               sending frames of an unknown type, which bring no progress.
               Exits 0 when the receiver has gone (the pty closed) within 60 s.
+  later       the payload (id 10) without its chunk 2, deaf to requests while
+              the receiver asks (it gives up and keeps what arrived); after a
+              second of silence from the host it answers RESEND as a device
+              that kept the payload does (`receive --resume`); exit 0 once
+              acknowledged.
   twice       two payloads with the same id 1 (PAYLOAD, then PAYLOAD2), as a
               device counting from 1 again after a reboot would send them;
               exit 0 once both are acknowledged.
@@ -115,6 +120,19 @@ def main():
         w += b''.join(frame(0x11, c, chunks[c]) for c in range(len(chunks)))
         w += frame(0x12, 0, struct.pack('<I', pid))
         return 0 if serve(master, host, log, pid, payload, w) else 1
+
+    if mode == 'later':
+        pid = 10
+        w = start_frame(pid, payload, chunks)
+        w += b''.join(frame(0x11, c, chunks[c]) for c in range(len(chunks)) if c != 2)
+        os.write(master, w + frame(0x12, 0, struct.pack('<I', pid)))
+        quiet = time.time()
+        while time.time() - quiet < 1.0:
+            for ftype, data in host.frames(0.1):
+                log.write('deaf to %s\n' % {0x21: 'RESEND', 0x20: 'ACK'}.get(ftype, hex(ftype)))
+                quiet = time.time()
+        log.write('listening again\n')
+        return 0 if serve(master, host, log, pid, payload, b'', deadline=40) else 1
 
     if mode == 'twice':
         second = open(sys.argv[5], 'rb').read()

@@ -206,20 +206,56 @@ fi
 wait $fake_pid && ok || bad "scripted device (twice): $(cat "$T/dev.log")"
 
 # a device that stops mid-payload and then sends only frames that bring
-# nothing new: receive gives up after --timeout, not later, and stores nothing
+# nothing new: receive gives up after --timeout, not later, and keeps what
+# arrived as an incomplete payload (exit 3)
 rm -rf "$T/rx" && mkdir "$T/rx"
 fake stall
 t0=$(date +%s.%N)
-if timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 2 >"$T/rx.out" 2>"$T/rx.err"; then
-    bad "stalled device: receive reported success"
-else
-    t=$(since "$t0")
-    below "$t" 4 && ok || bad "stalled device: receive gave up after $t s, not about 2"
-    grep -q "nothing new from the device for 2 s" "$T/rx.err" && ok || bad "stalled device: $(cat "$T/rx.err")"
-    [ -z "$(ls -A "$T/rx")" ] && ok || bad "stalled device: files left: $(ls -A "$T/rx")"
-fi
+timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 2 >"$T/rx.out" 2>"$T/rx.err"
+st=$?
+t=$(since "$t0")
+[ "$st" = 3 ] && ok || bad "stalled device: exit $st, not 3: $(cat "$T/rx.err")"
+below "$t" 4 && ok || bad "stalled device: receive gave up after $t s, not about 2"
+grep -q "nothing new from the device for 2 s" "$T/rx.err" && ok || bad "stalled device: $(cat "$T/rx.err")"
+part=$T/rx/payload-9-$($PY -c "import zlib,sys; print('%08x' % zlib.crc32(open(sys.argv[1],'rb').read()))" "$T/src.bwv").part
+[ -f "$part" ] && [ -f "$part.bwv" ] && ok || bad "stalled device: no incomplete payload kept: $(ls -A "$T/rx")"
+[ -z "$(ls "$T/rx" | grep -v '\.part')" ] && ok || bad "stalled device: a whole payload stored: $(ls -A "$T/rx")"
 kill $fake_pid 2>/dev/null
 wait $fake_pid 2>/dev/null
+
+# a payload in segments that the device stops sending with chunk 2 missing:
+# kept as incomplete, decoded in part (the lost segments reported), then
+# completed later by asking the device for that chunk only
+"$BW" encode --input-format sed -i $DATA/*.sed -o "$T/seg.bwv" --max-error 0.002 --segments 12 >/dev/null
+rm -rf "$T/rx" && mkdir "$T/rx"
+rm -f "$T/pty"
+$PY tests/target/fake_device.py "$T/seg.bwv" "$T/pty" "$T/dev.log" later &
+fake_pid=$!
+for _ in $(seq 50); do [ -s "$T/pty" ] && break; sleep 0.1; done
+timeout 60 "$BW" receive --port "$(cat "$T/pty")" --out "$T/rx" --timeout 2 >"$T/rx.out" 2>"$T/rx.err"
+st=$?
+part=$T/rx/payload-10-$($PY -c "import zlib,sys; print('%08x' % zlib.crc32(open(sys.argv[1],'rb').read()))" "$T/seg.bwv").part
+[ "$st" = 3 ] && ok || bad "later: exit $st, not 3: $(cat "$T/rx.err")"
+grep -q "(1 of [0-9]* chunks missing)" "$T/rx.err" && grep -q -- "--resume $part" "$T/rx.err" && ok ||
+    bad "later: $(cat "$T/rx.err")"
+grep -q "^missing 2$" "$part" && ok || bad "later: record: $(cat "$part")"
+$PY - "$T/seg.bwv" "$part.bwv" <<'PYEOF' && ok || bad "later: the kept bytes are not the payload's with chunk 2 zero"
+import sys
+a, b = open(sys.argv[1], 'rb').read(), open(sys.argv[2], 'rb').read()
+z = a[:2048] + bytes(len(a[2048:3072])) + a[3072:]
+sys.exit(0 if b == z else 1)
+PYEOF
+"$BW" decode -i "$part.bwv" -o "$T/part.f32" 2>"$T/dec.err"
+st=$?
+[ "$st" = 3 ] && grep -q "segment" "$T/dec.err" && ok || bad "later: decode of the kept bytes: exit $st: $(cat "$T/dec.err")"
+sleep 1.3 # the device listens again after a second of silence
+timeout 60 "$BW" receive --port "$(cat "$T/pty")" --resume "$part" --timeout 10 >"$T/rx.out" 2>"$T/rx.err" &&
+    ok || bad "later: --resume: $(cat "$T/rx.err")"
+cmp -s "$T/seg.bwv" "$T/rx/payload-10-$(crc "$T/seg.bwv").bwv" && ok || bad "later: completed payload differs: $(ls "$T/rx")"
+[ ! -e "$part" ] && [ ! -e "$part.bwv" ] && ok || bad "later: the incomplete files were left"
+grep -q "completed from what arrived before" "$T/rx.out" && ok || bad "later: $(cat "$T/rx.out")"
+wait $fake_pid && ok || bad "scripted device (later): $(cat "$T/dev.log")"
+grep -q "RESEND \[2\]" "$T/dev.log" && ok || bad "later: --resume did not ask for chunk 2 only: $(cat "$T/dev.log")"
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -20,6 +20,10 @@
 static uint8_t to_device[8192];
 static size_t to_len, to_pos, read_size;
 static unsigned idle_reads;
+/* the bytes from later_at on arrive only after later_after idle reads (a
+ * host that comes back); 0: all at once */
+static size_t later_at;
+static unsigned later_after;
 static uint64_t now;
 static jmp_buf hung;
 
@@ -31,12 +35,13 @@ static uint64_t t_counter(void) { return now += 100000000u; /* 0.1 G instruction
 
 static int t_link_read(uint8_t *b, size_t cap)
 {
-    if (to_pos == to_len) {
+    size_t end = later_at && idle_reads < later_after ? later_at : to_len;
+    if (to_pos == end) {
         if (++idle_reads > 100000u)
             longjmp(hung, 1); /* waiting for bytes that were already delivered */
         return 0;
     }
-    size_t n = to_len - to_pos;
+    size_t n = end - to_pos;
     if (n > read_size)
         n = read_size;
     if (n > cap)
@@ -88,8 +93,8 @@ static void script(uint32_t n_in)
 {
     memset(sent, 0, sizeof sent);
     n_sent = 0;
-    to_len = to_pos = 0;
-    idle_reads = 0;
+    to_len = to_pos = later_at = 0;
+    idle_reads = later_after = 0;
     bw_frame_rx_init(&host_rx);
     bw_job_t job;
     memset(&job, 0, sizeof job);
@@ -193,8 +198,8 @@ static void extension_records_in_job_ext_frames_reach_the_payload(void **state)
         area[i] = (uint8_t)(i * 13 + 5);
     memset(sent, 0, sizeof sent);
     n_sent = 0;
-    to_len = to_pos = 0;
-    idle_reads = 0;
+    to_len = to_pos = later_at = 0;
+    idle_reads = later_after = 0;
     sensor_pos = 0;
     bw_frame_rx_init(&host_rx);
     host_sends(BW_FT_JOB_EXT, area, 1000);
@@ -288,6 +293,48 @@ static void hello_is_answered_with_the_link_version_and_the_limits(void **state)
     assert_true(streamed);
 }
 
+/* A payload the host never acknowledges is sent MAX_SENDS times; the device
+ * then keeps it, and a host that comes back later gets the chunks it asks
+ * for (the whole payload for a bare RESEND) until its ACK releases it. */
+static void a_kept_payload_is_resent_when_the_host_comes_back(void **state)
+{
+    (void)state;
+    script(SPECTRA);
+    later_at = to_len; /* JOB now; the rest after the device has given up */
+    later_after = 5000u;
+    uint8_t d[6], other[4];
+    bw_put_u32(d, 1);
+    bw_put_u16(d + 4, 0);
+    bw_put_u32(other, 2);
+    host_sends(BW_FT_RESEND, other, 4); /* a payload it does not hold: no answer */
+    host_sends(BW_FT_RESEND, d, 6);     /* chunk 0 */
+    host_sends(BW_FT_RESEND, d, 4);     /* all of it */
+    host_sends(BW_FT_ACK, d, 4);
+    host_sends(BW_FT_RESEND, d, 6); /* released: no answer */
+    host_sends(BW_FT_QUIT, NULL, 0);
+    read_size = sizeof to_device;
+    if (setjmp(hung))
+        fail_msg("the device hung (%u frames sent)", n_sent);
+    assert_int_equal(bw_app_run(&hal), 0);
+    assert_true(idle_reads >= later_after); /* it waited for the host */
+    assert_int_equal(count_sent(BW_FT_START), MAX_SENDS + 1u);
+    assert_int_equal(count_sent(BW_FT_DATA), MAX_SENDS + 2u);
+    assert_int_equal(count_sent(BW_FT_END), MAX_SENDS + 2u);
+    assert_int_equal(to_pos, to_len);
+    /* the chunk asked for alone is the payload's chunk 0, as first sent */
+    const bw_frame_t *first = NULL, *alone = NULL;
+    for (unsigned i = 0; i < n_sent; i++)
+        if (sent[i].type == BW_FT_DATA) {
+            if (!first)
+                first = &sent[i];
+            if (i && sent[i - 1u].type == BW_FT_END)
+                alone = &sent[i];
+        }
+    assert_non_null(alone);
+    assert_int_equal(alone->len, first->len);
+    assert_memory_equal(alone->data, first->data, first->len);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -297,6 +344,7 @@ int main(void)
         cmocka_unit_test(a_job_too_large_is_answered_with_the_device_limits),
         cmocka_unit_test(hello_is_answered_with_the_link_version_and_the_limits),
         cmocka_unit_test(extension_records_in_job_ext_frames_reach_the_payload),
+        cmocka_unit_test(a_kept_payload_is_resent_when_the_host_comes_back),
     };
     return cmocka_run_group_tests_name("app", tests, NULL, NULL);
 }

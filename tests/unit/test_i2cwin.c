@@ -8,6 +8,7 @@
  * frame), a NAK, a device that does not answer, FRAMES, errors and faults,
  * and pages beyond 255.
  */
+#define _DEFAULT_SOURCE
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -18,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bw_crc32.h"
 #include "bw_frame.h"
@@ -246,6 +248,105 @@ static void a_page_that_never_verifies_is_refused(void **state)
     assert_int_equal(reg(BW_I2C_STATUS), BW_I2C_ST_READY); /* still offered */
 }
 
+/* The reads that keep what arrives: a page that never verifies is left
+ * missing, the rest read; the record is stored and loaded again; a later
+ * read of the same offered payload reads only the missing page (counted on
+ * the bus) and completes it; a record of another payload is replaced. */
+static void a_page_that_never_verifies_is_kept_missing_and_read_later(void **state)
+{
+    (void)state;
+    offer(11, payload, payload_len);
+    uint32_t pages = (uint32_t)((payload_len + 31) / 32);
+    bus.corrupt_page = 2;
+    bus.corrupt_times = -1;
+    bwh_partial_t part;
+    memset(&part, 0, sizeof part);
+    bwh_i2c_payload_t got;
+    assert_int_equal(bwh_i2c_read_partial(&host, 1, 0, &part, &got), 1);
+    assert_null(got.payload);
+    char want[200];
+    snprintf(want, sizeof want,
+             "payload 11: page 2 failed its CRC-32 2 times; payload not acknowledged "
+             "(1 of %u pages missing)", pages);
+    assert_string_equal(bwh_last_error(), want);
+    assert_int_equal(part.id, 11);
+    assert_int_equal(part.len, payload_len);
+    assert_int_equal(part.unit, 32);
+    assert_int_equal(bwh_partial_missing(&part), 1);
+    assert_int_equal(part.have[1], 0);
+    for (uint32_t k = 0; k < pages; k++) /* every page but 2 as offered, 2 zero */
+        for (size_t i = 32u * k; i < payload_len && i < 32u * (k + 1u); i++)
+            assert_int_equal(part.payload[i], k == 1 ? 0 : payload[i]);
+    /* stored and loaded again as it was */
+    char dir[] = "/tmp/bw-part-XXXXXX", path[4096];
+    assert_non_null(mkdtemp(dir));
+    assert_int_equal(bwh_partial_store(dir, &part, path, sizeof path), 0);
+    char name[4200];
+    snprintf(name, sizeof name, "%s/payload-11-%08x.part", dir, bw_crc32(payload, payload_len));
+    assert_string_equal(path, name);
+    bwh_partial_t back;
+    strcat(name, ".bwv"); /* either file names the record */
+    assert_int_equal(bwh_partial_load(name, &back), 0);
+    assert_int_equal(back.id, part.id);
+    assert_int_equal(back.crc, part.crc);
+    assert_int_equal(back.len, part.len);
+    assert_int_equal(back.parts, part.parts);
+    assert_memory_equal(back.have, part.have, part.parts);
+    assert_memory_equal(back.payload, part.payload, part.len);
+    bwh_partial_free(&part);
+    /* later, the bus healed: only page 2 is read (its window: a few dozen
+     * transfers, not the whole payload's) */
+    bus.corrupt_times = 0;
+    unsigned before = bus.transfers;
+    assert_int_equal(bwh_i2c_read_partial(&host, 1, 0, &back, &got), 0);
+    assert_true(bus.transfers - before < 40u);
+    assert_int_equal(got.id, 11);
+    assert_int_equal(got.len, payload_len);
+    assert_memory_equal(got.payload, payload, payload_len);
+    assert_null(back.payload);
+    free(got.payload);
+    bwh_partial_remove(path);
+    FILE *f = fopen(path, "r");
+    assert_null(f);
+    assert_int_equal(rmdir(dir), 0); /* both files gone */
+    /* a record of another payload: the offered one is read whole */
+    assert_int_equal(bwh_partial_init(&back, 99, 1234u, payload_len, 32), 0);
+    assert_int_equal(bwh_i2c_read_partial(&host, 1, 0, &back, &got), 0);
+    assert_memory_equal(got.payload, payload, payload_len);
+    assert_non_null(strstr(last_log, "not payload 99"));
+    free(got.payload);
+}
+
+/* A record that is not one, or whose bytes do not match it, is refused
+ * with a message that says so. */
+static void a_malformed_incomplete_record_is_refused(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/bw-part-XXXXXX", path[4200];
+    assert_non_null(mkdtemp(dir));
+    const char *bad[] = {
+        "not a record\n",
+        "brdfwave incomplete payload 1\nid 3\nlength 100\ncrc 00000001\nunit 32\nmissing 4\n",
+        "brdfwave incomplete payload 1\nid 3\nlength 100\ncrc 00000001\nunit 32\nmissing 1 1\n",
+        "brdfwave incomplete payload 1\nid 3\nlength 99\ncrc 00000001\nunit 32\nmissing 1\n",
+    };
+    const char *why[] = {"is not a record", "malformed list", "malformed list", "holds 100 bytes"};
+    uint8_t bytes[100] = {0};
+    snprintf(path, sizeof path, "%s/x.part.bwv", dir);
+    assert_int_equal(bwh_write_file(path, bytes, sizeof bytes), 0);
+    snprintf(path, sizeof path, "%s/x.part", dir);
+    for (unsigned k = 0; k < 4; k++) {
+        assert_int_equal(bwh_write_file(path, bad[k], strlen(bad[k])), 0);
+        bwh_partial_t p;
+        assert_int_equal(bwh_partial_load(path, &p), -1);
+        assert_null(p.payload);
+        if (!strstr(bwh_last_error(), why[k]))
+            fail_msg("case %u: %s", k, bwh_last_error());
+    }
+    bwh_partial_remove(path);
+    assert_int_equal(rmdir(dir), 0);
+}
+
 static void a_payload_that_does_not_decode_is_refused(void **state)
 {
     (void)state;
@@ -392,6 +493,8 @@ int main(void)
         T(the_host_reads_an_offered_payload_page_by_page),
         T(a_page_corrupted_on_the_bus_is_read_again),
         T(a_page_that_never_verifies_is_refused),
+        T(a_page_that_never_verifies_is_kept_missing_and_read_later),
+        T(a_malformed_incomplete_record_is_refused),
         T(a_payload_that_does_not_decode_is_refused),
         T(the_ack_releases_the_payload_and_the_application_hears_it),
         T(an_ack_for_another_payload_is_a_nak),

@@ -86,6 +86,14 @@ class I2CPayload(ctypes.Structure):
 I2C_STOPPED = -2
 
 
+class Partial(ctypes.Structure):
+    """bwh_partial_t: a payload that arrived in part (host-tools/lib/bwh_store.h)."""
+    _fields_ = [("id", ctypes.c_uint32), ("crc", ctypes.c_uint32), ("len", ctypes.c_size_t),
+                ("unit", ctypes.c_uint), ("parts", ctypes.c_uint32),
+                ("have", ctypes.POINTER(ctypes.c_uint8)),
+                ("payload", ctypes.POINTER(ctypes.c_uint8))]
+
+
 def _find():
     env = os.environ.get("BRDFWAVE_LIB")
     if env:
@@ -123,7 +131,7 @@ def lib():
     _abi.check(L, {"bw_dims_t": Dims, "bw_header_t": Header, "bwh_shape_t": Shape,
                    "bwh_salvage_t": Salvage,
                    "bwh_encode_opts_t": EncodeOpts, "bwh_i2c_t": I2C,
-                   "bwh_i2c_payload_t": I2CPayload})
+                   "bwh_i2c_payload_t": I2CPayload, "bwh_partial_t": Partial})
     _abi.declare(L)
     P = ctypes.POINTER
     L.bwh_last_error.restype = ctypes.c_char_p
@@ -172,6 +180,19 @@ def lib():
     L.bwh_grid_centres.argtypes = [ctypes.c_uint, ctypes.c_void_p, ctypes.c_void_p]
     L.bwh_i2c_read_payload.restype = ctypes.c_int
     L.bwh_i2c_read_payload.argtypes = [P(I2C), ctypes.c_uint, ctypes.c_size_t, P(I2CPayload)]
+    L.bwh_i2c_read_partial.restype = ctypes.c_int
+    L.bwh_i2c_read_partial.argtypes = [P(I2C), ctypes.c_uint, ctypes.c_size_t, P(Partial),
+                                       P(I2CPayload)]
+    L.bwh_partial_store.restype = ctypes.c_int
+    L.bwh_partial_store.argtypes = [ctypes.c_char_p, P(Partial), ctypes.c_char_p, ctypes.c_size_t]
+    L.bwh_partial_load.restype = ctypes.c_int
+    L.bwh_partial_load.argtypes = [ctypes.c_char_p, P(Partial)]
+    L.bwh_partial_free.restype = None
+    L.bwh_partial_free.argtypes = [P(Partial)]
+    L.bwh_partial_remove.restype = None
+    L.bwh_partial_remove.argtypes = [ctypes.c_char_p]
+    L.bwh_partial_missing.restype = ctypes.c_uint32
+    L.bwh_partial_missing.argtypes = [P(Partial)]
     L.bwh_i2c_acknowledge.restype = ctypes.c_int
     L.bwh_i2c_acknowledge.argtypes = [P(I2C), ctypes.c_uint32, ctypes.c_double]
     _lib = L

@@ -8,9 +8,13 @@ a timeout), reads the offered payload page by page through the register
 window of docs/I2C.md, checks every page's CRC-32 (a bad page is asked for
 again, RETRY), the whole payload's CRC-32 and header, and decodes it, stores it
 as DIR/payload-ID-CRC.bwv through a temporary file, fsync and a link that
-never replaces a file, and only then acknowledges it. A payload that never
-verifies or does not decode is not acknowledged and not stored. SIGTERM or
-SIGINT stop the service between two transfers.
+never replaces a file, and only then acknowledges it. A payload that does not
+decode is not acknowledged and not stored. A page that never verifies leaves
+the payload incomplete: what arrived is kept as DIR/payload-ID-CRC.part.bwv
+and DIR/payload-ID-CRC.part (which pages are missing) and the next attempt
+reads only the missing pages (--resume FILE after a restart); once whole, the
+payload is stored and both files removed. SIGTERM or SIGINT stop the service
+between two transfers.
 
 The protocol is libbrdfwave's I2C client (bwh_i2c.h, through ctypes: the same
 code as `brdfwave acquire`); smbus2 provides its SMBus transfers.
@@ -28,6 +32,16 @@ from . import i2cmap as M
 
 class AcquireError(Exception):
     """The offered payload could not be read and verified (not acknowledged)."""
+
+
+class Incomplete(AcquireError):
+    """The offered payload arrived in part (pages that never verified); the
+    client keeps what arrived (Client.keep stores it) and reads only the
+    missing pages next time."""
+
+    def __init__(self, msg, pid, missing, pages):
+        super().__init__(msg)
+        self.pid, self.missing, self.pages = pid, missing, pages
 
 
 class Stopped(Exception):
@@ -69,6 +83,7 @@ class Client:
             return 0
 
         # the callbacks live as long as the client: C holds their addresses
+        self._part = _lib.Partial()  # what arrived of a payload not yet whole
         self._c = _lib.I2C(_lib.I2C_READ_WORD(transfer(read_word)),
                            _lib.I2C_WRITE_BYTE(transfer(write_byte)),
                            _lib.I2C_WRITE_WORD(transfer(write_word)),
@@ -78,20 +93,47 @@ class Client:
 
     def read_payload(self, retries=3, max_samples=0):
         """Reads and verifies the offered payload; returns (id, bytes, page retries).
-        Raises AcquireError when it is not offered or never verifies, Stopped
-        when stop() asked for it."""
+        Raises Incomplete when pages never verified (what arrived is kept, and
+        the next call reads only the missing pages of the same payload),
+        AcquireError when it is not offered or never verifies, Stopped when
+        stop() asked for it."""
         L = self._lib.lib()
         got = self._lib.I2CPayload()
-        rc = L.bwh_i2c_read_payload(ctypes.byref(self._c), retries, max_samples,
-                                    ctypes.byref(got))
+        rc = L.bwh_i2c_read_partial(ctypes.byref(self._c), retries, max_samples,
+                                    ctypes.byref(self._part), ctypes.byref(got))
         if rc == self._lib.I2C_STOPPED:
             raise Stopped()
+        if rc == 1:
+            raise Incomplete(self._lib.last_error(), self._part.id,
+                             L.bwh_partial_missing(ctypes.byref(self._part)), self._part.parts)
         if rc != 0:
             raise AcquireError(self._lib.last_error())
         try:
             return got.id, ctypes.string_at(got.payload, got.len), got.bad_pages
         finally:
             self._lib.free(got.payload)
+
+    def keep(self, outdir):
+        """Stores what arrived of an incomplete payload as
+        OUTDIR/payload-ID-CRC.part(.bwv); returns the record's path."""
+        L = self._lib.lib()
+        path = ctypes.create_string_buffer(4096)
+        if L.bwh_partial_store(os.fsencode(outdir), ctypes.byref(self._part), path,
+                               len(path)) != 0:
+            raise AcquireError(self._lib.last_error())
+        return os.fsdecode(path.value)
+
+    def resume(self, path):
+        """Takes up an incomplete payload kept before (its .part or .part.bwv):
+        if the device still offers it, only its missing pages are read."""
+        L = self._lib.lib()
+        L.bwh_partial_free(ctypes.byref(self._part))
+        if L.bwh_partial_load(os.fsencode(path), ctypes.byref(self._part)) != 0:
+            raise AcquireError(self._lib.last_error())
+
+    def close(self):
+        """Frees what is kept of an incomplete payload."""
+        self._lib.lib().bwh_partial_free(ctypes.byref(self._part))
 
     def acknowledge(self, pid, timeout=1.0):
         """ACK for payload pid; True when the device released it, False when
@@ -104,12 +146,17 @@ class Client:
 
 def store(outdir, pid, payload):
     """Stores the payload as DIR/payload-ID-CRC.bwv (a temporary file, fsync,
-    then a link that never replaces a file); returns (path, stored before)."""
-    from ._lib import BrdfwaveError, store_payload
+    then a link that never replaces a file); returns (path, stored before).
+    What was kept of it while it was incomplete is removed."""
+    import zlib
+    from ._lib import BrdfwaveError, lib, store_payload
     try:
-        return store_payload(outdir, pid, payload)
+        stored = store_payload(outdir, pid, payload)
     except BrdfwaveError as e:
         raise AcquireError("%s; payload %d not acknowledged" % (e, pid)) from None
+    part = os.path.join(outdir, "payload-%d-%08x.part" % (pid, zlib.crc32(payload)))
+    lib().bwh_partial_remove(os.fsencode(part))
+    return stored
 
 
 class DataReady:
@@ -160,7 +207,8 @@ def main(argv=None):
     ap.add_argument("--line", type=int, required=True, help="line offset on that chip")
     ap.add_argument("--out", required=True, help="directory for payload-ID-CRC.bwv files")
     ap.add_argument("--once", action="store_true",
-                    help="store one payload, then exit (status 1 if it fails)")
+                    help="store one payload, then exit (status 1 if it fails, 3 if it stays "
+                         "incomplete)")
     ap.add_argument("--timeout", type=float, default=0,
                     help="with --once: seconds to wait for data-ready (default: forever)")
     ap.add_argument("--retries", type=int, default=3, help="reads of a bad page after the "
@@ -169,6 +217,9 @@ def main(argv=None):
                     help="seconds before a failed payload is tried again (default 5)")
     ap.add_argument("--max-samples", type=int, default=0,
                     help="refuse payloads that decode to more samples (default 67108864)")
+    ap.add_argument("--resume", metavar="FILE",
+                    help="an incomplete payload kept before (its .part or .part.bwv): if the "
+                         "device still offers it, only its missing pages are read")
     a = ap.parse_args(argv)
     if not os.path.isdir(a.out):
         print("acquire: %s is not a directory" % a.out, file=sys.stderr)
@@ -203,6 +254,15 @@ def main(argv=None):
         bus.close()
         return 1
     dev = Client(bus, a.addr, bus_name, log=log, stop=lambda: stop["now"])
+    if a.resume:
+        try:
+            dev.resume(a.resume)
+        except AcquireError as e:
+            log(str(e))
+            dev.close()
+            drdy.close()
+            bus.close()
+            return 1
     t_end = time.monotonic() + a.timeout if a.once and a.timeout > 0 else None
     stored = 0
     rc = 0
@@ -225,6 +285,9 @@ def main(argv=None):
             try:
                 pid, payload, bad = dev.read_payload(a.retries, a.max_samples)
                 path, before = store(a.out, pid, payload)
+                if a.resume:
+                    from ._lib import lib
+                    lib().bwh_partial_remove(os.fsencode(a.resume))
                 try:
                     if not dev.acknowledge(pid):
                         log("payload %d stored, but the device did not confirm the ACK" % pid)
@@ -238,6 +301,18 @@ def main(argv=None):
                     break
             except Stopped:
                 break
+            except Incomplete as e:
+                try:
+                    kept = dev.keep(a.out)
+                    log("%s; kept as %s.bwv, %d of %d pages missing%s"
+                        % (e, kept, e.missing, e.pages,
+                           "" if a.once else "; they are read again next"))
+                except AcquireError as k:
+                    log("%s; what arrived could not be kept: %s" % (e, k))
+                if a.once:
+                    rc = 3
+                    break
+                holdoff = time.monotonic() + a.retry_interval
             except (AcquireError, OSError) as e:
                 log(str(e))
                 if a.once:
@@ -245,6 +320,7 @@ def main(argv=None):
                     break
                 holdoff = time.monotonic() + a.retry_interval
     finally:
+        dev.close()
         drdy.close()
         bus.close()
     if stop["now"]:
