@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 # make pictures: the README's pictures of `brdfwave plot`, from the shared
 # data (writes the tracked docs/img/plot_*.png; the work in build/pictures): a BRDF,
-# an incidence of it in 8 segments whole and cut, field spectra, their curve
+# an incidence of it in 8 segments whole and cut, and embedded and cut, field
+# spectra, their curve
 PIC_DIR := $(BUILD)/pictures
 FIELD_SED := $(sort $(wildcard tests/data/field_psr3500/*.sed))
 
@@ -26,6 +27,12 @@ pictures: $(BW_CLI)
 	$(Q)$(BW_CLI) plot hemisphere -i $(PIC_DIR)/cut.bwv --log \
 	    --title "the same cut to 1464 bytes (40 %): coarser levels" \
 	    -o docs/img/plot_segments_cut.png 2>/dev/null
+	$(Q)$(BW_CLI) encode -q -i $(PIC_DIR)/theta42.f32 -o $(PIC_DIR)/theta42e.bwv --bands 1 \
+	    --level 6 --max-error 0.001 --progressive
+	$(Q)head -c 1464 $(PIC_DIR)/theta42e.bwv >$(PIC_DIR)/cute.bwv
+	$(Q)$(BW_CLI) plot hemisphere -i $(PIC_DIR)/cute.bwv --log \
+	    --title "the same, embedded (--progressive), cut to 1464 bytes" \
+	    -o docs/img/plot_embedded_cut.png 2>/dev/null
 	$(Q)$(BW_CLI) encode -q --input-format sed -i $(FIELD_SED) -o $(PIC_DIR)/field.bwv \
 	    --max-error 0.0005
 	$(Q)$(BW_CLI) plot spectra --input-format sed -i $(FIELD_SED) --payload $(PIC_DIR)/field.bwv \

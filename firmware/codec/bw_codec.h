@@ -186,6 +186,13 @@ typedef struct {
      * version 7 and BW_SEGMENT_OVERHEAD(s) bytes larger at most: add that
      * to BW_PAYLOAD_BOUND. Not for the streaming encoder. */
     uint32_t segment_vectors;
+    /* Embedded segments (docs/FORMAT.md, Embedded segments): nonzero codes
+     * each segment bit plane by bit plane (a body in one piece becomes one
+     * segment), so that any prefix of a segment decodes to an approximation
+     * of all its coefficients; with BW_MODE_BYTES the payload is then the
+     * exact coding cut at the budget (no search). Transform bases only, not
+     * in stream order. */
+    uint32_t progressive;
 } bw_params_t;
 
 /* Header flags.
@@ -247,8 +254,11 @@ typedef struct {
     ((size_t)BW_HEADER_MAX + BW_TRAILER_SIZE + 16u + (size_t)(n) * 9u + ((size_t)(n) / BW_STRIP + 1u))
 
 /* Work area for the encoder and decoder, in int32 elements: the coefficient
- * array plus one spectral line of scratch. */
-#define BW_WORK_BOUND(n, bands) ((size_t)(n) + 2u * (size_t)(bands) + 16u)
+ * array, one spectral line of scratch and the spectral tables, and a bit per
+ * coefficient and per strip of 32 (the embedded coder's significance), in
+ * n / 16 + 3 words. */
+#define BW_WORK_BOUND(n, bands) \
+    ((size_t)(n) + ((size_t)(n) >> 4) + 2u * (size_t)(bands) + 19u)
 
 size_t bw_payload_bound(size_t n);
 size_t bw_work_bound(size_t n, size_t bands);
@@ -335,6 +345,8 @@ typedef struct {
      * count; 0 and 1 for a body in one piece */
     uint32_t segment_vectors;
     uint32_t segments;
+    /* record BW_EXT_EMBEDDED: the segments are embedded (1), else 0 */
+    uint32_t embedded;
 } bw_header_t;
 
 /* ---- extension records ------------------------------------------------- */
@@ -355,6 +367,7 @@ typedef struct {
                                   * its first field, a varint, is the tail's length */
 #define BW_EXT_LOG_MAP 0x02u     /* samples to values through a signed log-linear map */
 #define BW_EXT_SEGMENTS 0x03u    /* the body is split into segments (the core's) */
+#define BW_EXT_EMBEDDED 0x04u    /* the segments are coded bit plane by bit plane */
 #define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
 #define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
 #define BW_EXT_MAX (1u << 20)  /* bytes of records at most */

@@ -32,6 +32,13 @@
  *                                      them (BW_ERR_NOT_BUILT), as a build
  *                                      without BW_CFG_CODER_MS its payloads
  *
+ *   BW_CFG_EMBED              1        embedded segments (BW_EXT_EMBEDDED,
+ *                                      bw_params_t.progressive, bw_embed.c):
+ *                                      bit-plane order, a prefix decodes to an
+ *                                      approximation and a byte budget is a
+ *                                      cut; needs BW_CFG_SEGMENTS; 0: both
+ *                                      sides refuse them (BW_ERR_NOT_BUILT)
+ *
  * Decoder features:
  *
  *   BW_CFG_SALVAGE            1        bw_decode_salvage decodes what a damaged
@@ -127,6 +134,9 @@
 #endif
 #ifndef BW_CFG_SALVAGE
 #define BW_CFG_SALVAGE 1
+#endif
+#ifndef BW_CFG_EMBED
+#define BW_CFG_EMBED BW_CFG_SEGMENTS
 #endif
 
 #ifndef BW_CFG_STATUS_TEXT

@@ -21,6 +21,8 @@ static void plan_of(bw_plan_t *pl, const bw_header_t *h, int32_t *work, size_t n
                  work + n);
     if (BW_CFG_SEGMENTS) /* (0 from bw_plan_make: a core without them refuses them) */
         pl->seg_vec = h->segment_vectors;
+    if (BW_CFG_EMBED)
+        pl->embed = h->embedded;
     bw_plan_tables(pl);
 }
 
@@ -29,9 +31,30 @@ typedef struct {
     bool salvage;     /* the payload may be damaged or cut: decode what is whole */
     uint8_t *seg_ok;  /* may be NULL */
     size_t seg_cap;
-    uint8_t *vec_lost; /* may be NULL */
+    uint8_t *vec_lost; /* may be NULL: 1 lost, 2 inexact (an embedded segment cut) */
     uint32_t lost;
 } seg_out_t;
+
+/* One segment of sl bytes at in (of which `there` arrived) into the nvec
+ * vectors from it, which it leaves past them: the strip coder's, or an
+ * embedded one, whole or (there < sl) cut; *inexact for the latter's
+ * approximations. */
+static bw_status_t decode_segment(bw_iter_t *it, const bw_plan_t *pl, size_t nvec,
+                                  const uint8_t *in, size_t sl, size_t there, unsigned coder,
+                                  bw_models_t *m, bool *inexact)
+{
+    *inexact = false;
+    if (!(BW_CFG_EMBED && pl->embed))
+        return bw_decode_coefs(it, nvec * pl->dims.bands, in, sl, coder, m);
+    bw_iter_t start = *it;
+    bool cut = there < sl;
+    bw_status_t st = bw_embed_decode(&start, nvec * pl->dims.bands, in, cut ? there : sl, cut,
+                                     inexact);
+    *inexact = *inexact && cut; /* a whole segment decodes to what its encoder coded */
+    for (size_t k = 0; k < nvec; k++)
+        bw_iter_next_vec(it);
+    return st;
+}
 
 /* A segmented body (docs/FORMAT.md, Segments): its table, whose CRC covers
  * the header, then each segment decoded afresh; with so->salvage the
@@ -58,16 +81,32 @@ static bw_status_t decode_segments(const bw_plan_t *pl, int32_t *x, const uint8_
             nvec = pl->seg_vec;
         bool ok = pos <= avail && sl <= avail - pos &&
                   bw_crc32(p + hl + pos, sl) == bw_get_u32(t + (size_t)s * BW_SEG_ENTRY + 4u);
+        /* an embedded segment cut short decodes to an approximation from
+         * the bytes that arrived (its CRC is of all of them) */
+        size_t there = ok ? sl : 0u;
+        if (BW_CFG_EMBED && pl->embed && salvage && !ok && pos <= avail && sl > avail - pos)
+            there = avail - pos;
         bw_iter_segment(&it);
-        if (ok) {
-            bw_status_t st = bw_decode_coefs(&it, nvec * bands, p + hl + pos, sl, coder, m);
+        bool inexact = false;
+        if (ok || there) {
+            bw_status_t st = decode_segment(&it, pl, nvec, p + hl + pos, sl, there, coder, m,
+                                            &inexact);
             if (st != BW_OK && !salvage)
                 return st;
             ok = st == BW_OK;
         } else if (!salvage) {
             return BW_ERR_CORRUPT;
         }
-        if (BW_CFG_SALVAGE && !ok) { /* lost: its vectors zero, the iterator past them */
+        if (BW_CFG_SALVAGE && ok && inexact) { /* approximations: marked so */
+            bw_iter_t v;
+            bw_iter_at(&v, pl, x, first);
+            for (size_t k = 0; k < nvec && so->vec_lost; k++) {
+                so->vec_lost[(size_t)(v.vec - x) / bands] = 2u;
+                bw_iter_next_vec(&v);
+            }
+            ok = false;
+            so->lost++;
+        } else if (BW_CFG_SALVAGE && !ok) { /* lost: its vectors zero, the iterator past them */
             so->lost++;
             bw_iter_at(&it, pl, x, first);
             for (size_t k = 0; k < nvec; k++) {
@@ -272,7 +311,8 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
                 return BW_ERR_CRC;
             bw_iter_at(&it, pl, x, first);
             bw_iter_segment(&it);
-            bw_status_t st = bw_decode_coefs(&it, cnt * b, t + pos, sl, coder, m);
+            bool inexact;
+            bw_status_t st = decode_segment(&it, pl, cnt, t + pos, sl, sl, coder, m, &inexact);
             if (st != BW_OK)
                 return st;
         }

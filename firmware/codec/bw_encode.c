@@ -4,6 +4,8 @@
  * prediction, quantise, code, header and CRC), the choice of the basis, and
  * the self-check of the mode's guarantee.
  */
+#include <string.h>
+
 #include "bw_crc32.h"
 #include "bw_internal.h"
 #include "bw_le.h"
@@ -119,23 +121,63 @@ static bool auto_rice(const bw_plan_t *pl, bw_params_t *chosen, unsigned mode, i
  * and CRC-32 in the table (the table's own CRC is the caller's, after the
  * header). Returns the body's size; *over: it did not fit cap. */
 static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se, uint8_t *body,
-                            size_t cap, unsigned coder, bool *over)
+                            size_t cap, unsigned coder, bool truncate, bool *over)
 {
     uint32_t segs = bw_plan_segments(pl);
     size_t nv = (size_t)pl->dims.n_in * pl->dims.n_out, pos = bw_segment_table_size(segs);
     bw_iter_t it;
     bw_iter_init(&it, pl, x);
     *over = body && pos > cap;
+    uint32_t *map = BW_CFG_EMBED && pl->embed ? bw_embed_map(pl, x) : NULL;
+    /* a byte budget over several embedded segments: each cut at its share
+     * of the bytes, in proportion to its whole coding (counted first) */
+    size_t total = 0, spare = cap > pos ? cap - pos : 0u;
+    if (BW_CFG_EMBED && pl->embed && truncate && body && segs > 1u) {
+        bw_iter_t c;
+        bw_iter_init(&c, pl, x);
+        for (uint32_t s = 0; s < segs; s++) {
+            size_t nvec = nv - (size_t)s * pl->seg_vec < pl->seg_vec ? nv - (size_t)s * pl->seg_vec
+                                                                       : pl->seg_vec;
+            bw_iter_segment(&c);
+            bw_iter_t start = c;
+            bool o;
+            total += bw_embed_encode(&start, nvec * pl->dims.bands, map, NULL, 0, false, &o);
+            for (size_t k = 0; k < nvec; k++)
+                bw_iter_next_vec(&c);
+        }
+    }
     for (uint32_t s = 0; s < segs; s++) {
         size_t first = (size_t)s * pl->seg_vec, nvec = nv - first;
         size_t at = pos < cap ? pos : cap;
         if (nvec > pl->seg_vec)
             nvec = pl->seg_vec;
         bw_iter_segment(&it);
-        bw_strip_enc_init(se, body ? body + at : NULL, cap - at, coder);
-        bw_code_vectors(&it, se, nvec);
-        size_t sl = bw_strip_enc_finish(se);
-        if (body && (bw_strip_enc_overflow(se) || sl > cap - at)) {
+        size_t sl;
+        bool so = false;
+        if (BW_CFG_EMBED && pl->embed) {
+            bw_iter_t start = it;
+            size_t share = cap - at;
+            if (total > spare) { /* this segment's share of the budget */
+                bool o;
+                size_t whole = bw_embed_encode(&start, nvec * pl->dims.bands, map, NULL, 0,
+                                               false, &o);
+                share = (size_t)((uint64_t)spare * whole / total);
+                if (share < 8u) /* its start, at least */
+                    share = 8u;
+                if (share > cap - at)
+                    share = cap - at;
+            }
+            sl = bw_embed_encode(&start, nvec * pl->dims.bands, map, body ? body + at : NULL,
+                                 share, truncate, &so);
+            for (size_t k = 0; k < nvec; k++)
+                bw_iter_next_vec(&it);
+        } else {
+            bw_strip_enc_init(se, body ? body + at : NULL, cap - at, coder);
+            bw_code_vectors(&it, se, nvec);
+            sl = bw_strip_enc_finish(se);
+            so = bw_strip_enc_overflow(se);
+        }
+        if (body && (so || sl > cap - at)) {
             *over = true;
         } else if (body) {
             bw_put_u32(body + (size_t)s * BW_SEG_ENTRY, (uint32_t)sl);
@@ -173,7 +215,8 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
     bool over;
     if (BW_CFG_SEGMENTS && pl->seg_vec) {
         body = code_segments(pl, work, se, counting ? NULL : out + hl, body_cap,
-                             bw_coder_of(pa->flags), &over);
+                             bw_coder_of(pa->flags),
+                             BW_CFG_EMBED && pl->embed && mode == BW_MODE_BYTES, &over);
     } else {
         bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, bw_coder_of(pa->flags));
         bw_code_body(pl, work, se);
@@ -239,6 +282,12 @@ static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const
                  tables);
     uint32_t nv = dims->n_in * dims->n_out;
     pl->seg_vec = !BW_CFG_SEGMENTS ? 0u : pa->segment_vectors < nv ? pa->segment_vectors : nv;
+    /* embedded: in segments, one without them */
+    if (BW_CFG_EMBED) {
+        pl->embed = pa->progressive != 0u;
+        if (pl->embed && !pl->seg_vec)
+            pl->seg_vec = nv;
+    }
 }
 
 /* Encodes with one basis; for BYTES searches the step. */
@@ -248,6 +297,11 @@ static bw_status_t encode_basis(bw_ctx_t *ctx, bw_plan_t *pl, const bw_params_t 
 {
     if (pa->mode != BW_MODE_BYTES)
         return bw_encode_pass(pl, pa, pa->mode, samples, work, ctx, out, cap, len);
+    if (BW_CFG_EMBED && pl->embed) { /* the exact coding cut at the budget */
+        size_t b = pa->byte_budget < cap ? pa->byte_budget : cap;
+        bw_status_t st = bw_encode_pass(pl, pa, pa->mode, samples, work, ctx, out, b, len);
+        return st == BW_ERR_OUTPUT_FULL ? BW_ERR_BUDGET : st;
+    }
     if (BW_CFG_FAST_BUDGET && pa->effort == BW_EFFORT_FAST)
         return bw_budget_encode_fast(pl, pa, samples, work, ctx, out, cap, len);
     return bw_budget_encode(pl, pa, samples, work, ctx, out, cap, len);
@@ -351,9 +405,14 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
     if (!bw_ext_valid(pa->ext, pa->ext_len) || pa->effort > BW_EFFORT_FAST ||
         !bw_coder_choice_ok(pa))
         return BW_ERR_ARG;
-    if (!BW_CFG_SEGMENTS && pa->segment_vectors)
+    if ((!BW_CFG_SEGMENTS && pa->segment_vectors) || (!BW_CFG_EMBED && pa->progressive))
         return BW_ERR_NOT_BUILT;
-    bool pred = BW_CFG_ENCODE_PRED && bw_pred_applies(dims, pa->mode, pa->flags);
+    /* embedded: transform bases, coarse-to-fine order */
+    if (BW_CFG_EMBED && pa->progressive &&
+        (pa->basis == BW_BASIS_PRED || (pa->flags & BW_FLAG_STREAM_ORDER)))
+        return BW_ERR_ARG;
+    bool pred = BW_CFG_ENCODE_PRED && !(BW_CFG_EMBED && pa->progressive) &&
+                bw_pred_applies(dims, pa->mode, pa->flags);
 
     bw_plan_t pl;
     bw_status_t fit = BW_OK;

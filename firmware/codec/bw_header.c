@@ -69,13 +69,17 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
     /* the segments' record after the caller's: type, length, V */
-    uint8_t seg[7];
+    uint8_t seg[9];
     size_t sl = 0;
     if (BW_CFG_SEGMENTS && pl->seg_vec) {
         seg[0] = BW_EXT_SEGMENTS;
         sl = put_varint(seg + 2, pl->seg_vec);
         seg[1] = (uint8_t)sl;
         sl += 2u;
+        if (BW_CFG_EMBED && pl->embed) { /* and its segments embedded: no data */
+            seg[sl++] = BW_EXT_EMBEDDED;
+            seg[sl++] = 0u;
+        }
     }
     uint32_t el = pa->ext_len + (uint32_t)sl;
     h[2] = el || (pa->flags & BW_FLAG_MS) ? BW_VERSION_EXT : BW_VERSION;
@@ -118,7 +122,7 @@ bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
 /* The bytes BW_EXT_FLOAT_EXACT sets apart at the body's end (its first
  * field; 0 without it), or BW_ERR_HEADER for a malformed record,
  * BW_ERR_EXTENSION for a critical type this decoder does not know. */
-static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec)
+static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint32_t *embed)
 {
     size_t pos = 0;
     uint8_t type;
@@ -126,6 +130,8 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec)
     uint32_t dl, tail = 0;
     int32_t st = 0;
     *seg_vec = 0;
+    if (BW_CFG_EMBED)
+        *embed = 0;
     while (pos < len) {
         if (!bw_ext_next(area, len, &pos, &type, &d, &dl) ||
             (type == BW_EXT_FLOAT_EXACT && (!get_varint(d, d + dl, &tail) || tail > INT32_MAX)))
@@ -136,6 +142,13 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec)
             /* one record, its data one varint V >= 1 */
             if (*seg_vec || get_varint(d, d + dl, seg_vec) != d + dl || !*seg_vec)
                 return BW_ERR_HEADER;
+        } else if (type == BW_EXT_EMBEDDED && !BW_CFG_EMBED) {
+            st = BW_ERR_NOT_BUILT;
+        } else if (type == BW_EXT_EMBEDDED) {
+            /* one record, no data, after the segments' */
+            if (*embed || dl || !*seg_vec)
+                return BW_ERR_HEADER;
+            *embed = 1u;
         } else if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u) {
             st = BW_ERR_EXTENSION;
         }
@@ -147,8 +160,8 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec)
  * body) and without segments (its own record says those) */
 bool bw_ext_valid(const uint8_t *area, size_t len)
 {
-    uint32_t sv;
-    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &sv) == 0 && !sv;
+    uint32_t sv, em;
+    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &sv, &em) == 0 && !sv;
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -179,6 +192,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     bw_dims_t *d = &h->dims;
     h->version = p[2];
     h->segment_vectors = 0;
+    h->embedded = 0;
     d->shape = p[3] & 3u;
     h->mode = (uint8_t)(p[3] >> 2 & 3u);
     h->basis = (uint8_t)(p[3] >> 4 & 3u);
@@ -220,7 +234,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
             return BW_ERR_HEADER;
         h->ext_off = (uint32_t)(q - p);
         h->ext_len = el;
-        int32_t tail = ext_scan(q, el, &h->segment_vectors);
+        int32_t tail = ext_scan(q, el, &h->segment_vectors, &h->embedded);
         if (tail < 0)
             return (bw_status_t)tail;
         q += el;
@@ -240,7 +254,9 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     bw_status_t pc = bw_params_check(d, h->mode, h->basis, h->flags & ~BW_FLAG_EXT,
                                      me ? e : h->step_q8, BW_FOR_PAYLOAD);
     if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) || (pc != BW_OK && pc != BW_ERR_NOT_BUILT) ||
-        h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands))
+        h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands) ||
+        (BW_CFG_EMBED && h->embedded &&
+         (h->basis == BW_BASIS_PRED || (h->flags & BW_FLAG_STREAM_ORDER))))
         return BW_ERR_HEADER;
     /* segments of V vectors, V at most their number (one encoding) */
     h->segments = 1u;

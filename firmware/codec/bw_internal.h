@@ -44,6 +44,7 @@ typedef struct {
     bool recip;             /* BW_FLAG_RECIPROCAL */
     bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
     uint32_t seg_vec;       /* vectors per segment (BW_EXT_SEGMENTS), 0: one body */
+    bool embed;             /* embedded segments (BW_EXT_EMBEDDED)                */
     int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
     int32_t *tmp;           /* [bands] lifting scratch                           */
@@ -224,9 +225,12 @@ typedef struct {
     int32_t *x;
     uint32_t i, o, k; /* incoming, outgoing vector (in coding order), band */
     int32_t *vec;
+    size_t base;         /* the incoming block's first vector in place ...  */
+    uint32_t base_i;     /* ... of block base_i (BW_CFG_SPEED, BW_CFG_EMBED) */
     const int32_t *par;  /* coarse-to-fine order: the parent vector, or NULL */
     const int32_t *prev; /* the previous vector (coarse-to-fine, bands > 1), or NULL */
     unsigned cls_dir;
+    int lvl;          /* the outgoing coefficient's parent level (-1: scaling; BW_CFG_EMBED) */
     size_t vi, seg0; /* the vector's index in coding order; its segment's first */
     uint32_t leaf; /* stream order: next leaf, queue of completed vectors */
     unsigned qi;
@@ -239,6 +243,8 @@ void bw_iter_init(bw_iter_t *it, const bw_plan_t *pl, int32_t *x);
 void bw_iter_next_vec(bw_iter_t *it);
 /* The iterator at vector vi of the coding order (from its block's first). */
 void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi);
+/* The iterator at vector vi of its segment (coarse-to-fine order), at once. */
+void bw_iter_seek(bw_iter_t *it, size_t vi);
 /* The coarse-to-fine index of the coefficient at in-place position t of a
  * level-L hemisphere (bw_biohaar_pos's inverse). */
 uint32_t bw_cf_index(uint32_t t, unsigned L);
@@ -260,6 +266,24 @@ static inline uint32_t bw_plan_segments(const bw_plan_t *pl)
  * from its first byte to there. */
 #define BW_SEG_ENTRY 8u
 static inline size_t bw_segment_table_size(uint32_t segs) { return BW_SEGMENT_TABLE_SIZE(segs); }
+
+/* Embedded segments (bw_embed.c): the n coefficients from iterator start
+ * coded bit plane by bit plane into out[cap] (NULL: counted), significance
+ * in map (a bit per coefficient of the plan, its bits of the segment
+ * cleared first); with
+ * truncate the coding stops before it passes cap (a byte budget), else
+ * *over says it did not fit. Returns the bytes. */
+size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint32_t *map, uint8_t *out, size_t cap,
+                       bool truncate, bool *over);
+/* The encoder's significance map of a plan's coefficients, in the work
+ * area after the tables. */
+uint32_t *bw_embed_map(const bw_plan_t *pl, int32_t *x);
+/* Decodes one into the n coefficients from start: a whole segment (in[len])
+ * to where its encoder stopped, a cut one (cut) to where its bytes end.
+ * *inexact: the coefficients are not all the encoder's. BW_ERR_CORRUPT for
+ * a malformed start. */
+bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in, size_t len,
+                            bool cut, bool *inexact);
 
 /* The next coefficient, its class and where its contexts come from: the
  * parent (directional, else spectral) and the same band of the previous

@@ -88,7 +88,18 @@ static void iter_vec(bw_iter_t *it)
             pos_out = bw_walk_next(&it->w, pl->dims.level_out, &level);
         }
     }
-    size_t b = pl->dims.bands, base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
+    /* the incoming block's place: once a block, or (where flash counts
+     * more) every vector */
+    size_t b = pl->dims.bands, base;
+    if (BW_CFG_SPEED || BW_CFG_EMBED) {
+        if (it->base_i != it->i) {
+            it->base_i = it->i;
+            it->base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
+        }
+        base = it->base;
+    } else {
+        base = (size_t)bw_in_pos(pl, it->i) * pl->dims.n_out;
+    }
     unsigned L = pl->dims.level_out;
     it->prev = pl->stream || b == 1u ? NULL : it->vec;
     it->vec = it->x + (base + pos_out) * b;
@@ -97,6 +108,8 @@ static void iter_vec(bw_iter_t *it)
     uint32_t par_pos = level < 0 ? 0u : pos_out & ~(3u << (2u * (L - 1u - (unsigned)level)));
     it->par = level < 0 || pl->stream ? NULL : it->x + (base + par_pos) * b;
     it->cls_dir = bw_level_cls(pl, level);
+    if (BW_CFG_EMBED)
+        it->lvl = level;
     /* no context from before the segment: the parent of a segment that
      * began in this block may lie before it */
     size_t first = (size_t)it->i * pl->dims.n_out;
@@ -118,6 +131,8 @@ static void iter_start(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, uint32_t 
     bw_walk_init(&it->w);
     it->vec = NULL;
     it->vi = it->seg0 = (size_t)i * pl->dims.n_out;
+    if (BW_CFG_SPEED || BW_CFG_EMBED)
+        it->base_i = UINT32_MAX;
     if (i < pl->dims.n_in)
         iter_vec(it);
 }
@@ -131,6 +146,35 @@ void bw_iter_at(bw_iter_t *it, const bw_plan_t *pl, int32_t *x, size_t vi)
     while (it->vi < vi)
         bw_iter_next_vec(it);
 }
+
+#if BW_CFG_EMBED
+void bw_iter_seek(bw_iter_t *it, size_t vi)
+{
+    const bw_plan_t *pl = it->pl;
+    size_t from = vi > it->seg0 ? vi - 1u : vi; /* the vector before: `prev` */
+    uint32_t i = (uint32_t)(from / pl->dims.n_out), o = (uint32_t)(from % pl->dims.n_out);
+    it->i = i;
+    it->o = o;
+    it->vi = from;
+    it->k = 0;
+    it->vec = NULL;
+    /* the walk about to yield coarse-to-fine index o */
+    if (o < 4u) {
+        it->w.j = -1;
+        it->w.p = o;
+        it->w.m = 1u;
+    } else {
+        int j = bw_biohaar_coef_level(o);
+        uint32_t r = o - (1u << (2u * (unsigned)(j + 1)));
+        it->w.j = j;
+        it->w.p = r / 3u;
+        it->w.m = r % 3u + 1u;
+    }
+    iter_vec(it);
+    if (from != vi)
+        bw_iter_next_vec(it);
+}
+#endif
 
 void bw_iter_segment(bw_iter_t *it)
 {

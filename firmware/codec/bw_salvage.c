@@ -37,7 +37,7 @@ void bw_salvage_mask(const bw_header_t *h, const uint8_t *vec_lost, uint8_t *mas
     const bw_dims_t *d = &h->dims;
     size_t nv = (size_t)d->n_in * d->n_out;
     for (size_t k = 0; k < nv; k++)
-        mask[k] = vec_lost[k] ? AFF | MISS : 0u;
+        mask[k] = vec_lost[k] == 1u ? AFF | MISS : vec_lost[k] ? AFF : 0u;
     if (bw_has_in(d))
         for (uint32_t o = 0; o < d->n_out; o++)
             mask_tree(mask + o, d->level_in, d->n_out);

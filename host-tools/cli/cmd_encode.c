@@ -23,7 +23,8 @@ static const char encode_help[] =
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
     "                       [--scale S] [--relative]\n"
-    "                       [--coder range|ms|rice|auto] [--segments N] [-q]\n"
+    "                       [--coder range|ms|rice|auto] [--segments N] [--progressive]\n"
+    "                       [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
     "\n"
@@ -90,6 +91,11 @@ static const char encode_help[] =
     "                    its length and CRC-32 and decodable alone: a damaged or\n"
     "                    missing segment costs its own coefficients only (decode\n"
     "                    rebuilds the rest and reports what was lost); format 7\n"
+    "  --progressive     embedded segments (one without --segments): bit planes, the\n"
+    "                    most significant first, so that any prefix decodes to an\n"
+    "                    approximation (decode of a cut payload); with --bytes or\n"
+    "                    --ratio the exact coding cut at the budget, no search;\n"
+    "                    transform bases; format 7\n"
     "  --coder C         entropy coder: range (the default on the host: the smallest\n"
     "                    payload); ms (multi-symbol range coder, format 7: about a\n"
     "                    third fewer instructions per sample on the device, about\n"
@@ -300,6 +306,7 @@ int bw_cmd_encode(int argc, char **argv)
     uint32_t bytes = 0, drop = 0;
     int has_drop = 0, quiet = 0, has_effort = 0, effort = 0;
     uint32_t segments = 0;
+    int progressive = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = CODER_UNSET;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
@@ -334,6 +341,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"drop-chunk", 0, CLI_U32, .dest = &drop, .lo = 0, .hi = 65535, .seen = &has_drop},
         {"stream", 0, CLI_FLAG, .dest = &stream},
         {"segments", 0, CLI_U32, .dest = &segments, .lo = 1, .hi = 1u << 28},
+        {"progressive", 0, CLI_FLAG, .dest = &progressive},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
          .what = "--coder must be range, ms, rice or auto"},
@@ -381,6 +389,7 @@ int bw_cmd_encode(int argc, char **argv)
     o.coder = coder == CODER_AUTO ? BW_CODER_AUTO : BW_CODER_BY_FLAGS;
     coder = coder == CODER_AUTO ? 0u : coder;
     o.segments = segments;
+    o.progressive = (uint32_t)progressive;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
     uint64_t device_instructions = 0;

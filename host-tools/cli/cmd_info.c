@@ -121,7 +121,9 @@ int bw_cmd_info(int argc, char **argv)
     cli_kv_str(&kv, "basis", bwh_basis_name(h.basis));
     cli_kv_uint(&kv, "spectral_levels", h.spectral_levels);
     cli_kv_str(&kv, "mode", bwh_mode_name(h.mode));
-    cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed" : "coarse-to-fine");
+    cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed"
+                             : h.embedded                  ? "embedded (bit planes)"
+                                                           : "coarse-to-fine");
     cli_kv_str(&kv, "coder", bwh_coder_name(h.flags));
     if (h.segment_vectors) {
         cli_kv_uint(&kv, "segments", h.segments);

@@ -77,6 +77,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.basis = (uint8_t)o->basis;
     p.effort = (uint8_t)o->effort;
     p.coder = (uint8_t)o->coder;
+    p.progressive = o->progressive != 0u;
     if (o->segments > 1u) {
         uint32_t nv = dims->n_in * dims->n_out;
         p.segment_vectors = (nv - 1u) / o->segments + 1u;

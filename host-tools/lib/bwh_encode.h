@@ -54,6 +54,10 @@ typedef struct {
     /* 0 or 1: the body in one piece; n > 1: about n segments, each decodable
      * alone (bw_params_t.segment_vectors: ceil(vectors / n) vectors each) */
     uint32_t segments;
+    /* nonzero: embedded segments (bw_params_t.progressive): a prefix decodes
+     * to an approximation; with a byte budget the exact coding is cut at
+     * the budget */
+    uint32_t progressive;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

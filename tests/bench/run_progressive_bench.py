@@ -247,6 +247,104 @@ def lod_rows():
 FIRMWARE = os.environ.get("FIRMWARE", os.path.join(ROOT, "build/qemu/brdfwave-fw.elf"))
 
 
+FRACTIONS = (0.05, 0.10, 0.25, 0.50, 1.00)
+
+
+def values_of(payload):
+    """The float values a payload (or a prefix of one) decodes to, or None."""
+    out = tmp("v.f32")
+    r = run(["decode", "-i", payload, "-o", out], ok=(0, 1, 3))
+    return None if r.returncode == 1 else np.fromfile(out, "<f4").astype(np.float64)
+
+
+def errors(x, ref):
+    e = x - ref
+    return (100.0 * np.linalg.norm(e) / np.linalg.norm(ref), float(np.sqrt(np.mean(e * e))))
+
+
+def budget_bytes_for(inp, ref, rel_target, hi):
+    """The fewest bytes of a byte-budget encode (the host's best, no
+    embedding) whose relative L2 is at most rel_target, within 1 %: a
+    bisection on --bytes; (bytes, its relative L2 and RMSE); hi bytes at
+    most (None: not reached there)."""
+    def at(b):
+        p = tmp("bud.bwv")
+        r = run(["encode", "-q"] + inp + ["--bytes", str(b), "-o", p], ok=(0, 1))
+        if r.returncode:
+            return None
+        return errors(values_of(p), ref)
+    e = at(hi)
+    if e is None or e[0] > rel_target:
+        return None, e
+    lo, best = 64, (hi, e)
+    while hi - lo > max(4, lo // 100):
+        mid = (lo + hi) // 2
+        e = at(mid)
+        if e is not None and e[0] <= rel_target:
+            hi, best = mid, (mid, e)
+        else:
+            lo = mid
+    return best
+
+
+def embed_rows():
+    """Embedded payloads: what the order costs at equal samples, and their
+    prefixes against byte-budget encodes at the same error."""
+    sizes, prefix = [], []
+    for key, desc, inp, lossy in sets():
+        for mode, margs in (("lossless", ["--lossless"]), ("max-error", lossy)):
+            got = {}
+            for what, extra in (("best", []), ("embedded", ["--progressive"])):
+                p = tmp("emb_%s_%s_%s.bwv" % (key, mode, what))
+                run(["encode", "-q"] + inp + margs + extra + ["-o", p])
+                got[what] = (os.path.getsize(p), values_of(p))
+            same = np.array_equal(got["embedded"][1], got["best"][1])
+            basis = dict(l.split(": ", 1) for l in run(["info", tmp(
+                "emb_%s_%s_best.bwv" % (key, mode))]).stdout.decode().splitlines()
+                if ": " in l)["basis"]
+            sizes.append({"set": key, "mode": mode, "best": got["best"][0], "basis": basis,
+                          "embedded": got["embedded"][0], "same": "yes" if same else "no"})
+        # prefixes of the exact embedded coding of the samples a byte budget
+        # codes (a budget that holds it all: the values mapped linearly,
+        # where a lossless payload of float input may code their bit
+        # patterns), against the input
+        ref = values_of(tmp("emb_%s_lossless_best.bwv" % key))
+        full = tmp("emb_%s_all.bwv" % key)
+        big = 16 * os.path.getsize(tmp("emb_%s_lossless_best.bwv" % key))
+        run(["encode", "-q"] + inp + ["--bytes", str(big), "--progressive", "-o", full])
+        data = open(full, "rb").read()
+        if len(data) >= big:
+            sys.exit("bench-progressive: %s: the budget does not hold the exact coding" % key)
+        last = None
+        for f in FRACTIONS:
+            n = int(round(f * len(data)))
+            cut = tmp("cut.bwv")
+            open(cut, "wb").write(data[:n])
+            x = values_of(cut)
+            if x is None:
+                prefix.append({"set": key, "fraction": f, "bytes": n, "decoded": "no"})
+                continue
+            rel, rmse = errors(x, ref)
+            mono = last is None or (rel <= last[0] and rmse <= last[1])
+            last = (rel, rmse)
+            row = {"set": key, "fraction": f, "bytes": n, "decoded": "yes", "rel": rel,
+                   "rmse": rmse, "monotone": "yes" if mono else "NO"}
+            if f < 1.0:
+                # the embedded encoder's own budget: the exact coding cut at n bytes
+                p = tmp("embbud.bwv")
+                run(["encode", "-q"] + inp + ["--bytes", str(n), "--progressive", "-o", p])
+                row["emb_budget_rel"] = errors(values_of(p), ref)[0]
+                pb = tmp("bud_same.bwv")
+                run(["encode", "-q"] + inp + ["--bytes", str(n), "-o", pb])
+                row["budget_same_rel"], row["budget_same_rmse"] = errors(values_of(pb), ref)
+                b, e = budget_bytes_for(inp, ref, rel, 4 * n)
+                row["budget_bytes"] = b
+                row["budget_rel"] = e[0] if e else None
+            prefix.append(row)
+        print("bench-progressive: %s embedded done" % key, flush=True)
+    return sizes, prefix
+
+
 def device_rows(refl_args):
     """The streaming encoder on the emulated board, with 1 (none), 4, 16 and
     64 segments."""
@@ -293,6 +391,7 @@ def main():
                               **{"bytes_%d" % s: sizes[s] for s in SEGMENTS}})
             loss += loss_rows(key, mode, tmp("%s_%s_%d.bwv" % (key, mode, LOSS_SEGMENTS)))
             print("bench-progressive: %s %s done" % (key, mode), flush=True)
+    emb_sizes, emb_prefix = embed_rows()
     part = partial_rows()
     lods = lod_rows()
     refl = [x for x in sets() if x[0] == "refl81"][0]
@@ -328,6 +427,48 @@ def main():
             r["set"], r["mode"], r["lost"], r["cases"], r["bytes_lost_mean_pct"],
             r["samples_affected_mean_pct"], r["samples_affected_max_pct"], r["lost_whole"],
             r["exact_elsewhere"]))
+    md += ["", "## Embedded segments: what the order costs", "",
+           "The same sets coded with the host's defaults (*best*: the basis it picks, "
+           "prediction included where it applies) and with `--progressive` (embedded, one "
+           "segment; a transform basis), lossless and with the max error above. *same "
+           "samples*: the two payloads decode to the same samples (the same transform and "
+           "quantiser: the bytes compare at equal error).", "",
+           "| set | mode | best (basis) | embedded | cost | same samples |",
+           "|---|---|---|---|---|---|"]
+    for r in emb_sizes:
+        md.append("| %s | %s | %d (%s) | %d | %+.1f %% | %s |" % (
+            r["set"], r["mode"], r["best"], r["basis"], r["embedded"],
+            100.0 * (r["embedded"] / r["best"] - 1), r["same"]))
+    md += ["", "## Embedded segments: prefixes", "",
+           "The exact embedded coding of each set's samples as a byte budget maps them "
+           "(`--bytes N --progressive` with N more than it needs: the whole coding) cut to 5, "
+           "10, 25, 50 and 100 % of its bytes and decoded (`brdfwave decode`, status 3 for a "
+           "cut payload): relative L2 and RMSE against the input. *monotone*: neither rises "
+           "from the fraction before. "
+           "*budget, same bytes*: a byte-budget encode of the host (its best, no embedding) "
+           "of that many bytes; *budget bytes, same error*: the fewest bytes such an encode "
+           "needs for the prefix's relative L2 (a bisection within 1 %, up to 4 x the "
+           "prefix; *-*: not reached), and the prefix's bytes against them; *embedded "
+           "budget*: `--bytes N --progressive`, the exact coding cut at N.", "",
+           "| set | fraction | bytes | rel. L2 | RMSE | monotone | budget, same bytes: rel. "
+           "L2 | budget bytes, same error | prefix / budget | embedded budget: rel. L2 |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in emb_prefix:
+        if r["decoded"] != "yes":
+            md.append("| %s | %.0f %% | %d | not decoded | | | | | | |" % (
+                r["set"], 100 * r["fraction"], r["bytes"]))
+            continue
+        if r["fraction"] < 1.0:
+            bb = r["budget_bytes"]
+            md.append("| %s | %.0f %% | %d | %.4g %% | %.4g | %s | %.4g %% | %s | %s | "
+                      "%.4g %% |" % (
+                          r["set"], 100 * r["fraction"], r["bytes"], r["rel"], r["rmse"],
+                          r["monotone"], r["budget_same_rel"], bb if bb else "-",
+                          "%.3f" % (r["bytes"] / bb) if bb else "< 0.25",
+                          r["emb_budget_rel"]))
+        else:
+            md.append("| %s | 100 %% | %d | %.4g %% | %.4g | %s | | | | |" % (
+                r["set"], r["bytes"], r["rel"], r["rmse"], r["monotone"]))
     md += ["", "## Decoding one incoming direction", "",
            "One incoming direction of a BRDF (one spectrum of a set) decoded alone "
            "(`bwh_decode_incoming`, `decode --incoming K`, `decode(..., incoming=K)`) against "
@@ -375,6 +516,7 @@ def main():
                                                   ram.get("stream", 0) + mem,
                                                   (ram.get("stream", 0) + mem) / 1024.0)]
     bad = ([r for r in loss if r["exact_elsewhere"] != "yes"] +
+           [r for r in emb_prefix if r.get("monotone", "yes") != "yes"] +
            [r for r in dev if r["same"] != "yes"] + [r for r in part if r["same"] != "yes"])
     md += ["", "Exact outside the lost part in every case: %s." % ("yes" if not bad else
                                                                     "NO (%d rows)" % len(bad))]

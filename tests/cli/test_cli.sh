@@ -620,5 +620,30 @@ expect_error "decode --level finer than the payload" "$BW" decode -i "$T/seg.bwv
 grep -q "finer than" "$T/err" && ok || bad "--level 5 message: $(cat "$T/err")"
 expect_error "segments 0" "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --segments 0 -o "$T/x.bwv"
 
+# embedded segments: a prefix of the payload decodes to an approximation of
+# every sample (exit 3, one line, the mask all approximate), closer with
+# more bytes; a byte budget is the exact coding cut; info says the order
+expect_ok "encode --progressive" "$BW" encode -q -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --max-error 0.001 --progressive -o "$T/emb.bwv"
+"$BW" info "$T/emb.bwv" | grep -q "^order: embedded (bit planes)$" && ok || bad "info of an embedded payload: $("$BW" info "$T/emb.bwv" | grep order)"
+"$BW" decode -i "$T/emb.bwv" -o "$T/emb.f32" 2>/dev/null && cmp -s "$T/emb.f32" "$T/segall.f32" && ok || bad "an embedded payload decodes to other samples than the strip coder's"
+for f in 30 60; do
+    head -c $(($(stat -c %s "$T/emb.bwv") * f / 100)) "$T/emb.bwv" >"$T/emb$f.bwv"
+    "$BW" decode -i "$T/emb$f.bwv" -o "$T/emb$f.f32" --mask "$T/emb$f.mask" 2>"$T/err"
+    rc=$?
+    [ "$rc" = 3 ] && [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "decode of an embedded payload cut at $f %: exit $rc: $(cat "$T/err")"
+done
+$PY - "$T/seg.f32" "$T/emb30.f32" "$T/emb60.f32" "$T/emb30.mask" <<'PY' && ok || bad "embedded prefixes: not closer with more bytes, or the mask is wrong"
+import sys
+import numpy as np
+x, a, b = (np.fromfile(f, '<f4').astype(float) for f in sys.argv[1:4])
+m = np.fromfile(sys.argv[4], np.uint8)
+sys.exit(0 if (m == 1).all() and np.sum((b - x) ** 2) < np.sum((a - x) ** 2) else 1)
+PY
+"$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --bytes 1500 --progressive -o "$T/embb.bwv" >"$T/out" 2>&1
+n=$(stat -c %s "$T/embb.bwv")
+[ "$n" -le 1500 ] && [ "$n" -ge 1485 ] && ok || bad "an embedded byte budget of 1500 gave $n bytes"
+expect_ok "decode of an embedded budget (whole)" "$BW" decode -i "$T/embb.bwv" -o "$T/embb.f32"
+expect_error "--progressive with prediction" "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --basis pred --progressive -o "$T/x.bwv"
+
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -72,6 +72,10 @@ full_bytes_both_ms           -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- 
 full_maxerr_both_segments    -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.005 --symmetry both --segments 5
 spectra_lossless_pred_segments_rice -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis pred --coder rice --segments 3
 refl_maxerr_53_segments_ms   -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis 53 --coder ms --symmetry none --segments 7
+iso_maxerr_embedded          -i $T/iso.f32 --bands 1 --level 2 --incoming 8 -- --max-error 0.002 --symmetry none --progressive
+spectra_bytes_97_embedded_segments -i $T/spectra.f32 --bands 37 -- --bytes 300 --basis 97 --progressive --segments 3
+full_maxerr_both_embedded    -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.001 --symmetry both --progressive
+spectra_lossless_53_embedded -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 53 --progressive
 EOF2
 # version 7: the first vector with an ancillary extension record (type 0xC3,
 # unassigned: a decoder skips it) in front of the same body

@@ -3,7 +3,9 @@
  * libFuzzer target: encode then decode, and check the mode's guarantee.
  *
  * The input is read as
- *   byte 0     shape                          b % 4
+ *   byte 0     shape                          b % 4; bit 6 embedded segments
+ *                                             (transform bases); bit 7 the
+ *                                             device's effort
  *   byte 1     levels                         level_out = b % 4, level_in = (b >> 2) % 3
  *   bytes 2-3  bands (little-endian)          1 + v % 2151, then cut so that
  *                                             n <= FUZZ_MAX_SAMPLES
@@ -134,7 +136,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (basis == 3u)
         basis = BW_BASIS_AUTO;
     /* where prediction applies (bw_codec.h) */
-    int pred = shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR;
+    int embed = (data[0] & 0x40u) != 0;
+    int pred = shape == BW_SHAPE_SPECTRA && mode <= BW_MODE_MAX_ERROR && !embed;
     if ((data[5] & 0x10u) && pred)
         basis = BW_BASIS_PRED;
 
@@ -176,6 +179,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     unsigned seg_sel = (data[4] >> 5) & 3u;
     pa.segment_vectors = seg_sel == 1u ? 1u : seg_sel == 2u ? 3u
                          : seg_sel == 3u ? (uint32_t)(nvec / 4u + 1u) : 0u;
+    pa.progressive = (uint32_t)embed;
     if (mode == BW_MODE_MAX_ERROR)
         pa.max_error = p < 0xF000u ? 1u + p % 1000u
                                    : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
@@ -267,7 +271,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (mode == BW_MODE_STEP)
             require(h.step_q8 == pa.step_q8, "header step differs", st);
 
-        int exact = h.mode == BW_MODE_LOSSLESS || (mode == BW_MODE_BYTES && h.step_q8 == 256u);
+        require(h.embedded == (uint32_t)embed && (!embed || h.segment_vectors),
+                "header embedding differs", st);
+        /* (an embedded budget is a cut: exact only if it holds everything) */
+        int exact = h.mode == BW_MODE_LOSSLESS ||
+                    (mode == BW_MODE_BYTES && h.step_q8 == 256u && !embed);
         for (size_t i = 0; i < n; i++) {
             int64_t err = (int64_t)y[i] - x[i];
             if (err < 0)

@@ -46,7 +46,8 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param;
     uint8_t flags; /* BW_FLAG_MIRROR, BW_FLAG_RICE, BW_FLAG_MS */
-    uint32_t seg;  /* vectors per segment (0: one body) */
+    uint32_t seg;  /* vectors per segment (0: one body); a name ending in
+                    * _embed: embedded segments */
 } seed_t;
 
 static const seed_t seeds[] = {
@@ -77,6 +78,9 @@ static const seed_t seeds[] = {
     {"full_l1l1x2_mirror_maxerr2_haar_seg17_ms", 3, 1, 1, 0, 2, 1, 0, 2,
      BW_FLAG_MIRROR | BW_FLAG_MS, 17},
     {"spectra_5x24_lossless_pred_seg1", 0, 0, 0, 5, 24, 0, BW_BASIS_PRED, 0, 0, 1},
+    {"spectra_4x40_lossless_53_embed", 0, 0, 0, 4, 40, 0, 1, 0, 0, 0},
+    {"iso_3xl2x1_maxerr3_haar_seg7_embed", 2, 2, 0, 3, 1, 1, 0, 3, 0, 7},
+    {"full_l1l1x2_mirror_bytes_97_embed", 3, 1, 1, 0, 2, 2, 2, 300, BW_FLAG_MIRROR, 0},
 };
 
 int main(int argc, char **argv)
@@ -125,6 +129,9 @@ int main(int argc, char **argv)
         p.scale_bits = 0x3727C5ACu;
         p.flags = sd->flags;
         p.segment_vectors = sd->seg;
+        size_t nl = strlen(sd->name);
+        bool embed = nl > 6 && !strcmp(sd->name + nl - 6, "_embed");
+        p.progressive = embed;
         size_t len;
         st = bw_encode(&d, &p, x, work, NULL, out, cap, &len);
         if (st != BW_OK) {
@@ -143,7 +150,7 @@ int main(int argc, char **argv)
                          : sd->mode == BW_MODE_BYTES   ? sd->param / 2u
                          : sd->mode == BW_MODE_STEP    ? (sd->param - 256u) / 8u
                                                        : 0u;
-        in[0] = sd->shape;
+        in[0] = (uint8_t)(sd->shape | (embed ? 0x40u : 0u));
         in[1] = (uint8_t)(sd->level_out | sd->level_in << 2);
         in[2] = (uint8_t)bands_field;
         in[3] = (uint8_t)(bands_field >> 8);

@@ -301,6 +301,35 @@ def acquisition_keeps_an_incomplete_payload_and_reads_only_its_missing_pages():
 
 
 @case
+def a_progressive_payload_decodes_from_any_prefix():
+    bw("synth", "--model", "phong", "--level", "3", "--incoming", "6", "-o", tmp("emb.f32"))
+    x = np.fromfile(tmp("emb.f32"), dtype="<f4").reshape(6, 256, 1)
+    p = brdfwave.encode(x, level=3, incoming=True, max_error=0.0005, progressive=True)
+    m = brdfwave.decode_bytes(p)
+    assert m.header["embedded"] and m.header["segments"] == 1, m.header
+    assert np.max(np.abs(np.asarray(m) - x)) <= 0.0005 + 1e-7
+    # a prefix decodes to an approximation, closer with more bytes
+    errs = []
+    start = m.header["header_len"] + 12 + 6  # the segment table, its start
+    for f in (0.1, 0.25, 0.5):
+        c = brdfwave.decode_bytes(p[:start + int((len(p) - start) * f)], salvage=True)
+        assert c.mask.shape == c.shape and (c.mask == 1).all(), np.unique(c.mask)
+        errs.append(float(np.sqrt(np.mean((np.asarray(c) - x) ** 2))))
+    assert errs[0] > errs[1] > errs[2] > 0, errs
+    # a byte budget: the exact coding cut there
+    b = brdfwave.encode(x, level=3, incoming=True, nbytes=len(p) // 3, progressive=True)
+    assert len(p) // 3 * 0.99 <= len(b) <= len(p) // 3, (len(b), len(p))
+    assert brdfwave.decode_bytes(b).header["embedded"]
+    assert not brdfwave.encode(x, level=3, incoming=True, max_error=0.0005) == p
+    try:
+        brdfwave.encode(x, level=3, incoming=True, basis="pred", progressive=True)
+    except brdfwave.BrdfwaveError:
+        pass
+    else:
+        raise AssertionError("prediction accepted with progressive")
+
+
+@case
 def float_lossless_keeps_every_bit_and_says_so():
     rng = np.random.default_rng(32)
     x = (rng.standard_normal((7, 33)) * 10.0 ** rng.integers(-30, 30, (7, 33))).astype(np.float32)

@@ -259,10 +259,15 @@ static void the_float_records_are_known_and_their_tail_is_left_to_the_host(void 
     const uint8_t empty[] = {BW_EXT_FLOAT_EXACT, 0};
     len = with_records(edit, src, plain, empty, sizeof empty, NULL, 0);
     assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
-    /* 0x04 is critical and unknown */
-    const uint8_t four[] = {0x04, 1, 0};
-    len = with_records(edit, src, plain, four, sizeof four, NULL, 0);
+    /* 0x05 is critical and unknown */
+    const uint8_t five[] = {0x05, 1, 0};
+    len = with_records(edit, src, plain, five, sizeof five, NULL, 0);
     assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
+    /* 0x04 (embedded) follows a segments record and holds no data */
+    const uint8_t four[] = {BW_EXT_EMBEDDED, 0};
+    len = with_records(edit, src, plain, four, sizeof four, NULL, 0);
+    assert_int_equal(bw_header_read(edit, len, &h),
+                     BW_CFG_EMBED ? BW_ERR_HEADER : BW_ERR_NOT_BUILT);
     /* 0x03 (segments) needs V >= 1, and a core built with segments */
     const uint8_t three[] = {BW_EXT_SEGMENTS, 1, 0};
     len = with_records(edit, src, plain, three, sizeof three, NULL, 0);

@@ -27,7 +27,8 @@ class Header(ctypes.Structure):
                 ("payload_len", ctypes.c_uint32), ("header_len", ctypes.c_uint32),
                 ("body_len", ctypes.c_uint32), ("crc", ctypes.c_uint32),
                 ("ext_off", ctypes.c_uint32), ("ext_len", ctypes.c_uint32),
-                ("segment_vectors", ctypes.c_uint32), ("segments", ctypes.c_uint32)]
+                ("segment_vectors", ctypes.c_uint32), ("segments", ctypes.c_uint32),
+                ("embedded", ctypes.c_uint32)]
 
 
 class Shape(ctypes.Structure):
@@ -52,7 +53,7 @@ class EncodeOpts(ctypes.Structure):
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
                 ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t),
                 ("effort", ctypes.c_uint), ("coder", ctypes.c_uint),
-                ("segments", ctypes.c_uint32)]
+                ("segments", ctypes.c_uint32), ("progressive", ctypes.c_uint32)]
 
 
 class Salvage(ctypes.Structure):
@@ -238,7 +239,9 @@ def _header_dict(h):
             "header_len": h.header_len, "body_len": h.body_len, "crc": h.crc,
             # the body in segments (encode(..., segments=N)): how many, and
             # vectors in each (0: one body)
-            "segments": h.segments, "segment_vectors": h.segment_vectors}
+            "segments": h.segments, "segment_vectors": h.segment_vectors,
+            # embedded segments (encode(..., progressive=True))
+            "embedded": bool(h.embedded)}
 
 
 def header_of(payload):

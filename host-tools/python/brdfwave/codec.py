@@ -400,7 +400,8 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            level=None, incoming=False, level_in=None, lossless=None, max_error=None,
            nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder=None,
            stream=False, symmetry="auto", path=None, device=None, firmware=None,
-           max_rel_error=None, rel_floor=None, effort=None, segments=None):
+           max_rel_error=None, rel_floor=None, effort=None, segments=None,
+           progressive=False):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
     given), as `brdfwave encode` does, with its metadata.
 
@@ -432,7 +433,11 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     bit or more a sample, else ms); None: "range" on this host, "auto" with
     device; segments=N: the body in about N segments, each decodable alone,
     so that a payload damaged or cut on its way still decodes in part
-    (decode(..., salvage=True)); stream=True: streamed order; symmetry: "auto",
+    (decode(..., salvage=True)); progressive=True: embedded segments (bit
+    planes, the most significant first): any prefix of the payload decodes
+    to an approximation (decode(..., salvage=True)), and with nbytes or
+    ratio the payload is the exact coding cut at the budget (transform
+    bases); stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
     --device`; firmware: its image, else found beside the library or named by
@@ -537,6 +542,8 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         if not (isinstance(segments, (int, np.integer)) and 1 <= segments <= 1 << 28):
             raise BrdfwaveError("segments must be a whole number from 1 to 2**28")
         o.segments = int(segments)
+    if progressive:
+        o.progressive = 1
     sym = L.bwh_symmetry_from_name(symmetry.encode()) if isinstance(symmetry, str) else -1
     if sym < 0:
         raise BrdfwaveError("symmetry must be auto, mirror, reciprocal, both or none")

@@ -1,0 +1,450 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
+/*
+ * The embedded body (docs/FORMAT.md, Embedded segments): each segment's
+ * coefficients coded bit plane by bit plane, the most significant first, so
+ * that any prefix of a segment decodes to an approximation of all its
+ * coefficients and every further byte refines it. A coefficient's plane b
+ * is coded in pass P = b + e, e its plane offset (the log2 of its subband's
+ * synthesis gain when the coefficients are exact, so that a pass lowers the
+ * squared error of every subband alike; 0 after a quantiser, whose steps
+ * already weigh the subbands). Per pass, in coding order, strips of 32
+ * coefficients: a strip with none significant yet codes one flag (does one
+ * become significant now), then its coefficients their significance and
+ * sign; significant coefficients code their refinement bit.
+ */
+#include <string.h>
+
+#include "bw_internal.h"
+#include "bw_le.h"
+#include "bw_rc.h"
+
+#if BW_CFG_EMBED
+
+#define STRIP 32u
+#define SIG_CTX (BW_CODER_CLASSES * 4u * 3u * 3u)
+
+typedef struct {
+    bw_prob_t strip[2][2][BW_CODER_CLASSES];
+    bw_prob_t sig[SIG_CTX];
+    bw_prob_t sign[9];
+    bw_prob_t ref[2][BW_CODER_CLASSES];
+} embed_models_t;
+
+/* The plane offsets of the spectral subbands (Mallat order: subband 0 the
+ * approximation, then the details coarse to fine) and where each begins. */
+typedef struct {
+    unsigned count;
+    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
+    uint8_t e[BW_SPEC_MAX_LEVELS + 1u];
+} spec_off_t;
+
+/* floor(log2(1.414 / g)), g an inverse gain in Q16: 0 for g near 1, L for
+ * 2^-L (a Bio-Haar scaling coefficient), L - j - 1 for a detail. */
+static unsigned gain_planes(uint32_t g_q16)
+{
+    unsigned e = 0;
+    while (g_q16 && (uint64_t)g_q16 << (e + 1u) <= 92681u)
+        e++;
+    return e;
+}
+
+static void spec_offsets(const bw_plan_t *pl, bool weigh, spec_off_t *so)
+{
+    uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
+    unsigned L = pl->spec_levels;
+    len[0] = pl->dims.bands;
+    for (unsigned l = 1; l <= L; l++)
+        len[l] = (len[l - 1u] + 1u) / 2u;
+    so->count = L + 1u;
+    so->lo[0] = 0;
+    for (unsigned i = 0; i <= L; i++) {
+        so->lo[i + 1u] = len[L - i];
+        so->e[i] = (uint8_t)(weigh && L ? gain_planes((uint32_t)pl->spec_gain[len[L - i] - 1u]) : 0u);
+    }
+}
+
+/* The plane offset of the incoming block of the iterator, and of its
+ * vector's outgoing coefficient (exact coefficients; else 0). */
+static unsigned in_offset(const bw_iter_t *it, bool weigh)
+{
+    const bw_dims_t *d = &it->pl->dims;
+    if (!weigh || !bw_has_in(d))
+        return 0;
+    int j = bw_biohaar_coef_level(it->i);
+    return j < 0 ? d->level_in : d->level_in - (unsigned)j - 1u;
+}
+
+static inline unsigned out_offset(const bw_iter_t *it, bool weigh)
+{
+    const bw_dims_t *d = &it->pl->dims;
+    if (!weigh || !bw_has_out(d))
+        return 0;
+    return it->lvl < 0 ? d->level_out : d->level_out - (unsigned)it->lvl - 1u;
+}
+
+/* One segment's coder state, encoder or decoder. */
+typedef struct {
+    bool enc;
+    bw_rc_enc_t re;
+    bw_rc_dec_t rd;
+    size_t avail;   /* decoder of a cut segment: bytes there (else SIZE_MAX) */
+    size_t budget;  /* encoder: bytes the coded bits may take */
+    uint32_t *map;  /* encoder: significance, one bit per coefficient */
+    uint32_t *strips; /* a bit per strip of the segment: one is significant */
+    bool bad;       /* decoder: a plane no coefficient can have (a malformed segment) */
+    bool weigh;     /* plane offsets from the gains (exact coefficients) */
+    spec_off_t so;
+    const int32_t *x0;
+    embed_models_t m;
+    bool stopped;
+} embed_t;
+
+static inline bool is_sig(const embed_t *c, const int32_t *p)
+{
+    if (!p)
+        return false;
+    if (!c->enc)
+        return *p != 0;
+    size_t i = (size_t)(p - c->x0);
+    return (c->map[i >> 5] >> (i & 31u)) & 1u;
+}
+
+static inline void set_sig(embed_t *c, const int32_t *p)
+{
+    size_t i = (size_t)(p - c->x0);
+    c->map[i >> 5] |= 1u << (i & 31u);
+}
+
+/* Whether one more symbol may be coded: an encoder stops before its bytes
+ * could pass the budget, a decoder of a cut segment before its code value
+ * holds a byte that is not there. */
+static inline bool room(embed_t *c)
+{
+    if (c->stopped)
+        return false;
+    c->stopped = c->enc ? c->re.pos + 2u > c->budget : c->rd.pos > c->avail;
+    return !c->stopped;
+}
+
+static inline unsigned bit(embed_t *c, bw_prob_t *p, unsigned b)
+{
+    if (c->enc) {
+        bw_rc_enc_bit(&c->re, p, b);
+        return b;
+    }
+    return bw_rc_dec_bit(&c->rd, p);
+}
+
+/* A neighbour's state for the significance of a coefficient at plane b: 0
+ * none or not significant, 1 significant with a leading bit at most one
+ * plane above b, 2 higher (its leading bit is known once it is
+ * significant). */
+static inline unsigned nb_state(const embed_t *c, const int32_t *p, unsigned b)
+{
+    if (!p || !is_sig(c, p))
+        return 0u;
+    return bw_bitlen((uint32_t)bw_abs32(*p)) <= b + 2u ? 1u : 2u;
+}
+
+/* sign context of a known value: 0 none or zero, 1 positive, 2 negative */
+static inline unsigned sgn(const embed_t *c, const int32_t *p)
+{
+    return p && is_sig(c, p) ? 1u + (*p < 0) : 0u;
+}
+
+/* A walk over a segment's coefficients in coding order with each one's
+ * plane offset. */
+typedef struct {
+    bw_iter_t it;
+    const spec_off_t *so;
+    bool weigh;
+    unsigned ed, ei, sb; /* offsets: the vector's, its block's; its subband */
+    uint32_t i;
+    size_t vi, v0;       /* the vector; the segment's first */
+    const int32_t *last; /* the coefficient before (NULL after a seek) */
+} walk_t;
+
+static void walk_offsets(walk_t *w)
+{
+    w->vi = w->it.vi;
+    if (w->it.i != w->i) {
+        w->i = w->it.i;
+        w->ei = in_offset(&w->it, w->weigh);
+    }
+    w->ed = w->ei + out_offset(&w->it, w->weigh);
+    w->sb = 0;
+}
+
+static void walk_start(walk_t *w, const bw_iter_t *start, const spec_off_t *so, bool weigh)
+{
+    w->it = *start;
+    w->so = so;
+    w->weigh = weigh;
+    w->i = start->i;
+    w->ei = in_offset(start, weigh);
+    w->v0 = start->vi;
+    w->last = NULL;
+    walk_offsets(w);
+}
+
+/* The walk at coefficient c of the segment. */
+static void walk_seek(walk_t *w, size_t c)
+{
+    uint32_t b = w->it.pl->dims.bands;
+    bw_iter_seek(&w->it, w->v0 + c / b);
+    w->it.k = (uint32_t)(c % b);
+    w->last = NULL;
+    walk_offsets(w);
+}
+
+/* The next coefficient: its place, class, neighbours and plane offset. */
+static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
+                                 const int32_t **prv, const int32_t **left, unsigned *e)
+{
+    if (w->it.vi != w->vi)
+        walk_offsets(w);
+    while (w->it.k >= w->so->lo[w->sb + 1u])
+        w->sb++;
+    *left = w->last; /* the band before, or the vector before's last */
+    *e = w->ed + w->so->e[w->sb];
+    int32_t *p = bw_iter_next(&w->it, cls, par, prv);
+    w->last = p;
+    return p;
+}
+
+#define STRIP_SIG(c, s) (((c)->strips[(s) >> 5] >> ((s)&31u)) & 1u)
+
+/* One pass at plane P over the n coefficients from start, up to
+ * coefficient `limit`; returns where it stopped (n: the whole pass). A
+ * strip with no significant coefficient yet (c->strips) codes a flag, with
+ * the previous strip's state and its first coefficient's class as context:
+ * does one become significant now; only then its coefficients are
+ * visited. */
+static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, bool weigh,
+                   const spec_off_t *so, size_t limit)
+{
+    walk_t w;
+    walk_start(&w, start, so, weigh);
+    size_t at = 0; /* the coefficient the walk is at */
+    for (size_t s = 0; s < n; s += STRIP) {
+        size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP;
+        bool any_sig = STRIP_SIG(c, si);
+        if (at != s) {
+            walk_seek(&w, s);
+            at = s;
+        }
+        if (!any_sig) {
+            unsigned any_new = 0;
+            if (c->enc) { /* does one of them become significant now */
+                walk_t la = w;
+                for (size_t k = 0; k < cnt && !any_new; k++) {
+                    uint8_t cls;
+                    const int32_t *par, *prv, *left;
+                    unsigned e;
+                    int32_t *p = walk_next(&la, &cls, &par, &prv, &left, &e);
+                    any_new = P >= e && ((uint32_t)bw_abs32(*p) >> (P - e)) != 0u;
+                }
+            }
+            /* the previous strip, the first coefficient's parent and class */
+            unsigned pc = si ? STRIP_SIG(c, si - 1u) : 0u;
+            int32_t sc = w.it.pl->spec_cls[w.it.k];
+            uint8_t cls0 = (uint8_t)bw_coef_cls(sc, w.it.cls_dir);
+            unsigned pp = is_sig(c, bw_parent_of(w.it.par, w.it.vec, sc, w.it.k));
+            if (s >= limit || !room(c))
+                return s;
+            if (!bit(c, &c->m.strip[pp][pc][cls0], any_new))
+                continue;
+        }
+        for (size_t k = 0; k < cnt; k++) {
+            uint8_t cls;
+            const int32_t *par, *prv, *left;
+            unsigned e;
+            int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
+            at++;
+            if (P < e)
+                continue; /* every plane coded */
+            unsigned b = P - e;
+            if (b > 30u) { /* |c| < 2^31: only a malformed segment says more */
+                c->bad = c->stopped = true;
+                return s + k;
+            }
+            uint32_t a = (uint32_t)bw_abs32(*p);
+            bool sig = is_sig(c, p);
+            if (s + k >= limit || !room(c))
+                return s + k;
+            if (sig) { /* refinement */
+                unsigned r = bit(c, &c->m.ref[(a >> (b + 1u)) == 1u][cls], (a >> b) & 1u);
+                if (!c->enc && r)
+                    *p = *p < 0 ? -(int32_t)(a | 1u << b) : (int32_t)(a | 1u << b);
+                continue;
+            }
+            unsigned pc = par ? 1u + nb_state(c, par, b) : 0u;
+            unsigned ctx = ((cls * 4u + pc) * 3u + nb_state(c, left, b)) * 3u + nb_state(c, prv, b);
+            if (!bit(c, &c->m.sig[ctx], (a >> b) & 1u))
+                continue;
+            /* its sign, then it is significant */
+            if (!room(c))
+                return s + k;
+            unsigned neg = bit(c, &c->m.sign[3u * sgn(c, par) + sgn(c, left)], *p < 0);
+            if (c->enc)
+                set_sig(c, p);
+            else
+                *p = neg ? -(int32_t)(1u << b) : (int32_t)(1u << b);
+            c->strips[si >> 5] |= 1u << (si & 31u);
+        }
+    }
+    return n;
+}
+
+/* The passes of a segment: 1 + the highest plane any coefficient has
+ * (0: all zero); the encoder's significance of its coefficients cleared. */
+static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const spec_off_t *so,
+                          uint32_t *map)
+{
+    walk_t w;
+    walk_start(&w, start, so, weigh);
+    unsigned top = 0;
+    for (size_t k = 0; k < n; k++) {
+        uint8_t cls;
+        const int32_t *par, *prv, *left;
+        unsigned e;
+        int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
+        size_t i = (size_t)(p - start->x);
+        map[i >> 5] &= ~(1u << (i & 31u));
+        unsigned bl = bw_bitlen((uint32_t)bw_abs32(*p));
+        if (bl && bl + e > top)
+            top = bl + e;
+    }
+    return top;
+}
+
+static void models_init(embed_models_t *m)
+{
+    bw_prob_t *pr = &m->strip[0][0][0];
+    for (size_t i = 0; i < sizeof *m / sizeof *pr; i++)
+        pr[i] = BW_PROB_INIT;
+}
+
+#define EMBED_HEAD 6u /* passes u8, passes done u8, coefficients of the next u32 */
+
+/* The embedded coder's scratch after the plan's tables (BW_WORK_BOUND): a
+ * bit per coefficient, then a bit per strip. */
+static uint32_t *scratch(const bw_plan_t *pl, int32_t *x)
+{
+    return (uint32_t *)(x + pl->n + 2u * pl->dims.bands + 16u);
+}
+
+static uint32_t *strip_bits(const bw_plan_t *pl, int32_t *x, size_t n)
+{
+    uint32_t *s = scratch(pl, x) + (pl->n + 31u) / 32u;
+    memset(s, 0, ((n + STRIP - 1u) / STRIP + 31u) / 32u * sizeof *s);
+    return s;
+}
+
+uint32_t *bw_embed_map(const bw_plan_t *pl, int32_t *x) { return scratch(pl, x); }
+
+/* A coder of the n coefficients from start: its state, models, strips. */
+static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, uint32_t *map)
+{
+    c->enc = enc;
+    c->bad = c->stopped = false;
+    c->map = map;
+    c->x0 = start->x;
+    c->strips = strip_bits(start->pl, start->x, n);
+    c->weigh = start->pl->step_q8 <= BW_STEP_ONE_Q8;
+    spec_offsets(start->pl, c->weigh, &c->so);
+    models_init(&c->m);
+}
+
+size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint32_t *map, uint8_t *out, size_t cap,
+                       bool truncate, bool *over)
+{
+    embed_t c;
+    embed_init(&c, true, start, n, map);
+    bool weigh = c.weigh;
+    const spec_off_t *so = &c.so;
+    *over = out && cap < EMBED_HEAD;
+    if (*over)
+        return EMBED_HEAD;
+    c.budget = out && truncate ? cap - EMBED_HEAD : SIZE_MAX;
+    bw_rc_enc_init(&c.re, out ? out + EMBED_HEAD : NULL, out ? cap - EMBED_HEAD : 0u);
+    unsigned np = passes_of(start, n, weigh, so, map), done = 0;
+    size_t at = n;
+    for (; done < np; done++) {
+        at = pass(&c, start, n, np - 1u - done, weigh, so, n);
+        if (at < n)
+            break;
+    }
+    size_t len = bw_rc_enc_finish(&c.re);
+    if (out) {
+        out[0] = (uint8_t)np;
+        out[1] = (uint8_t)done;
+        bw_put_u32(out + 2, done == np ? 0u : (uint32_t)at);
+        *over = c.re.overflow;
+    }
+    return EMBED_HEAD + len;
+}
+
+bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in, size_t len,
+                            bool cut, bool *inexact)
+{
+    embed_t c;
+    embed_init(&c, false, start, n, NULL);
+    bool weigh = c.weigh;
+    const spec_off_t *so = &c.so;
+    walk_t w;
+    walk_start(&w, start, so, weigh);
+    for (size_t k = 0; k < n; k++) { /* the coefficients start at zero */
+        uint8_t cls;
+        const int32_t *par, *prv, *left;
+        unsigned e;
+        *walk_next(&w, &cls, &par, &prv, &left, &e) = 0;
+    }
+    *inexact = true;
+    if (len < EMBED_HEAD)
+        return cut ? BW_OK : BW_ERR_CORRUPT;
+    unsigned np = in[0], done = in[1];
+    uint32_t at = bw_get_u32(in + 2);
+    if (np > 64u || done > np || (done == np && at) || (done < np && at >= n))
+        return BW_ERR_CORRUPT;
+    c.avail = cut ? len - EMBED_HEAD : SIZE_MAX;
+    bw_rc_dec_init(&c.rd, in + EMBED_HEAD, len - EMBED_HEAD);
+    /* the passes the encoder coded, the last up to where it stopped; a cut
+     * segment to where its bytes end */
+    unsigned t = 0;
+    size_t stop = n;
+    for (; t < np; t++) {
+        if (t > done) { /* pass `done` ended where its coding did */
+            stop = 0;
+            break;
+        }
+        stop = pass(&c, start, n, np - 1u - t, weigh, so, t < done ? n : at);
+        if (stop < n)
+            break;
+    }
+    if (c.bad)
+        return BW_ERR_CORRUPT;
+    if (t >= np) {
+        *inexact = false;
+        return BW_OK;
+    }
+    /* stopped in pass t before coefficient `stop`: a significant
+     * coefficient whose planes below b are not known takes the middle of
+     * their span */
+    unsigned P = np - 1u - t;
+    walk_start(&w, start, so, weigh);
+    for (size_t k = 0; k < n; k++) {
+        uint8_t cls;
+        const int32_t *par, *prv, *left;
+        unsigned e;
+        int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
+        unsigned lo = k < stop ? P : P + 1u; /* its lowest plane known, + e */
+        if (*p && lo > e && lo - e <= 30u) {
+            uint32_t add = ((1u << (lo - e)) - 1u) >> 1;
+            *p = *p < 0 ? *p - (int32_t)add : *p + (int32_t)add;
+        }
+    }
+    return BW_OK;
+}
+
+#endif
