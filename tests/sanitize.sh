@@ -13,9 +13,9 @@
 # the small code forms, the encoder without prediction), so that those forms
 # run here, and the tests are compiled with the same switches (they read
 # them, firmware/codec/bw_config.h); the other builds run the default forms.
-# test_codec and test_segments then run once more with the core and the test
-# built with the default switches, for what the device's core leaves out
-# (prediction, segments).
+# test_codec, test_segments and test_embed then run once more with the core
+# and the test built with the default switches, for what the device's core
+# leaves out (prediction, segments, embedded segments).
 # Prints one line per test program and "RESULT: N passed, M failed" (cmocka
 # test cases); each program's output is kept in $SANITIZE_BUILD/<name>.log.
 # Environment: SANITIZE_CC (gcc), SANITIZE_BUILD, BW_TEST_QUICK (default 1).
@@ -98,5 +98,6 @@ for t in tests/unit/test_*.c; do
 done
 run_test test_codec_O1_core tests/unit/test_codec.c "" "${core_o1[@]}"
 run_test test_segments_O1_core tests/unit/test_segments.c "" "${core_o1[@]}"
+run_test test_embed_O1_core tests/unit/test_embed.c "" "${core_o1[@]}"
 echo "RESULT: $passed passed, $failed failed"
 [ "$failed" = 0 ]

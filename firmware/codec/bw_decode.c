@@ -35,6 +35,23 @@ typedef struct {
     uint32_t lost;
 } seg_out_t;
 
+#if BW_CFG_EMBED
+/* An embedded segment (below); out of line, so that its iterator stays off
+ * the stack of every other decode. */
+static BW_NOINLINE bw_status_t decode_embedded(bw_iter_t *it, size_t nvec, const uint8_t *in,
+                                               size_t sl, size_t there, bool *inexact)
+{
+    bw_iter_t start = *it;
+    bool cut = there < sl;
+    bw_status_t st = bw_embed_decode(&start, nvec * it->pl->dims.bands, in, cut ? there : sl,
+                                     cut, inexact);
+    *inexact = *inexact && cut; /* a whole segment decodes to what its encoder coded */
+    for (size_t k = 0; k < nvec; k++)
+        bw_iter_next_vec(it);
+    return st;
+}
+#endif
+
 /* One segment of sl bytes at in (of which `there` arrived) into the nvec
  * vectors from it, which it leaves past them: the strip coder's, or an
  * embedded one, whole or (there < sl) cut; *inexact for the latter's
@@ -44,16 +61,13 @@ static bw_status_t decode_segment(bw_iter_t *it, const bw_plan_t *pl, size_t nve
                                   bw_models_t *m, bool *inexact)
 {
     *inexact = false;
-    if (!(BW_CFG_EMBED && pl->embed))
-        return bw_decode_coefs(it, nvec * pl->dims.bands, in, sl, coder, m);
-    bw_iter_t start = *it;
-    bool cut = there < sl;
-    bw_status_t st = bw_embed_decode(&start, nvec * pl->dims.bands, in, cut ? there : sl, cut,
-                                     inexact);
-    *inexact = *inexact && cut; /* a whole segment decodes to what its encoder coded */
-    for (size_t k = 0; k < nvec; k++)
-        bw_iter_next_vec(it);
-    return st;
+#if BW_CFG_EMBED
+    if (pl->embed)
+        return decode_embedded(it, nvec, in, sl, there, inexact);
+#else
+    (void)there;
+#endif
+    return bw_decode_coefs(it, nvec * pl->dims.bands, in, sl, coder, m);
 }
 
 /* A segmented body (docs/FORMAT.md, Segments): its table, whose CRC covers
@@ -98,11 +112,11 @@ static bw_status_t decode_segments(const bw_plan_t *pl, int32_t *x, const uint8_
             return BW_ERR_CORRUPT;
         }
         if (BW_CFG_SALVAGE && ok && inexact) { /* approximations: marked so */
-            bw_iter_t v;
-            bw_iter_at(&v, pl, x, first);
-            for (size_t k = 0; k < nvec && so->vec_lost; k++) {
-                so->vec_lost[(size_t)(v.vec - x) / bands] = 2u;
-                bw_iter_next_vec(&v);
+            bw_iter_at(&it, pl, x, first);
+            for (size_t k = 0; k < nvec; k++) {
+                if (so->vec_lost)
+                    so->vec_lost[(size_t)(it.vec - x) / bands] = 2u;
+                bw_iter_next_vec(&it);
             }
             ok = false;
             so->lost++;

@@ -116,6 +116,51 @@ static bool auto_rice(const bw_plan_t *pl, bw_params_t *chosen, unsigned mode, i
            ((uint64_t)*len * 8u << 16) * 256u <= est * BW_AUTO_RICE_Q8;
 }
 
+#if BW_CFG_EMBED
+/* The bytes of every embedded segment coded whole (counted): a byte
+ * budget over several cuts each at its share. Out of line, as the next:
+ * their iterators stay off the strip coder's stack. */
+static BW_NOINLINE size_t embed_total(const bw_plan_t *pl, int32_t *x, uint32_t *map)
+{
+    uint32_t segs = bw_plan_segments(pl);
+    size_t nv = (size_t)pl->dims.n_in * pl->dims.n_out, total = 0;
+    bw_iter_t c;
+    bw_iter_init(&c, pl, x);
+    for (uint32_t s = 0; s < segs; s++) {
+        size_t nvec = nv - (size_t)s * pl->seg_vec;
+        nvec = nvec < pl->seg_vec ? nvec : pl->seg_vec;
+        bw_iter_segment(&c);
+        bw_iter_t start = c;
+        bool o;
+        total += bw_embed_encode(&start, nvec * pl->dims.bands, map, NULL, 0, false, &o);
+        for (size_t k = 0; k < nvec; k++)
+            bw_iter_next_vec(&c);
+    }
+    return total;
+}
+
+/* One embedded segment of nvec vectors from *it (left past them) into
+ * out[cap]; with a budget over several (total > spare), cut at its share
+ * of spare. */
+static BW_NOINLINE size_t embed_segment(bw_iter_t *it, size_t nvec, uint32_t *map, uint8_t *out,
+                                        size_t cap, bool truncate, size_t spare, size_t total,
+                                        bool *over)
+{
+    bw_iter_t start = *it;
+    size_t n = nvec * it->pl->dims.bands;
+    if (total > spare) { /* this segment's share of the budget, its start at least */
+        bool o;
+        size_t share = (size_t)((uint64_t)spare * bw_embed_encode(&start, n, map, NULL, 0, false,
+                                                                  &o) / total);
+        cap = share < 8u ? (cap < 8u ? cap : 8u) : share < cap ? share : cap;
+    }
+    size_t sl = bw_embed_encode(&start, n, map, out, cap, truncate, over);
+    for (size_t k = 0; k < nvec; k++)
+        bw_iter_next_vec(it);
+    return sl;
+}
+#endif
+
 /* A segmented body (docs/FORMAT.md, Segments) at body[cap] (NULL: only
  * counts): the table, then each segment's vectors coded afresh, its length
  * and CRC-32 in the table (the table's own CRC is the caller's, after the
@@ -128,24 +173,16 @@ static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se,
     bw_iter_t it;
     bw_iter_init(&it, pl, x);
     *over = body && pos > cap;
-    uint32_t *map = BW_CFG_EMBED && pl->embed ? bw_embed_map(pl, x) : NULL;
+#if BW_CFG_EMBED
     /* a byte budget over several embedded segments: each cut at its share
      * of the bytes, in proportion to its whole coding (counted first) */
+    uint32_t *map = pl->embed ? bw_embed_map(pl, x) : NULL;
     size_t total = 0, spare = cap > pos ? cap - pos : 0u;
-    if (BW_CFG_EMBED && pl->embed && truncate && body && segs > 1u) {
-        bw_iter_t c;
-        bw_iter_init(&c, pl, x);
-        for (uint32_t s = 0; s < segs; s++) {
-            size_t nvec = nv - (size_t)s * pl->seg_vec < pl->seg_vec ? nv - (size_t)s * pl->seg_vec
-                                                                       : pl->seg_vec;
-            bw_iter_segment(&c);
-            bw_iter_t start = c;
-            bool o;
-            total += bw_embed_encode(&start, nvec * pl->dims.bands, map, NULL, 0, false, &o);
-            for (size_t k = 0; k < nvec; k++)
-                bw_iter_next_vec(&c);
-        }
-    }
+    if (pl->embed && truncate && body && segs > 1u)
+        total = embed_total(pl, x, map);
+#else
+    (void)truncate;
+#endif
     for (uint32_t s = 0; s < segs; s++) {
         size_t first = (size_t)s * pl->seg_vec, nvec = nv - first;
         size_t at = pos < cap ? pos : cap;
@@ -154,24 +191,13 @@ static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se,
         bw_iter_segment(&it);
         size_t sl;
         bool so = false;
-        if (BW_CFG_EMBED && pl->embed) {
-            bw_iter_t start = it;
-            size_t share = cap - at;
-            if (total > spare) { /* this segment's share of the budget */
-                bool o;
-                size_t whole = bw_embed_encode(&start, nvec * pl->dims.bands, map, NULL, 0,
-                                               false, &o);
-                share = (size_t)((uint64_t)spare * whole / total);
-                if (share < 8u) /* its start, at least */
-                    share = 8u;
-                if (share > cap - at)
-                    share = cap - at;
-            }
-            sl = bw_embed_encode(&start, nvec * pl->dims.bands, map, body ? body + at : NULL,
-                                 share, truncate, &so);
-            for (size_t k = 0; k < nvec; k++)
-                bw_iter_next_vec(&it);
-        } else {
+#if BW_CFG_EMBED
+        if (pl->embed) {
+            sl = embed_segment(&it, nvec, map, body ? body + at : NULL, cap - at, truncate, spare,
+                               total, &so);
+        } else
+#endif
+        {
             bw_strip_enc_init(se, body ? body + at : NULL, cap - at, coder);
             bw_code_vectors(&it, se, nvec);
             sl = bw_strip_enc_finish(se);

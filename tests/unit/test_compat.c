@@ -100,6 +100,13 @@ static void every_archived_payload_decodes_to_its_recorded_samples(void **state)
             bw_header_t h;
             int32_t *s;
             float *x;
+            if ((!BW_CFG_EMBED || !BW_CFG_SEGMENTS) && strstr(name, "_embedded")) {
+                /* a build without embedded segments says so */
+                assert_int_equal(bw_header_read(p, len, &h), BW_ERR_NOT_BUILT);
+                free(p);
+                in_version++;
+                continue;
+            }
             if (!BW_CFG_CODER_MS && len > 5 && (p[5] & BW_FLAG_MS)) {
                 /* a build without the multi-symbol coder says so */
                 assert_int_equal(bw_header_read(p, len, &h), BW_ERR_NOT_BUILT);

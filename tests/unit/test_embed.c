@@ -278,20 +278,27 @@ static void a_byte_budget_is_the_exact_coding_cut(void **state)
     budget_case(3);
 }
 
+/* Four spectra of 16 bands, lossless, embedded, Haar. */
+static void small_case(bw_dims_t *d, int32_t x[64], bw_params_t *pa)
+{
+    uint64_t rng = 17;
+    assert_int_equal(bw_dims_make(d, BW_SHAPE_SPECTRA, 0, 0, 4, 16), BW_OK);
+    fill(x, d, &rng);
+    memset(pa, 0, sizeof *pa);
+    pa->mode = BW_MODE_LOSSLESS;
+    pa->basis = BW_BASIS_HAAR;
+    pa->progressive = 1;
+}
+
 /* Prediction and stream order do not embed; a payload's record 0x04 must
  * follow a segments record and hold no data. */
 static void what_does_not_embed_is_refused(void **state)
 {
     (void)state;
-    uint64_t rng = 17;
     bw_dims_t d;
-    assert_int_equal(bw_dims_make(&d, BW_SHAPE_SPECTRA, 0, 0, 4, 16), BW_OK);
     int32_t x[64];
-    fill(x, &d, &rng);
     bw_params_t pa;
-    memset(&pa, 0, sizeof pa);
-    pa.mode = BW_MODE_LOSSLESS;
-    pa.progressive = 1;
+    small_case(&d, x, &pa);
     pa.basis = BW_BASIS_PRED;
     bw_status_t st;
     uint8_t *p;
@@ -320,9 +327,30 @@ static void what_does_not_embed_is_refused(void **state)
     free(p);
 }
 
+/* A core built without them (BW_CFG_EMBED 0, the 16 KiB device core)
+ * refuses to code them and says so. */
+static void a_core_without_embedding_refuses_it(void **state)
+{
+    (void)state;
+    bw_dims_t d;
+    int32_t x[64];
+    bw_params_t pa;
+    small_case(&d, x, &pa);
+    bw_status_t st;
+    uint8_t *p;
+    encode(&d, &pa, x, &p, &st);
+    free(p);
+    assert_int_equal(st, BW_CFG_EMBED ? BW_OK : BW_ERR_NOT_BUILT);
+}
+
 int main(void)
 {
+    if (!BW_CFG_EMBED) { /* the rest needs them */
+        const struct CMUnitTest only[] = {cmocka_unit_test(a_core_without_embedding_refuses_it)};
+        return cmocka_run_group_tests(only, NULL, NULL);
+    }
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_core_without_embedding_refuses_it),
         cmocka_unit_test(embedded_payloads_decode_to_the_samples_of_the_strip_coder),
         cmocka_unit_test(every_prefix_decodes_and_more_bytes_never_raise_the_error),
         cmocka_unit_test(a_byte_budget_is_the_exact_coding_cut),
