@@ -43,6 +43,8 @@
  *                      (bw_strip_coder.h; the state's types in bw_coder.h)
  *   bw_rc.c            the adaptive binary range coder
  *   bw_rice.c          the Rice strip coder (BW_FLAG_RICE)
+ *   bw_embed.c         embedded segments, bit plane by bit plane
+ *                      (BW_EXT_EMBEDDED, bw_params_t.progressive)
  *   bw_header.c        the payload's header and its CRC
  *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
  *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
