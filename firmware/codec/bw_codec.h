@@ -258,9 +258,9 @@ typedef struct {
 /* Work area for the encoder and decoder, in int32 elements: the coefficient
  * array, one spectral line of scratch and the spectral tables, and a bit per
  * coefficient and per strip of 32 (the embedded coder's significance), in
- * n / 16 + 3 words. */
+ * n / 16 + 8 words. */
 #define BW_WORK_BOUND(n, bands) \
-    ((size_t)(n) + ((size_t)(n) >> 4) + 2u * (size_t)(bands) + 19u)
+    ((size_t)(n) + ((size_t)(n) >> 4) + 2u * (size_t)(bands) + 24u)
 
 size_t bw_payload_bound(size_t n);
 size_t bw_work_bound(size_t n, size_t bands);
@@ -347,7 +347,8 @@ typedef struct {
      * count; 0 and 1 for a body in one piece */
     uint32_t segment_vectors;
     uint32_t segments;
-    /* record BW_EXT_EMBEDDED: the segments are embedded (1), else 0 */
+    /* record BW_EXT_EMBEDDED: 0 none, else 1 + its form (1: the first,
+     * without groups of strips; 2: with them) */
     uint32_t embedded;
 } bw_header_t;
 

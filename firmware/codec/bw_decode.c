@@ -22,7 +22,7 @@ static void plan_of(bw_plan_t *pl, const bw_header_t *h, int32_t *work, size_t n
     if (BW_CFG_SEGMENTS) /* (0 from bw_plan_make: a core without them refuses them) */
         pl->seg_vec = h->segment_vectors;
     if (BW_CFG_EMBED)
-        pl->embed = h->embedded;
+        pl->embed = (uint8_t)h->embedded;
     bw_plan_tables(pl);
 }
 

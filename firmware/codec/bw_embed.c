@@ -21,9 +21,11 @@
 #if BW_CFG_EMBED
 
 #define STRIP 32u
+#define GROUP 1024u /* 32 strips */
 #define SIG_CTX (BW_CODER_CLASSES * 4u * 3u * 3u)
 
 typedef struct {
+    bw_prob_t group[2][BW_CODER_CLASSES];
     bw_prob_t strip[2][2][BW_CODER_CLASSES];
     bw_prob_t sig[SIG_CTX];
     bw_prob_t sign[9];
@@ -91,8 +93,11 @@ typedef struct {
     size_t budget;  /* encoder: bytes the coded bits may take */
     uint32_t *map;  /* encoder: significance, one bit per coefficient */
     uint32_t *strips; /* a bit per strip of the segment: one is significant */
+    uint32_t *groups; /* a bit per group of 32 strips: one is significant */
+    uint8_t *gtop;  /* encoder: per group, 1 + the highest plane a coefficient's leading bit is in (0: none) */
     bool bad;       /* decoder: a plane no coefficient can have (a malformed segment) */
     bool weigh;     /* plane offsets from the gains (exact coefficients) */
+    bool groups_on; /* form 1: groups of 32 strips, each with a flag */
     spec_off_t so;
     const int32_t *x0;
     embed_models_t m;
@@ -213,6 +218,7 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
 }
 
 #define STRIP_SIG(c, s) (((c)->strips[(s) >> 5] >> ((s)&31u)) & 1u)
+#define GROUP_SIG(c, g) (((c)->groups[(g) >> 5] >> ((g)&31u)) & 1u)
 
 /* One pass at plane P over the n coefficients from start, up to
  * coefficient `limit`; returns where it stopped (n: the whole pass). A
@@ -227,11 +233,24 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
     walk_start(&w, start, so, weigh);
     size_t at = 0; /* the coefficient the walk is at */
     for (size_t s = 0; s < n; s += STRIP) {
-        size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP;
+        size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP, gi = s / GROUP;
         bool any_sig = STRIP_SIG(c, si);
         if (at != s) {
             walk_seek(&w, s);
             at = s;
+        }
+        if (c->groups_on && s % GROUP == 0u && !GROUP_SIG(c, gi)) {
+            /* a group of strips none significant yet: does one of its
+             * coefficients become so now (context: the group before, the
+             * class of its first coefficient) */
+            unsigned pg = gi ? GROUP_SIG(c, gi - 1u) : 0u;
+            uint8_t cls0 = (uint8_t)bw_coef_cls(w.it.pl->spec_cls[w.it.k], w.it.cls_dir);
+            if (s >= limit || !room(c))
+                return s;
+            if (!bit(c, &c->m.group[pg][cls0], c->enc && c->gtop[gi] == P + 1u)) {
+                s += GROUP - STRIP; /* the next group */
+                continue;
+            }
         }
         if (!any_sig) {
             unsigned any_new = 0;
@@ -291,6 +310,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
             else
                 *p = neg ? -(int32_t)(1u << b) : (int32_t)(1u << b);
             c->strips[si >> 5] |= 1u << (si & 31u);
+            c->groups[gi >> 5] |= 1u << (gi & 31u);
         }
     }
     return n;
@@ -299,7 +319,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
 /* The passes of a segment: 1 + the highest plane any coefficient has
  * (0: all zero); the encoder's significance of its coefficients cleared. */
 static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const spec_off_t *so,
-                          uint32_t *map)
+                          uint32_t *map, uint8_t *gtop)
 {
     walk_t w;
     walk_start(&w, start, so, weigh);
@@ -312,6 +332,10 @@ static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const sp
         size_t i = (size_t)(p - start->x);
         map[i >> 5] &= ~(1u << (i & 31u));
         unsigned bl = bw_bitlen((uint32_t)bw_abs32(*p));
+        if (k % GROUP == 0u)
+            gtop[k / GROUP] = 0;
+        if (bl && bl + e > gtop[k / GROUP])
+            gtop[k / GROUP] = (uint8_t)(bl + e);
         if (bl && bl + e > top)
             top = bl + e;
     }
@@ -320,7 +344,7 @@ static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const sp
 
 static void models_init(embed_models_t *m)
 {
-    bw_prob_t *pr = &m->strip[0][0][0];
+    bw_prob_t *pr = &m->group[0][0];
     for (size_t i = 0; i < sizeof *m / sizeof *pr; i++)
         pr[i] = BW_PROB_INIT;
 }
@@ -334,11 +358,16 @@ static uint32_t *scratch(const bw_plan_t *pl, int32_t *x)
     return (uint32_t *)(x + pl->n + 2u * pl->dims.bands + 16u);
 }
 
-static uint32_t *strip_bits(const bw_plan_t *pl, int32_t *x, size_t n)
+/* After the encoder's map: a bit per strip, a bit per group (zeroed), and
+ * the encoder's byte per group. */
+static void strip_bits(embed_t *c, const bw_plan_t *pl, int32_t *x, size_t n)
 {
-    uint32_t *s = scratch(pl, x) + (pl->n + 31u) / 32u;
-    memset(s, 0, ((n + STRIP - 1u) / STRIP + 31u) / 32u * sizeof *s);
-    return s;
+    size_t sw = ((n + STRIP - 1u) / STRIP + 31u) / 32u, gn = (n + GROUP - 1u) / GROUP;
+    size_t gw = (gn + 31u) / 32u;
+    c->strips = scratch(pl, x) + (pl->n + 31u) / 32u;
+    c->groups = c->strips + sw;
+    c->gtop = (uint8_t *)(c->groups + gw);
+    memset(c->strips, 0, (sw + gw) * sizeof *c->strips);
 }
 
 uint32_t *bw_embed_map(const bw_plan_t *pl, int32_t *x) { return scratch(pl, x); }
@@ -350,8 +379,9 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, u
     c->bad = c->stopped = false;
     c->map = map;
     c->x0 = start->x;
-    c->strips = strip_bits(start->pl, start->x, n);
+    strip_bits(c, start->pl, start->x, n);
     c->weigh = start->pl->step_q8 <= BW_STEP_ONE_Q8;
+    c->groups_on = start->pl->embed >= 2u;
     spec_offsets(start->pl, c->weigh, &c->so);
     models_init(&c->m);
 }
@@ -368,7 +398,7 @@ size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint32_t *map, uint8_t 
         return EMBED_HEAD;
     c.budget = out && truncate ? cap - EMBED_HEAD : SIZE_MAX;
     bw_rc_enc_init(&c.re, out ? out + EMBED_HEAD : NULL, out ? cap - EMBED_HEAD : 0u);
-    unsigned np = passes_of(start, n, weigh, so, map), done = 0;
+    unsigned np = passes_of(start, n, weigh, so, map, c.gtop), done = 0;
     size_t at = n;
     for (; done < np; done++) {
         at = pass(&c, start, n, np - 1u - done, weigh, so, n);

@@ -69,16 +69,17 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
     /* the segments' record after the caller's: type, length, V */
-    uint8_t seg[9];
+    uint8_t seg[10];
     size_t sl = 0;
     if (BW_CFG_SEGMENTS && pl->seg_vec) {
         seg[0] = BW_EXT_SEGMENTS;
         sl = put_varint(seg + 2, pl->seg_vec);
         seg[1] = (uint8_t)sl;
         sl += 2u;
-        if (BW_CFG_EMBED && pl->embed) { /* and its segments embedded: no data */
+        if (BW_CFG_EMBED && pl->embed) { /* and its segments embedded: the form */
             seg[sl++] = BW_EXT_EMBEDDED;
-            seg[sl++] = 0u;
+            seg[sl++] = 1u;
+            seg[sl++] = (uint8_t)(pl->embed - 1u);
         }
     }
     uint32_t el = pa->ext_len + (uint32_t)sl;
@@ -145,10 +146,11 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint
         } else if (type == BW_EXT_EMBEDDED && !BW_CFG_EMBED) {
             st = BW_ERR_NOT_BUILT;
         } else if (type == BW_EXT_EMBEDDED) {
-            /* one record, no data, after the segments' */
-            if (*embed || dl || !*seg_vec)
+            /* one record after the segments': no data (form 0, the first),
+             * or the form, one byte (1: with groups of strips) */
+            if (*embed || dl > 1u || (dl && d[0] > 1u) || !*seg_vec)
                 return BW_ERR_HEADER;
-            *embed = 1u;
+            *embed = 1u + (dl ? d[0] : 0u);
         } else if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u) {
             st = BW_ERR_EXTENSION;
         }

@@ -44,7 +44,7 @@ typedef struct {
     bool recip;             /* BW_FLAG_RECIPROCAL */
     bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
     uint32_t seg_vec;       /* vectors per segment (BW_EXT_SEGMENTS), 0: one body */
-    bool embed;             /* embedded segments (BW_EXT_EMBEDDED)                */
+    uint8_t embed;          /* embedded segments (BW_EXT_EMBEDDED): 0 none, 1 + the form */
     int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
     int32_t *tmp;           /* [bands] lifting scratch                           */

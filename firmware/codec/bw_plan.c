@@ -26,7 +26,7 @@ void bw_plan_make(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, unsigned
     pl->stream = (flags & BW_FLAG_STREAM_ORDER) != 0u;
     pl->seg_vec = 0;
     if (BW_CFG_EMBED)
-        pl->embed = false;
+        pl->embed = 0u;
     pl->spec_cls = tables;
     pl->spec_gain = tables + dims->bands;
     pl->tmp = tmp;

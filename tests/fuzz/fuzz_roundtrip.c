@@ -271,7 +271,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (mode == BW_MODE_STEP)
             require(h.step_q8 == pa.step_q8, "header step differs", st);
 
-        require(h.embedded == (uint32_t)embed && (!embed || h.segment_vectors),
+        require((h.embedded != 0u) == (embed != 0) && (!embed || h.segment_vectors),
                 "header embedding differs", st);
         /* (an embedded budget is a cut: exact only if it holds everything) */
         int exact = h.mode == BW_MODE_LOSSLESS ||
