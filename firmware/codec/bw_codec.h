@@ -348,7 +348,8 @@ typedef struct {
     uint32_t segment_vectors;
     uint32_t segments;
     /* record BW_EXT_EMBEDDED: 0 none, else 1 + its form (1: the first,
-     * without groups of strips; 2: with them) */
+     * without groups of strips; 2: with them; 3: with the incoming parent
+     * block as a neighbour too) */
     uint32_t embedded;
 } bw_header_t;
 

@@ -98,6 +98,7 @@ typedef struct {
     bool bad;       /* decoder: a plane no coefficient can have (a malformed segment) */
     bool weigh;     /* plane offsets from the gains (exact coefficients) */
     bool groups_on; /* form 1: groups of 32 strips, each with a flag */
+    bool inpar_on;  /* form 2: the incoming parent block as a neighbour */
     spec_off_t so;
     const int32_t *x0;
     embed_models_t m;
@@ -167,7 +168,26 @@ typedef struct {
     uint32_t i;
     size_t vi, v0;       /* the vector; the segment's first */
     const int32_t *last; /* the coefficient before (NULL after a seek) */
+    bool inpar;          /* form 2: a one-band full BRDF's incoming parent block */
+    bool ip;             /* the block has one: ... */
+    uint32_t ipcf;       /* its coarse-to-fine index, */
+    size_t ipbase;       /* its first vector in place */
 } walk_t;
+
+/* The incoming parent block of the walk's block (form 2, full BRDF). */
+static void walk_block(walk_t *w)
+{
+    const bw_dims_t *d = &w->it.pl->dims;
+    int j = bw_has_in(d) ? bw_biohaar_coef_level(w->it.i) : -1;
+    w->ip = w->inpar && j >= 0;
+    if (w->ip) {
+        unsigned L = d->level_in;
+        uint32_t t = bw_biohaar_pos(w->it.i, L);
+        uint32_t pp = t & ~(3u << (2u * (L - 1u - (unsigned)j)));
+        w->ipcf = bw_cf_index(pp, L);
+        w->ipbase = (size_t)pp * d->n_out;
+    }
+}
 
 static void walk_offsets(walk_t *w)
 {
@@ -175,20 +195,24 @@ static void walk_offsets(walk_t *w)
     if (w->it.i != w->i) {
         w->i = w->it.i;
         w->ei = in_offset(&w->it, w->weigh);
+        walk_block(w);
     }
     w->ed = w->ei + out_offset(&w->it, w->weigh);
     w->sb = 0;
 }
 
-static void walk_start(walk_t *w, const bw_iter_t *start, const spec_off_t *so, bool weigh)
+static void walk_start(walk_t *w, const bw_iter_t *start, const spec_off_t *so, bool weigh,
+                       bool inpar)
 {
     w->it = *start;
     w->so = so;
     w->weigh = weigh;
+    w->inpar = inpar && start->pl->dims.bands == 1u;
     w->i = start->i;
     w->ei = in_offset(start, weigh);
     w->v0 = start->vi;
     w->last = NULL;
+    walk_block(w);
     walk_offsets(w);
 }
 
@@ -212,7 +236,15 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
         w->sb++;
     *left = w->last; /* the band before, or the vector before's last */
     *e = w->ed + w->so->e[w->sb];
+    /* form 2, one band: the same outgoing coefficient of the incoming
+     * parent block stands for the band above (coded before, when not
+     * before the segment) */
+    const int32_t *up = NULL;
+    if (w->ip && (size_t)w->ipcf * w->it.pl->dims.n_out + w->it.o >= w->it.seg0)
+        up = w->it.x + w->ipbase + ((size_t)(w->it.vec - w->it.x) - w->it.base);
     int32_t *p = bw_iter_next(&w->it, cls, par, prv);
+    if (!*prv)
+        *prv = up;
     w->last = p;
     return p;
 }
@@ -230,7 +262,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
                    const spec_off_t *so, size_t limit)
 {
     walk_t w;
-    walk_start(&w, start, so, weigh);
+    walk_start(&w, start, so, weigh, c->inpar_on);
     size_t at = 0; /* the coefficient the walk is at */
     for (size_t s = 0; s < n; s += STRIP) {
         size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP, gi = s / GROUP;
@@ -322,7 +354,7 @@ static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const sp
                           uint32_t *map, uint8_t *gtop)
 {
     walk_t w;
-    walk_start(&w, start, so, weigh);
+    walk_start(&w, start, so, weigh, false);
     unsigned top = 0;
     for (size_t k = 0; k < n; k++) {
         uint8_t cls;
@@ -382,6 +414,7 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, u
     strip_bits(c, start->pl, start->x, n);
     c->weigh = start->pl->step_q8 <= BW_STEP_ONE_Q8;
     c->groups_on = start->pl->embed >= 2u;
+    c->inpar_on = start->pl->embed >= 3u;
     spec_offsets(start->pl, c->weigh, &c->so);
     models_init(&c->m);
 }
@@ -423,7 +456,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
     bool weigh = c.weigh;
     const spec_off_t *so = &c.so;
     walk_t w;
-    walk_start(&w, start, so, weigh);
+    walk_start(&w, start, so, weigh, false);
     for (size_t k = 0; k < n; k++) { /* the coefficients start at zero */
         uint8_t cls;
         const int32_t *par, *prv, *left;
@@ -462,7 +495,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
      * coefficient whose planes below b are not known takes the middle of
      * their span */
     unsigned P = np - 1u - t;
-    walk_start(&w, start, so, weigh);
+    walk_start(&w, start, so, weigh, false);
     for (size_t k = 0; k < n; k++) {
         uint8_t cls;
         const int32_t *par, *prv, *left;

@@ -147,8 +147,9 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint
             st = BW_ERR_NOT_BUILT;
         } else if (type == BW_EXT_EMBEDDED) {
             /* one record after the segments': no data (form 0, the first),
-             * or the form, one byte (1: with groups of strips) */
-            if (*embed || dl > 1u || (dl && d[0] > 1u) || !*seg_vec)
+             * or the form, one byte (1: with groups of strips, 2: and the
+             * incoming parent block as a neighbour) */
+            if (*embed || dl > 1u || (dl && d[0] > 2u) || !*seg_vec)
                 return BW_ERR_HEADER;
             *embed = 1u + (dl ? d[0] : 0u);
         } else if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u) {
