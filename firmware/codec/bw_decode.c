@@ -111,25 +111,19 @@ static bw_status_t decode_segments(const bw_plan_t *pl, int32_t *x, const uint8_
         } else if (!salvage) {
             return BW_ERR_CORRUPT;
         }
-        if (BW_CFG_SALVAGE && ok && inexact) { /* approximations: marked so */
+        if (BW_CFG_SALVAGE && (!ok || inexact)) {
+            /* lost (its vectors zero) or approximations (a cut embedded
+             * segment): marked so, the iterator past them */
+            so->lost++;
             bw_iter_at(&it, pl, x, first);
             for (size_t k = 0; k < nvec; k++) {
+                if (!ok)
+                    memset(it.vec, 0, bands * sizeof *x);
                 if (so->vec_lost)
-                    so->vec_lost[(size_t)(it.vec - x) / bands] = 2u;
+                    so->vec_lost[(size_t)(it.vec - x) / bands] = ok ? 2u : 1u;
                 bw_iter_next_vec(&it);
             }
             ok = false;
-            so->lost++;
-        } else if (BW_CFG_SALVAGE && !ok) { /* lost: its vectors zero, the iterator past them */
-            so->lost++;
-            bw_iter_at(&it, pl, x, first);
-            for (size_t k = 0; k < nvec; k++) {
-                size_t at = (size_t)(it.vec - x) / bands;
-                memset(it.vec, 0, bands * sizeof *x);
-                if (so->vec_lost)
-                    so->vec_lost[at] = 1;
-                bw_iter_next_vec(&it);
-            }
         }
         if (so->seg_ok && s < so->seg_cap)
             so->seg_ok[s] = ok;

@@ -94,7 +94,9 @@ typedef struct {
     uint32_t *map;  /* encoder: significance, one bit per coefficient */
     uint32_t *strips; /* a bit per strip of the segment: one is significant */
     uint32_t *groups; /* a bit per group of 32 strips: one is significant */
-    uint8_t *gtop;  /* encoder: per group, 1 + the highest plane a coefficient's leading bit is in (0: none) */
+    uint8_t *stop;  /* encoder: per strip, 1 + the highest plane a coefficient's
+                     * leading bit is in (0: none), the pass it becomes significant in */
+    uint8_t *gtop;  /* encoder: the same per group */
     bool bad;       /* decoder: a plane no coefficient can have (a malformed segment) */
     bool weigh;     /* plane offsets from the gains (exact coefficients) */
     bool groups_on; /* form 1: groups of 32 strips, each with a flag */
@@ -254,15 +256,13 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
 
 /* One pass at plane P over the n coefficients from start, up to
  * coefficient `limit`; returns where it stopped (n: the whole pass). A
- * strip with no significant coefficient yet (c->strips) codes a flag, with
- * the previous strip's state and its first coefficient's class as context:
- * does one become significant now; only then its coefficients are
- * visited. */
-static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, bool weigh,
-                   const spec_off_t *so, size_t limit)
+ * group, then a strip, with no significant coefficient yet (c->groups,
+ * c->strips) codes a flag: does one become significant now; only then its
+ * coefficients are visited. */
+static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, size_t limit)
 {
     walk_t w;
-    walk_start(&w, start, so, weigh, c->inpar_on);
+    walk_start(&w, start, &c->so, c->weigh, c->inpar_on);
     size_t at = 0; /* the coefficient the walk is at */
     for (size_t s = 0; s < n; s += STRIP) {
         size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP, gi = s / GROUP;
@@ -285,17 +285,6 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
             }
         }
         if (!any_sig) {
-            unsigned any_new = 0;
-            if (c->enc) { /* does one of them become significant now */
-                walk_t la = w;
-                for (size_t k = 0; k < cnt && !any_new; k++) {
-                    uint8_t cls;
-                    const int32_t *par, *prv, *left;
-                    unsigned e;
-                    int32_t *p = walk_next(&la, &cls, &par, &prv, &left, &e);
-                    any_new = P >= e && ((uint32_t)bw_abs32(*p) >> (P - e)) != 0u;
-                }
-            }
             /* the previous strip, the first coefficient's parent and class */
             unsigned pc = si ? STRIP_SIG(c, si - 1u) : 0u;
             int32_t sc = w.it.pl->spec_cls[w.it.k];
@@ -303,7 +292,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
             unsigned pp = is_sig(c, bw_parent_of(w.it.par, w.it.vec, sc, w.it.k));
             if (s >= limit || !room(c))
                 return s;
-            if (!bit(c, &c->m.strip[pp][pc][cls0], any_new))
+            if (!bit(c, &c->m.strip[pp][pc][cls0], c->enc && c->stop[si] == P + 1u))
                 continue;
         }
         for (size_t k = 0; k < cnt; k++) {
@@ -348,13 +337,15 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, boo
     return n;
 }
 
-/* The passes of a segment: 1 + the highest plane any coefficient has
- * (0: all zero); the encoder's significance of its coefficients cleared. */
-static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const spec_off_t *so,
-                          uint32_t *map, uint8_t *gtop)
+/* The encoder's passes of a segment: 1 + the highest plane any
+ * coefficient has (0: all zero), and the same per strip and per group (the
+ * pass each becomes significant in: an insignificant strip's or group's
+ * flag is whether that pass is now); its coefficients' significance
+ * cleared. */
+static unsigned passes_of(embed_t *c, const bw_iter_t *start, size_t n)
 {
     walk_t w;
-    walk_start(&w, start, so, weigh, false);
+    walk_start(&w, start, &c->so, c->weigh, false);
     unsigned top = 0;
     for (size_t k = 0; k < n; k++) {
         uint8_t cls;
@@ -362,14 +353,16 @@ static unsigned passes_of(const bw_iter_t *start, size_t n, bool weigh, const sp
         unsigned e;
         int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
         size_t i = (size_t)(p - start->x);
-        map[i >> 5] &= ~(1u << (i & 31u));
-        unsigned bl = bw_bitlen((uint32_t)bw_abs32(*p));
+        c->map[i >> 5] &= ~(1u << (i & 31u));
+        unsigned bl = bw_bitlen((uint32_t)bw_abs32(*p)), t = bl ? bl + e : 0u;
+        uint8_t *st = &c->stop[k / STRIP], *gt = &c->gtop[k / GROUP];
+        if (k % STRIP == 0u)
+            *st = 0;
         if (k % GROUP == 0u)
-            gtop[k / GROUP] = 0;
-        if (bl && bl + e > gtop[k / GROUP])
-            gtop[k / GROUP] = (uint8_t)(bl + e);
-        if (bl && bl + e > top)
-            top = bl + e;
+            *gt = 0;
+        *st = t > *st ? (uint8_t)t : *st;
+        *gt = t > *gt ? (uint8_t)t : *gt;
+        top = t > top ? t : top;
     }
     return top;
 }
@@ -390,28 +383,29 @@ static uint32_t *scratch(const bw_plan_t *pl, int32_t *x)
     return (uint32_t *)(x + pl->n + 2u * pl->dims.bands + 16u);
 }
 
-/* After the encoder's map: a bit per strip, a bit per group (zeroed), and
- * the encoder's byte per group. */
-static void strip_bits(embed_t *c, const bw_plan_t *pl, int32_t *x, size_t n)
+/* The scratch of a segment of n coefficients: the encoder's map of the
+ * plan's coefficients, a bit per strip and per group (zeroed), and the
+ * encoder's byte per strip and per group (BW_WORK_BOUND holds n / 16 + 8
+ * words for them). */
+static void scratch_of(embed_t *c, const bw_plan_t *pl, int32_t *x, size_t n)
 {
-    size_t sw = ((n + STRIP - 1u) / STRIP + 31u) / 32u, gn = (n + GROUP - 1u) / GROUP;
-    size_t gw = (gn + 31u) / 32u;
-    c->strips = scratch(pl, x) + (pl->n + 31u) / 32u;
+    size_t sn = (n + STRIP - 1u) / STRIP, gn = (n + GROUP - 1u) / GROUP;
+    size_t sw = (sn + 31u) / 32u, gw = (gn + 31u) / 32u;
+    c->map = scratch(pl, x);
+    c->strips = c->map + (pl->n + 31u) / 32u;
     c->groups = c->strips + sw;
-    c->gtop = (uint8_t *)(c->groups + gw);
+    c->stop = (uint8_t *)(c->groups + gw);
+    c->gtop = c->stop + sn;
     memset(c->strips, 0, (sw + gw) * sizeof *c->strips);
 }
 
-uint32_t *bw_embed_map(const bw_plan_t *pl, int32_t *x) { return scratch(pl, x); }
-
-/* A coder of the n coefficients from start: its state, models, strips. */
-static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, uint32_t *map)
+/* A coder of the n coefficients from start: its state, models, scratch. */
+static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n)
 {
     c->enc = enc;
     c->bad = c->stopped = false;
-    c->map = map;
     c->x0 = start->x;
-    strip_bits(c, start->pl, start->x, n);
+    scratch_of(c, start->pl, start->x, n);
     c->weigh = start->pl->step_q8 <= BW_STEP_ONE_Q8;
     c->groups_on = start->pl->embed >= 2u;
     c->inpar_on = start->pl->embed >= 3u;
@@ -419,22 +413,20 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, u
     models_init(&c->m);
 }
 
-size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint32_t *map, uint8_t *out, size_t cap,
-                       bool truncate, bool *over)
+size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t cap, bool truncate,
+                       bool *over)
 {
     embed_t c;
-    embed_init(&c, true, start, n, map);
-    bool weigh = c.weigh;
-    const spec_off_t *so = &c.so;
+    embed_init(&c, true, start, n);
     *over = out && cap < EMBED_HEAD;
     if (*over)
         return EMBED_HEAD;
     c.budget = out && truncate ? cap - EMBED_HEAD : SIZE_MAX;
     bw_rc_enc_init(&c.re, out ? out + EMBED_HEAD : NULL, out ? cap - EMBED_HEAD : 0u);
-    unsigned np = passes_of(start, n, weigh, so, map, c.gtop), done = 0;
+    unsigned np = passes_of(&c, start, n), done = 0;
     size_t at = n;
     for (; done < np; done++) {
-        at = pass(&c, start, n, np - 1u - done, weigh, so, n);
+        at = pass(&c, start, n, np - 1u - done, n);
         if (at < n)
             break;
     }
@@ -452,11 +444,9 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
                             bool cut, bool *inexact)
 {
     embed_t c;
-    embed_init(&c, false, start, n, NULL);
-    bool weigh = c.weigh;
-    const spec_off_t *so = &c.so;
+    embed_init(&c, false, start, n);
     walk_t w;
-    walk_start(&w, start, so, weigh, false);
+    walk_start(&w, start, &c.so, c.weigh, false);
     for (size_t k = 0; k < n; k++) { /* the coefficients start at zero */
         uint8_t cls;
         const int32_t *par, *prv, *left;
@@ -481,7 +471,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
             stop = 0;
             break;
         }
-        stop = pass(&c, start, n, np - 1u - t, weigh, so, t < done ? n : at);
+        stop = pass(&c, start, n, np - 1u - t, t < done ? n : at);
         if (stop < n)
             break;
     }
@@ -495,7 +485,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
      * coefficient whose planes below b are not known takes the middle of
      * their span */
     unsigned P = np - 1u - t;
-    walk_start(&w, start, so, weigh, false);
+    walk_start(&w, start, &c.so, c.weigh, false);
     for (size_t k = 0; k < n; k++) {
         uint8_t cls;
         const int32_t *par, *prv, *left;

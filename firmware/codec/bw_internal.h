@@ -268,16 +268,12 @@ static inline uint32_t bw_plan_segments(const bw_plan_t *pl)
 static inline size_t bw_segment_table_size(uint32_t segs) { return BW_SEGMENT_TABLE_SIZE(segs); }
 
 /* Embedded segments (bw_embed.c): the n coefficients from iterator start
- * coded bit plane by bit plane into out[cap] (NULL: counted), significance
- * in map (a bit per coefficient of the plan, its bits of the segment
- * cleared first); with
+ * coded bit plane by bit plane into out[cap] (NULL: counted), the coder's
+ * state in the work area after the plan's tables (BW_WORK_BOUND); with
  * truncate the coding stops before it passes cap (a byte budget), else
  * *over says it did not fit. Returns the bytes. */
-size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint32_t *map, uint8_t *out, size_t cap,
-                       bool truncate, bool *over);
-/* The encoder's significance map of a plan's coefficients, in the work
- * area after the tables. */
-uint32_t *bw_embed_map(const bw_plan_t *pl, int32_t *x);
+size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t cap, bool truncate,
+                       bool *over);
 /* Decodes one into the n coefficients from start: a whole segment (in[len])
  * to where its encoder stopped, a cut one (cut) to where its bytes end.
  * *inexact: the coefficients are not all the encoder's. BW_ERR_CORRUPT for

@@ -17,7 +17,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "bw_crc32.h"
 #include "bw_features.h"
 #include "bw_i2cmap.h"
 #include "bwh_i2c.h"
@@ -263,13 +262,12 @@ int bw_cmd_acquire(int argc, char **argv)
             holdoff = now_s() + interval;
             continue;
         }
-        /* whole now: what was kept of it goes */
-        snprintf(path, sizeof path, "%s/payload-%u-%08x.part", dir, got.id,
-                 bw_crc32(got.payload, got.len));
-        bwh_partial_remove(path);
-        if (resume)
-            bwh_partial_remove(resume);
         int kept = bwh_store_payload(dir, got.id, got.payload, got.len, path, sizeof path);
+        if (kept >= 0) { /* stored whole: what was kept of it goes */
+            bwh_partial_forget(dir, got.id, got.payload, got.len);
+            if (resume)
+                bwh_partial_remove(resume);
+        }
         free(got.payload);
         if (kept < 0) {
             logmsg("%s; payload %u not acknowledged", bwh_last_error(), got.id);

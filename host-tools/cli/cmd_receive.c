@@ -133,6 +133,8 @@ int bw_cmd_receive(int argc, char **argv)
         }
         char path[4096];
         int kept = bwh_store_payload(dir, r.id, r.payload, r.len, path, sizeof path);
+        if (kept >= 0) /* stored whole: a record of it kept before goes */
+            bwh_partial_forget(dir, r.id, r.payload, r.len);
         free(r.payload);
         if (kept < 0 || bwh_acknowledge(&link, r.id) != 0) {
             /* not stored: not acknowledged either, the device keeps it */

@@ -143,10 +143,16 @@ static int replace_file(const char *dir, const char *path, const void *data, siz
 
 #define PART_MAGIC "brdfwave incomplete payload 1\n"
 
+/* The record's name of payload id whose whole bytes have CRC-32 crc. */
+static void partial_path(const char *dir, uint32_t id, uint32_t crc, char *path, size_t cap)
+{
+    snprintf(path, cap, "%s/payload-%u-%08x.part", dir, id, crc);
+}
+
 int bwh_partial_store(const char *dir, const bwh_partial_t *p, char *path, size_t cap)
 {
     char bytes[4096];
-    snprintf(path, cap, "%s/payload-%u-%08x.part", dir, p->id, p->crc);
+    partial_path(dir, p->id, p->crc, path, cap);
     snprintf(bytes, sizeof bytes, "%s.bwv", path);
     /* the record: a few fixed lines, then the missing parts */
     size_t cap_t = 256u + 11u * (size_t)p->parts, n = 0;
@@ -240,6 +246,13 @@ out:
     if (rc != 0)
         bwh_partial_free(p);
     return rc;
+}
+
+void bwh_partial_forget(const char *dir, uint32_t id, const uint8_t *payload, size_t len)
+{
+    char path[4096];
+    partial_path(dir, id, bw_crc32(payload, len), path, sizeof path);
+    bwh_partial_remove(path);
 }
 
 void bwh_partial_remove(const char *path)

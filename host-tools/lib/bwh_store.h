@@ -54,6 +54,10 @@ int bwh_partial_store(const char *dir, const bwh_partial_t *p, char *path, size_
 int bwh_partial_load(const char *path, bwh_partial_t *p);
 /* Removes both files of a stored record (once the payload is whole). */
 void bwh_partial_remove(const char *path);
+/* Once a payload is whole and stored: removes the record of it that dir may
+ * hold (the name bwh_partial_store gives it, from the id and the CRC-32 of
+ * the payload's bytes). */
+void bwh_partial_forget(const char *dir, uint32_t id, const uint8_t *payload, size_t len);
 
 #ifdef __cplusplus
 }

@@ -192,6 +192,9 @@ def lib():
     L.bwh_partial_free.argtypes = [P(Partial)]
     L.bwh_partial_remove.restype = None
     L.bwh_partial_remove.argtypes = [ctypes.c_char_p]
+    L.bwh_partial_forget.restype = None
+    L.bwh_partial_forget.argtypes = [ctypes.c_char_p, ctypes.c_uint32, ctypes.c_char_p,
+                                     ctypes.c_size_t]
     L.bwh_partial_missing.restype = ctypes.c_uint32
     L.bwh_partial_missing.argtypes = [P(Partial)]
     L.bwh_i2c_acknowledge.restype = ctypes.c_int

@@ -148,14 +148,12 @@ def store(outdir, pid, payload):
     """Stores the payload as DIR/payload-ID-CRC.bwv (a temporary file, fsync,
     then a link that never replaces a file); returns (path, stored before).
     What was kept of it while it was incomplete is removed."""
-    import zlib
     from ._lib import BrdfwaveError, lib, store_payload
     try:
         stored = store_payload(outdir, pid, payload)
     except BrdfwaveError as e:
         raise AcquireError("%s; payload %d not acknowledged" % (e, pid)) from None
-    part = os.path.join(outdir, "payload-%d-%08x.part" % (pid, zlib.crc32(payload)))
-    lib().bwh_partial_remove(os.fsencode(part))
+    lib().bwh_partial_forget(os.fsencode(outdir), pid, payload, len(payload))
     return stored
 
 
