@@ -16,15 +16,8 @@
 
 #include "bw_codec.h"
 #include "bw_config.h"
+#include "test_payload.h"
 #include "test_rng.h"
-
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p)
-        fail_msg("out of memory");
-    return p;
-}
 
 /* Smooth surfaces with noise: every level and band holds details. */
 static void fill(int32_t *x, const bw_dims_t *d, uint64_t *rng)
@@ -36,11 +29,6 @@ static void fill(int32_t *x, const bw_dims_t *d, uint64_t *rng)
                                             (int32_t)(test_uniform(rng) * 80.0) - 40);
 }
 
-typedef struct {
-    unsigned shape, lo, li;
-    uint32_t n_in, bands;
-} shape_t;
-
 static const shape_t shapes[] = {
     {BW_SHAPE_SPECTRA, 0, 0, 9, 70},
     {BW_SHAPE_REFLECTANCE, 3, 0, 1, 5},
@@ -48,37 +36,14 @@ static const shape_t shapes[] = {
     {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},
 };
 
+/* test_encode with the bytes and the length apart */
 static size_t encode(const bw_dims_t *d, const bw_params_t *pa, const int32_t *x, uint8_t **out,
                      bw_status_t *st)
 {
-    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands), len = 0;
-    size_t cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD((size_t)d->n_in * d->n_out) + 64u;
-    int32_t *w = xmalloc(wb * 4), *v = xmalloc(wb * 4);
-    *out = xmalloc(cap);
-    *st = bw_encode(d, pa, x, w, v, *out, cap, &len);
-    free(w);
-    free(v);
-    return len;
-}
-
-/* A decode of p[len], salvaging; the mask (may be NULL) of its states. */
-static bw_status_t decode(const uint8_t *p, size_t len, const bw_dims_t *d, bool salvage,
-                          int32_t *out, uint8_t *mask)
-{
-    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
-    size_t nv = (size_t)d->n_in * d->n_out;
-    int32_t *w = xmalloc(wb * 4), *tmp = xmalloc(nv * 4);
-    uint8_t *lost = xmalloc(nv);
-    bw_ctx_t ctx;
-    bw_header_t h;
-    bw_status_t st = salvage ? bw_decode_salvage(&ctx, p, len, out, n, w, wb, &h, NULL, 0, lost)
-                             : bw_decode(p, len, out, n, w, wb, &h);
-    if (salvage && mask && (st == BW_OK || st == BW_ERR_INCOMPLETE))
-        bw_salvage_mask(&h, lost, mask, tmp);
-    free(w);
-    free(tmp);
-    free(lost);
-    return st;
+    payload_t pl;
+    *st = test_encode(d, pa, x, &pl);
+    *out = pl.p;
+    return pl.len;
 }
 
 static double sse(const int32_t *a, const int32_t *b, size_t n)
@@ -133,8 +98,8 @@ static void embedded_payloads_decode_to_the_samples_of_the_strip_coder(void **st
                     pa.progressive = 0;
                     size_t ls = encode(&d, &pa, x, &ps, &st);
                     assert_int_equal(st, BW_OK);
-                    assert_int_equal(decode(pe, le, &d, false, a, NULL), BW_OK);
-                    assert_int_equal(decode(ps, ls, &d, false, b, NULL), BW_OK);
+                    assert_int_equal(test_decode(pe, le, &d, false, a, NULL, 0, NULL), BW_OK);
+                    assert_int_equal(test_decode(ps, ls, &d, false, b, NULL, 0, NULL), BW_OK);
                     if (memcmp(a, b, n * 4))
                         fail_msg("shape %u mode %u basis %u var %u: samples differ", s->shape,
                                  mode, basis, var);
@@ -193,7 +158,7 @@ static void every_prefix_decodes_and_more_bytes_never_raise_the_error(void **sta
             if (cut < first)
                 cut = first;
             bool whole = cut >= len;
-            st = decode(p, whole ? len : cut, &d, true, a, mask);
+            st = test_decode(p, whole ? len : cut, &d, true, a, NULL, 0, mask);
             if (whole) {
                 assert_int_equal(st, BW_OK);
                 assert_memory_equal(a, x, n * 4);
@@ -251,7 +216,7 @@ static void budget_case(uint32_t segment_vectors)
         assert_true(len <= budget);
         if (budget < full)
             assert_true(len * 100u >= budget * 99u);
-        assert_int_equal(decode(p, len, &d, false, a, NULL), BW_OK);
+        assert_int_equal(test_decode(p, len, &d, false, a, NULL, 0, NULL), BW_OK);
         double e = sse(a, x, n);
         if (last >= 0)
             assert_true(e <= last);
@@ -291,7 +256,7 @@ static void small_case(bw_dims_t *d, int32_t x[64], bw_params_t *pa)
 }
 
 /* Prediction and stream order do not embed; a payload's record 0x04 must
- * follow a segments record and hold no data. */
+ * follow a segments record and name a form this decoder knows. */
 static void what_does_not_embed_is_refused(void **state)
 {
     (void)state;

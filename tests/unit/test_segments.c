@@ -19,6 +19,7 @@
 #include "bw_config.h"
 #include "bw_geodesic.h"
 #include "bw_spectral.h"
+#include "test_payload.h"
 
 static uint64_t rng = 0x9E3779B97F4A7C15ull;
 static uint32_t rnd(void)
@@ -27,14 +28,6 @@ static uint32_t rnd(void)
     rng ^= rng >> 7;
     rng ^= rng << 17;
     return (uint32_t)(rng >> 16);
-}
-
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p)
-        fail_msg("out of memory");
-    return p;
 }
 
 /* Smooth data with noise: a few thousand per sample, so that every level
@@ -48,57 +41,12 @@ static void fill(int32_t *x, const bw_dims_t *d)
                                   (int32_t)(rnd() % 61) - 30;
 }
 
-typedef struct {
-    unsigned shape, lo, li;
-    uint32_t n_in, bands;
-} shape_t;
-
 static const shape_t shapes[] = {
     {BW_SHAPE_SPECTRA, 0, 0, 13, 37},
     {BW_SHAPE_REFLECTANCE, 2, 0, 1, 3},
     {BW_SHAPE_BRDF_ISO, 2, 0, 6, 5},
     {BW_SHAPE_BRDF_FULL, 1, 1, 0, 2},
 };
-
-typedef struct {
-    uint8_t *p;
-    size_t len;
-} payload_t;
-
-static bw_status_t encode(const bw_dims_t *d, const bw_params_t *pa, const int32_t *x,
-                          payload_t *out)
-{
-    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
-    size_t cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD((size_t)d->n_in * d->n_out);
-    int32_t *w = xmalloc(wb * 4), *v = xmalloc(wb * 4);
-    out->p = xmalloc(cap);
-    bw_status_t st = bw_encode(d, pa, x, w, v, out->p, cap, &out->len);
-    free(w);
-    free(v);
-    return st;
-}
-
-/* A decode, salvaging or not; *lost_out (may be NULL) the vectors lost,
- * mask the direction pairs' states. */
-static bw_status_t decode(const uint8_t *p, size_t len, const bw_dims_t *d, bool salvage,
-                          int32_t *out, uint8_t *seg_ok, size_t seg_cap, uint8_t *mask)
-{
-    size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
-    size_t nv = (size_t)d->n_in * d->n_out;
-    int32_t *w = xmalloc(wb * 4), *tmp = xmalloc(nv * 4);
-    uint8_t *lost = xmalloc(nv);
-    bw_ctx_t ctx;
-    bw_header_t h;
-    bw_status_t st = salvage ? bw_decode_salvage(&ctx, p, len, out, n, w, wb, &h, seg_ok, seg_cap,
-                                                 lost)
-                             : bw_decode(p, len, out, n, w, wb, &h);
-    if (salvage && mask && (st == BW_OK || st == BW_ERR_INCOMPLETE))
-        bw_salvage_mask(&h, lost, mask, tmp);
-    free(w);
-    free(tmp);
-    free(lost);
-    return st;
-}
 
 static uint32_t segments_of(const uint8_t *p, size_t len)
 {
@@ -182,13 +130,13 @@ static void one_case_same_samples(const bw_dims_t *d, const bw_params_t *pa, con
     payload_t seg, whole;
     bw_params_t p1 = *pa;
     p1.segment_vectors = 0;
-    bw_status_t st = encode(d, pa, x, &seg);
+    bw_status_t st = test_encode(d, pa, x, &seg);
     if (st != BW_OK)
         fail_msg("%s: encode: %s", what, bw_strerror(st));
-    assert_int_equal(encode(d, &p1, x, &whole), BW_OK);
+    assert_int_equal(test_encode(d, &p1, x, &whole), BW_OK);
     int32_t *a = xmalloc(n * 4), *b = xmalloc(n * 4);
-    assert_int_equal(decode(seg.p, seg.len, d, false, a, NULL, 0, NULL), BW_OK);
-    assert_int_equal(decode(whole.p, whole.len, d, false, b, NULL, 0, NULL), BW_OK);
+    assert_int_equal(test_decode(seg.p, seg.len, d, false, a, NULL, 0, NULL), BW_OK);
+    assert_int_equal(test_decode(whole.p, whole.len, d, false, b, NULL, 0, NULL), BW_OK);
     uint32_t nv = d->n_in * d->n_out;
     assert_int_equal(segments_of(seg.p, seg.len), (nv - 1u) / pa->segment_vectors + 1u);
     if (pa->mode == BW_MODE_LOSSLESS) {
@@ -229,7 +177,7 @@ static void a_core_without_segments_refuses_them(void **state)
     pa.basis = BW_BASIS_HAAR;
     pa.segment_vectors = 2;
     payload_t pl;
-    assert_int_equal(encode(&d, &pa, x, &pl), segments_built() ? BW_OK : BW_ERR_NOT_BUILT);
+    assert_int_equal(test_encode(&d, &pa, x, &pl), segments_built() ? BW_OK : BW_ERR_NOT_BUILT);
     free(pl.p);
 }
 
@@ -251,14 +199,14 @@ static void one_case_salvage(const bw_dims_t *d, const bw_params_t *pa, const in
 {
     size_t n = bw_dims_samples(d), nv = (size_t)d->n_in * d->n_out;
     payload_t pl;
-    if (encode(d, pa, x, &pl) != BW_OK)
+    if (test_encode(d, pa, x, &pl) != BW_OK)
         fail_msg("%s: encode", what);
     uint32_t segs = segments_of(pl.p, pl.len);
     bw_header_t h;
     assert_int_equal(bw_header_read(pl.p, pl.len, &h), BW_OK);
     int32_t *ref = xmalloc(n * 4), *got = xmalloc(n * 4);
     uint8_t *ok = xmalloc(segs), *mask = xmalloc(nv);
-    assert_int_equal(decode(pl.p, pl.len, d, true, ref, ok, segs, mask), BW_OK);
+    assert_int_equal(test_decode(pl.p, pl.len, d, true, ref, ok, segs, mask), BW_OK);
     for (uint32_t s = 0; s < segs; s++)
         assert_int_equal(ok[s], 1);
     size_t pos = h.header_len + BW_SEGMENT_TABLE_SIZE(segs);
@@ -289,7 +237,7 @@ static void one_case_salvage(const bw_dims_t *d, const bw_params_t *pa, const in
             bool damaged = cut ? end[segs - 1u] > len : true;
             if (cut && !damaged)
                 continue; /* that is the payload less its CRC: covered below */
-            bw_status_t st = decode(q, len, d, true, got, ok, segs, mask);
+            bw_status_t st = test_decode(q, len, d, true, got, ok, segs, mask);
             if (st != (damaged ? BW_ERR_INCOMPLETE : BW_OK))
                 fail_msg("%s: segment %u %s: %s", what, s, cut ? "cut" : "damaged",
                          bw_strerror(st));
@@ -309,18 +257,18 @@ static void one_case_salvage(const bw_dims_t *d, const bw_params_t *pa, const in
             if (exact == nv)
                 fail_msg("%s: segment %u lost, yet every pair exact", what, s);
             int32_t *tmp = xmalloc(n * 4);
-            assert_int_equal(decode(q, len, d, false, tmp, NULL, 0, NULL), BW_ERR_CRC);
+            assert_int_equal(test_decode(q, len, d, false, tmp, NULL, 0, NULL), BW_ERR_CRC);
             free(tmp);
         }
         pos += sl;
     }
     /* the CRC alone lost: every segment whole, every sample exact */
-    assert_int_equal(decode(pl.p, pl.len - 4u, d, true, got, ok, segs, mask), BW_OK);
+    assert_int_equal(test_decode(pl.p, pl.len - 4u, d, true, got, ok, segs, mask), BW_OK);
     assert_memory_equal(got, ref, n * 4);
     /* the header or the table damaged: nothing to salvage */
     memcpy(q, pl.p, pl.len);
     q[h.header_len + 1u] ^= 1u;
-    assert_int_equal(decode(q, pl.len, d, true, got, ok, segs, mask), BW_ERR_CRC);
+    assert_int_equal(test_decode(q, pl.len, d, true, got, ok, segs, mask), BW_ERR_CRC);
     free(q);
     free(end);
     free(ref);
@@ -349,13 +297,13 @@ static void a_body_in_one_piece_is_not_salvaged(void **state)
     bw_params_t pa;
     small_case(&d, x, &pa);
     payload_t pl;
-    assert_int_equal(encode(&d, &pa, x, &pl), BW_OK);
+    assert_int_equal(test_encode(&d, &pa, x, &pl), BW_OK);
     int32_t got[64];
     uint8_t ok[1] = {7};
     pl.p[pl.len / 2] ^= 4u;
-    assert_int_equal(decode(pl.p, pl.len, &d, true, got, ok, 1, NULL), BW_ERR_CRC);
+    assert_int_equal(test_decode(pl.p, pl.len, &d, true, got, ok, 1, NULL), BW_ERR_CRC);
     pl.p[pl.len / 2] ^= 4u;
-    assert_int_equal(decode(pl.p, pl.len, &d, true, got, ok, 1, NULL), BW_OK);
+    assert_int_equal(test_decode(pl.p, pl.len, &d, true, got, ok, 1, NULL), BW_OK);
     assert_int_equal(ok[0], 1);
     free(pl.p);
 }
@@ -405,7 +353,7 @@ static void the_streaming_encoder_writes_the_same_segments(void **state)
                 assert_int_equal(bw_stream_finish(&st, &len), BW_OK);
                 pa.segment_vectors = seg_sizes[z] < nv ? seg_sizes[z] : (uint32_t)nv;
                 payload_t ref;
-                assert_int_equal(encode(&d, &pa, x, &ref), BW_OK);
+                assert_int_equal(test_encode(&d, &pa, x, &ref), BW_OK);
                 if (len != ref.len || memcmp(out, ref.p, len))
                     fail_msg("shape %u coder %u segment %u: the streaming encoder's payload "
                              "differs from bw_encode's",
@@ -437,10 +385,10 @@ static void one_case_incoming(const bw_dims_t *d, const bw_params_t *pa, const i
         if (!seg)
             p.segment_vectors = 0;
         payload_t pl;
-        if (encode(d, &p, x, &pl) != BW_OK)
+        if (test_encode(d, &p, x, &pl) != BW_OK)
             fail_msg("%s: encode", what);
         int32_t *all = xmalloc(n * 4), *one = xmalloc(row * 4), *w = xmalloc(wb * 4);
-        assert_int_equal(decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
+        assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
         static bw_ctx_t ctx;
         for (uint32_t i = 0; i < d->n_in; i++) {
             memset(w, 0x5A, wb * 4); /* nothing may come from stale work */
@@ -475,12 +423,12 @@ static void one_incoming_direction_decodes_alone_as_in_the_whole(void **state)
     pa.basis = BW_BASIS_HAAR;
     pa.flags = BW_FLAG_RECIPROCAL;
     payload_t pl;
-    assert_int_equal(encode(&d, &pa, x, &pl), BW_OK);
+    assert_int_equal(test_encode(&d, &pa, x, &pl), BW_OK);
     static bw_ctx_t ctx;
     assert_int_equal(bw_decode_incoming(&ctx, pl.p, pl.len, 0, one, 32, w, wb, NULL), BW_ERR_ARG);
     free(pl.p);
     pa.flags = 0;
-    assert_int_equal(encode(&d, &pa, x, &pl), BW_OK);
+    assert_int_equal(test_encode(&d, &pa, x, &pl), BW_OK);
     assert_int_equal(bw_decode_incoming(&ctx, pl.p, pl.len, 16, one, 32, w, wb, NULL), BW_ERR_ARG);
     assert_int_equal(bw_decode_incoming(&ctx, pl.p, pl.len, 15, one, 31, w, wb, NULL), BW_ERR_WORK);
     assert_int_equal(bw_decode_incoming(&ctx, pl.p, pl.len, 15, one, 32, w, wb, NULL), BW_OK);
@@ -544,12 +492,12 @@ static void one_case_level(const bw_dims_t *d, const bw_params_t *pa, const int3
     size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
     unsigned L = d->level_out;
     payload_t pl;
-    if (encode(d, pa, x, &pl) != BW_OK)
+    if (test_encode(d, pa, x, &pl) != BW_OK)
         fail_msg("%s: encode", what);
     bw_header_t h;
     int32_t *all = xmalloc(n * 4), *lod = xmalloc(n * 4), *w = xmalloc(wb * 4);
     double *ref = xmalloc(n * sizeof *ref);
-    assert_int_equal(decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
+    assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
     assert_int_equal(bw_header_read(pl.p, pl.len, &h), BW_OK);
     static bw_ctx_t ctx;
     for (unsigned l = 0; l <= L; l++) {
