@@ -278,15 +278,19 @@ typedef struct {
     size_t coarse;
 } want_t;
 
-/* Whether vectors [a, b) hold any wanted one. */
-static bool wanted(const want_t *w, size_t no, size_t a, size_t b)
+/* The end of the last wanted vector in [a, b), a when there is none. */
+static size_t wanted_end(const want_t *w, size_t no, size_t a, size_t b)
 {
-    if (!w->nr) /* a's block's first ones, or the next block's */
-        return a % no < w->coarse || b > (a / no + 1u) * no;
+    size_t e = a;
+    if (!w->nr) { /* the first `coarse` vectors of each block */
+        size_t k = (b - 1u) / no * no;
+        e = k + w->coarse < b ? k + w->coarse : b;
+        return e > a ? e : a;
+    }
     for (unsigned k = 0; k < w->nr; k++)
-        if (w->r[k][0] < b && a < w->r[k][1])
-            return true;
-    return false;
+        if (w->r[k][0] < b && a < w->r[k][1] && (w->r[k][1] < b ? w->r[k][1] : b) > e)
+            e = w->r[k][1] < b ? w->r[k][1] : b;
+    return e;
 }
 
 /* Decodes the wanted vectors: the segments that hold them, or a body in one
@@ -314,13 +318,20 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
         uint32_t sl = bw_get_u32(t + s * BW_SEG_ENTRY);
         if (pos > h->body_len || sl > h->body_len - pos)
             return BW_ERR_CRC;
-        if (wanted(w, no, first, first + cnt)) {
+        size_t end = wanted_end(w, no, first, first + cnt);
+        if (end > first) {
             if (bw_crc32(t + pos, sl) != bw_get_u32(t + s * BW_SEG_ENTRY + 4u))
                 return BW_ERR_CRC;
             bw_iter_at(&it, pl, x, first);
             bw_iter_segment(&it);
             bool inexact;
-            bw_status_t st = decode_segment(&it, pl, cnt, t + pos, sl, sl, coder, m, &inexact);
+            /* the strip coder stops at the strip holding the last wanted
+             * value; an embedded segment's planes hold every vector */
+            size_t nc = ((end - first) * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
+            bw_status_t st =
+                pl->embed ? decode_segment(&it, pl, cnt, t + pos, sl, sl, coder, m, &inexact)
+                          : bw_decode_coefs(&it, nc < cnt * b ? nc : cnt * b, t + pos, sl, coder,
+                                            m);
             if (st != BW_OK)
                 return st;
         }
@@ -449,7 +460,10 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
         return BW_ERR_WORK;
     bw_plan_t pl;
     plan_of(&pl, &h, work, n);
-    memset(work, 0, n * sizeof *work);
+    /* the decoder writes every value of the strips it decodes, which hold
+     * all the vectors read below; dequantisation walks every vector */
+    if (pl.step_q8 > BW_STEP_ONE_Q8)
+        memset(work, 0, n * sizeof *work);
     /* the first 4 4^level vectors of each block in coarse-to-fine order are
      * the coefficients of the levels above (streamed order: all) */
     want_t w = {NULL, 0, pl.stream ? d->n_out : nc};

@@ -47,8 +47,17 @@ void bw_models_init(bw_models_t *m, unsigned coder)
         return;
     }
     bw_prob_t *p = (bw_prob_t *)&m->rc;
-    for (size_t i = 0; i < sizeof m->rc / sizeof *p; i++)
+    size_t n = sizeof m->rc / sizeof *p;
+#if BW_CFG_SPEED
+    /* by doubling copies: a partial decode of many segments starts as many
+     * models */
+    p[0] = BW_PROB_INIT;
+    for (size_t k = 1; k < n; k += k < n - k ? k : n - k)
+        memcpy(p + k, p, (k < n - k ? k : n - k) * sizeof *p);
+#else
+    for (size_t i = 0; i < n; i++)
         p[i] = BW_PROB_INIT;
+#endif
 }
 
 /* significance: the bit above, and whether the parent is zero, small or not */
