@@ -97,16 +97,20 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, le
 
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, level, vlen, true); }
 
+void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, uint32_t p)
+{
+    size_t h = (size_t)1 << (2u * (level - j - 1u));
+    uint32_t per_base = 1u << (2u * j);
+    uint16_t w[3];
+    bw_geo_weights(j, p & (per_base - 1u), w);
+    int32_t *c0 = x + (size_t)p * 4u * h * vlen;
+    unlift4(c0, c0 + h * vlen, c0 + 2u * h * vlen, c0 + 3u * h * vlen, w, vlen);
+}
+
 void bw_biohaar_inv_path(int32_t *x, unsigned level, size_t vlen, uint32_t t)
 {
-    for (unsigned j = 0; j < level; j++) {
-        size_t h = (size_t)1 << (2u * (level - j - 1u));
-        uint32_t per_base = 1u << (2u * j), p = t >> (2u * (level - j));
-        uint16_t w[3];
-        bw_geo_weights(j, p & (per_base - 1u), w);
-        int32_t *c0 = x + (size_t)p * 4u * h * vlen;
-        unlift4(c0, c0 + h * vlen, c0 + 2u * h * vlen, c0 + 3u * h * vlen, w, vlen);
-    }
+    for (unsigned j = 0; j < level; j++)
+        bw_biohaar_inv_node(x, level, vlen, j, t >> (2u * (level - j)));
 }
 
 int bw_biohaar_coef_level(uint32_t idx)

@@ -29,6 +29,9 @@ void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
  * leaf t and its siblings at every level come out as bw_biohaar_inv gives
  * them, from the blocks on that path alone. */
 void bw_biohaar_inv_path(int32_t *x, unsigned level, size_t vlen, uint32_t t);
+/* The inverse step of one parent p at level j (0 the coarsest) of a tree of
+ * depth `level`: its four children from its scaling value and details. */
+void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, uint32_t p);
 
 /* Mallat index -> in-place leaf position. Mallat order: the 4 base scaling
  * coefficients, then the 12 details of level 0's parents, then the 48 of

@@ -49,7 +49,8 @@
  *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
  *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
  *   bw_decode.c        bw_decode, bw_decode_salvage (segments), the partial
- *                      decodes (bw_decode_incoming, bw_decode_level)
+ *                      decodes (bw_decode_incoming, bw_decode_rows,
+ *                      bw_decode_level)
  *   bw_salvage.c       what a decode in part rebuilt (bw_salvage_mask)
  *   bw_stream.c        the streaming encoder (bw_stream_*)
  *   bw_crc32.c         CRC-32
@@ -448,6 +449,25 @@ bw_status_t bw_decode_salvage(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
 bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
                                int32_t *samples, size_t samples_cap, int32_t *work,
                                size_t work_cap, bw_header_t *hdr_out);
+
+/*
+ * Decodes the incoming directions (rows) marked non-zero in rows[n_in] of
+ * a BRDF, or the spectra so marked of a set of spectra (a region of the
+ * incoming hemisphere, any set of rows): each marked row's n_out * bands
+ * samples, in ascending row order, into samples, the same as those rows of
+ * bw_decode_ctx's. Only what the rows depend on is decoded, once: the
+ * segments that hold their incoming blocks (a body in one piece up to the
+ * last of them) and, for a full BRDF, the inverse steps of the parents
+ * above them (with the mirror, above the mirrored rows' partners too); the
+ * CRCs checked as bw_decode_incoming's. work: as for bw_decode_ctx.
+ * BW_ERR_ARG for a reflectance, for spectra coded by prediction
+ * (bw_decode_incoming decodes one such spectrum), or a full BRDF with the
+ * reciprocity step; BW_ERR_WORK when samples_cap is less than the marked
+ * rows' samples.
+ */
+bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, const uint8_t *rows,
+                           int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                           bw_header_t *hdr_out);
 
 /*
  * Decodes a directional measurement (a reflectance, a BRDF) at a coarser

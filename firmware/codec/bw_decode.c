@@ -270,18 +270,60 @@ static void sort_u32(uint32_t *v, unsigned n)
 }
 
 /* What a partial decode wants of the coding order: the vectors
- * [r[k][0], r[k][1]) (sorted), or, without them (nr 0), the first `coarse`
- * vectors of every incoming block. */
+ * [r[k][0], r[k][1]) (sorted); without them (nr 0), the incoming blocks
+ * that the rows marked in `rows` need (block_needed), or else the first
+ * `coarse` vectors of every incoming block. */
 typedef struct {
     size_t (*r)[2];
     unsigned nr;
     size_t coarse;
+    const uint8_t *rows;
+    const bw_plan_t *pl;
 } want_t;
+
+/* Whether row t is rebuilt: marked, or the partner that a marked row of a
+ * full BRDF's mirrored half was coded against. */
+static bool row_needed(const want_t *w, uint32_t t)
+{
+    const bw_dims_t *d = &w->pl->dims;
+    return w->rows[t] || (w->pl->mirror && bw_has_in(d) && t < d->n_in / 2u &&
+                          w->rows[bw_mirror_index(t, d->level_in)]);
+}
+
+/* Whether a needed row lies in [lo, hi). */
+static bool rows_within(const want_t *w, uint32_t lo, uint32_t hi)
+{
+    for (uint32_t t = lo; t < hi; t++)
+        if (row_needed(w, t))
+            return true;
+    return false;
+}
+
+/* Whether incoming block c (coding order) is needed by the rows: a full
+ * BRDF's blocks are needed by every row below their parent (the inverse
+ * step of a parent takes its three details and its scaling value). */
+static bool block_needed(const want_t *w, uint32_t c)
+{
+    const bw_dims_t *d = &w->pl->dims;
+    if (!bw_has_in(d))
+        return row_needed(w, c);
+    unsigned L = d->level_in;
+    int j = bw_biohaar_coef_level(c);
+    uint32_t span = j < 0 ? 1u << (2u * L) : 1u << (2u * (L - (unsigned)j)),
+             lo = bw_biohaar_pos(c, L) / span * span;
+    return rows_within(w, lo, lo + span);
+}
 
 /* The end of the last wanted vector in [a, b), a when there is none. */
 static size_t wanted_end(const want_t *w, size_t no, size_t a, size_t b)
 {
     size_t e = a;
+    if (w->rows) {
+        for (size_t c = (b - 1u) / no + 1u; c-- > a / no;)
+            if (block_needed(w, (uint32_t)c))
+                return (c + 1u) * no < b ? (c + 1u) * no : b;
+        return a;
+    }
     if (!w->nr) { /* the first `coarse` vectors of each block */
         size_t k = (b - 1u) / no * no;
         e = k + w->coarse < b ? k + w->coarse : b;
@@ -303,7 +345,7 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
     bw_iter_t it;
     size_t no = pl->dims.n_out, nv = (size_t)pl->dims.n_in * no;
     if (!V) { /* whole strips: a strip's presence is of all its 32 values */
-        size_t last = w->nr ? w->r[w->nr - 1u][1] : nv;
+        size_t last = w->rows ? wanted_end(w, no, 0, nv) : w->nr ? w->r[w->nr - 1u][1] : nv;
         size_t c = (last * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
         bw_iter_init(&it, pl, x);
         return bw_decode_coefs(&it, c < pl->n ? c : pl->n, p + h->header_len, h->body_len,
@@ -357,6 +399,47 @@ static bw_status_t partial_header(const bw_ctx_t *ctx, const uint8_t *payload, s
     return st;
 }
 
+/* A row's outgoing and spectral inverse steps (its incoming ones done). */
+static void rebuild_row(const bw_plan_t *pl, int32_t *y)
+{
+    const bw_dims_t *d = &pl->dims;
+    size_t b = d->bands;
+    if (bw_has_out(d))
+        bw_biohaar_inv(y, d->level_out, b);
+    for (size_t o = 0; pl->spec_levels && o < d->n_out; o++)
+        bw_spec_inv(y + o * b, (uint32_t)b, pl->basis, pl->spec_levels, pl->tmp);
+}
+
+/* The mirror step's inverse on one rebuilt row x: within the row (a BRDF
+ * of incidences), or, for a full BRDF's mirrored half, the partner row mr
+ * it was coded against added back (mr NULL: x is not of that half). */
+static void unmirror_row(const bw_plan_t *pl, int32_t *x, const int32_t *mr)
+{
+    const bw_dims_t *d = &pl->dims;
+    size_t b = d->bands;
+    if (!bw_has_in(d)) { /* the symmetry steps of a plan of one row */
+        bw_plan_t sub = *pl;
+        sub.dims.n_in = 1u;
+        sub.dims.shape = BW_SHAPE_BRDF_ISO;
+        bw_symmetry(&sub, x, false);
+        return;
+    }
+    for (uint32_t o = 0; mr && o < d->n_out; o++) {
+        const int32_t *pv = mr + (size_t)bw_mirror_index(o, d->level_out) * b;
+        for (size_t k = 0; k < b; k++)
+            x[o * b + k] = (int32_t)((uint32_t)x[o * b + k] + (uint32_t)pv[k]);
+    }
+}
+
+/* A rebuilt row's samples: times the prequantiser, saturated. */
+static void put_row(const int32_t *x, size_t row, uint32_t pq, int32_t *out)
+{
+    for (size_t k = 0; k < row; k++) {
+        int64_t v = (int64_t)x[k] * pq;
+        out[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
+    }
+}
+
 bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
                                int32_t *samples, size_t samples_cap, int32_t *work,
                                size_t work_cap, bw_header_t *hdr_out)
@@ -397,7 +480,7 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
             r[nr][0] = (size_t)(k || pl.basis != BW_BASIS_PRED ? ci[k] : first) * no;
             r[nr++][1] = ((size_t)ci[k] + 1u) * no;
         }
-    want_t w = {r, nr, 0};
+    want_t w = {r, nr, 0, NULL, NULL};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
@@ -410,34 +493,67 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
         for (unsigned k = 0; k < nr && pl.step_q8 > BW_STEP_ONE_Q8; k++)
             bw_dequant_block(&pl, work, (uint32_t)(r[k][0] / no));
         for (unsigned k = 0; k < nrow; k++) {
-            int32_t *y = work + (size_t)rows[k] * row;
             if (full)
                 bw_biohaar_inv_path(work, Li, row, rows[k]);
-            if (bw_has_out(d))
-                bw_biohaar_inv(y, d->level_out, b);
-            for (size_t o = 0; pl.spec_levels && o < no; o++)
-                bw_spec_inv(y + o * b, (uint32_t)b, pl.basis, pl.spec_levels, pl.tmp);
+            rebuild_row(&pl, work + (size_t)rows[k] * row);
         }
-        if (pl.mirror) { /* one row: the symmetry steps of a plan of it */
-            bw_plan_t sub = pl;
-            sub.dims.n_in = 1u;
-            sub.dims.shape = BW_SHAPE_BRDF_ISO;
-            if (!full) {
-                bw_symmetry(&sub, x, false);
-            } else if (nrow == 2u) {
-                const int32_t *mr = work + (size_t)rows[1] * row;
-                for (uint32_t o = 0; o < no; o++) {
-                    const int32_t *pv = mr + (size_t)bw_mirror_index(o, d->level_out) * b;
-                    for (size_t k = 0; k < b; k++)
-                        x[o * b + k] = (int32_t)((uint32_t)x[o * b + k] + (uint32_t)pv[k]);
-                }
-            }
-        }
+        if (pl.mirror)
+            unmirror_row(&pl, x, nrow == 2u ? work + (size_t)rows[1] * row : NULL);
     }
-    uint32_t pq = pl.basis == BW_BASIS_PRED ? 1u : pl.prequant; /* prediction: none left */
-    for (size_t k = 0; k < row; k++) {
-        int64_t v = (int64_t)x[k] * pq;
-        samples[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
+    put_row(x, row, pl.basis == BW_BASIS_PRED ? 1u : pl.prequant, samples); /* prediction: none left */
+    return BW_OK;
+}
+
+/* ---- a set of incoming rows (a region) -------------------------------------- */
+
+bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, const uint8_t *rows,
+                           int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                           bw_header_t *hdr_out)
+{
+    bw_header_t h;
+    bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
+    if (st != BW_OK)
+        return st;
+    if (!rows)
+        return BW_ERR_ARG;
+    const bw_dims_t *d = &h.dims;
+    size_t n = bw_dims_samples(d), no = d->n_out, row = no * d->bands, nr = 0;
+    if (d->shape == BW_SHAPE_REFLECTANCE || h.basis == BW_BASIS_PRED ||
+        (h.flags & BW_FLAG_RECIPROCAL))
+        return BW_ERR_ARG;
+    for (uint32_t t = 0; t < d->n_in; t++)
+        nr += rows[t] != 0u;
+    if (samples_cap < nr * row || work_cap < bw_work_bound(n, d->bands))
+        return BW_ERR_WORK;
+    bw_plan_t pl;
+    plan_of(&pl, &h, work, n);
+    want_t w = {NULL, 0, 0, rows, &pl};
+    st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
+    if (st != BW_OK)
+        return st;
+    for (uint32_t c = 0; c < d->n_in && pl.step_q8 > BW_STEP_ONE_Q8; c++)
+        if (block_needed(&w, c))
+            bw_dequant_block(&pl, work, c);
+    if (bw_has_in(d)) /* the parents above a needed row, coarse to fine */
+        for (unsigned j = 0, L = d->level_in; j < L; j++)
+            for (uint32_t p = 0, span = 1u << (2u * (L - j)); p < (4u << (2u * j)); p++)
+                if (rows_within(&w, p * span, (p + 1u) * span))
+                    bw_biohaar_inv_node(work, L, row, j, p);
+    for (uint32_t t = 0; t < d->n_in; t++)
+        if (row_needed(&w, t))
+            rebuild_row(&pl, work + (size_t)t * row);
+    int32_t *out = samples;
+    for (uint32_t t = 0; t < d->n_in; t++) {
+        if (!rows[t])
+            continue;
+        int32_t *x = work + (size_t)t * row;
+        if (pl.mirror)
+            unmirror_row(&pl, x,
+                         bw_has_in(d) && t >= d->n_in / 2u
+                             ? work + (size_t)bw_mirror_index(t, d->level_in) * row
+                             : NULL);
+        put_row(x, row, pl.prequant, out);
+        out += row;
     }
     return BW_OK;
 }
@@ -466,7 +582,7 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
         memset(work, 0, n * sizeof *work);
     /* the first 4 4^level vectors of each block in coarse-to-fine order are
      * the coefficients of the levels above (streamed order: all) */
-    want_t w = {NULL, 0, pl.stream ? d->n_out : nc};
+    want_t w = {NULL, 0, pl.stream ? d->n_out : nc, NULL, NULL};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
@@ -488,9 +604,6 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
     bw_transform_inv(&pc, work);
     if (pc.mirror)
         bw_symmetry(&pc, work, false);
-    for (size_t k = 0; k < pc.n; k++) {
-        int64_t v = (int64_t)work[k] * pl.prequant;
-        samples[k] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : (int32_t)v;
-    }
+    put_row(work, pc.n, pl.prequant, samples);
     return BW_OK;
 }

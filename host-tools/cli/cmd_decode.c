@@ -2,6 +2,7 @@
 /* brdfwave decode: a payload to samples, with its metadata where the output
  * format holds it. */
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,12 +11,14 @@
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
+#include "cli_num.h"
 #include "cli_progress.h"
 #include "commands.h"
 
 static const char decode_help[] =
     "usage: brdfwave decode -i IN.bwv -o OUT [--output-format F] [--max-samples N]\n"
-    "                       [--mask MASK.u8] [--incoming K | --level L]\n"
+    "                       [--mask MASK.u8] [--incoming K | --rows LIST |\n"
+    "                       --region THETA,PHI,RADIUS | --level L]\n"
     "\n"
     "Decodes a payload in the encoder's layout, [incoming][outgoing][band], with\n"
     "its metadata (wavelengths, units, incidence angles, ...: 'brdfwave info').\n"
@@ -39,11 +42,23 @@ static const char decode_help[] =
     "                     of a set of spectra), as a reflectance (one spectrum): only\n"
     "                     what it depends on is decoded (with --segments, only the\n"
     "                     segments that hold it)\n"
+    "  --rows LIST        decode only the incoming directions (or spectra) listed,\n"
+    "                     K or A-B (both included), comma-separated: a BRDF of those\n"
+    "                     directions (or those spectra) in ascending order; what they\n"
+    "                     share is decoded once\n"
+    "  --region THETA,PHI,RADIUS\n"
+    "                     decode only the incoming directions of a full BRDF whose\n"
+    "                     triangles' centres lie within RADIUS degrees of the direction\n"
+    "                     THETA (from the normal), PHI (from the x axis): a region of\n"
+    "                     the incoming hemisphere; the rows chosen are named on\n"
+    "                     standard error (as --rows takes them)\n"
     "  --level L          decode at a coarser outgoing level L (level of detail):\n"
     "                     each triangle's value is the mean of the samples below it\n"
     "                     (its Bio-Haar scaling value); only the coarser levels'\n"
     "                     coefficients are decoded (with --segments, only the\n"
     "                     segments that hold them)\n"
+    "--incoming, --rows and --region decode what the rows need alone, with\n"
+    "segments only the segments that hold it.\n"
     "A payload coded in segments (encode --segments) that arrives damaged or cut\n"
     "still decodes: every whole segment is decoded, the rest is rebuilt from the\n"
     "coarser levels it has, and decode says how many samples that touched and\n"
@@ -76,9 +91,58 @@ static int format_of_name(const char *path)
     return BWH_OUT_F32;
 }
 
+/* "K" or "A-B" items, comma-separated, into rows[n] (marked 1). 0, or a
+ * usage error. */
+static int parse_rows(const char *list, uint32_t n, uint8_t *rows)
+{
+    memset(rows, 0, n);
+    const char *q = list;
+    for (;;) {
+        const char *end = strchr(q, ','), *dash;
+        size_t l = end ? (size_t)(end - q) : strlen(q);
+        char item[32];
+        uint32_t a, b;
+        if (!l || l >= sizeof item)
+            return cli_usage("--rows %s: K or A-B items, comma-separated", list);
+        memcpy(item, q, l);
+        item[l] = 0;
+        dash = strchr(item, '-');
+        if (dash)
+            item[dash - item] = 0;
+        if (cli_u32(item, 0, UINT32_MAX - 1u, 0, &a) != 0 ||
+            (dash ? cli_u32(dash + 1, a, UINT32_MAX - 1u, 0, &b) : (b = a, 0)) != 0)
+            return cli_usage("--rows %s: K or A-B items (A <= B), comma-separated", list);
+        if (b >= n)
+            return cli_usage("--rows %s: row %u is past the last (%u)", list, b, n - 1u);
+        memset(rows + a, 1, (size_t)b - a + 1u);
+        if (!end)
+            return 0;
+        q = end + 1;
+    }
+}
+
+/* The rows marked, as --rows takes them: runs as A-B. */
+static void print_rows(FILE *f, const uint8_t *rows, uint32_t n)
+{
+    const char *sep = "";
+    for (uint32_t t = 0; t < n; t++) {
+        if (!rows[t])
+            continue;
+        uint32_t e = t;
+        while (e + 1u < n && rows[e + 1u])
+            e++;
+        if (e > t)
+            fprintf(f, "%s%u-%u", sep, t, e);
+        else
+            fprintf(f, "%s%u", sep, t);
+        sep = ",";
+        t = e;
+    }
+}
+
 int bw_cmd_decode(int argc, char **argv)
 {
-    const char *inp = NULL, *outp = NULL, *maskp = NULL;
+    const char *inp = NULL, *outp = NULL, *maskp = NULL, *rowsp = NULL, *regionp = NULL;
     int fmt = -1;
     uint32_t max_samples = 0, incoming = 0, lod = 0;
     int has_incoming = 0, has_lod = 0;
@@ -92,6 +156,8 @@ int bw_cmd_decode(int argc, char **argv)
         {"incoming", 0, CLI_U32, .dest = &incoming, .lo = 0, .hi = UINT32_MAX - 1u,
          .seen = &has_incoming},
         {"level", 0, CLI_U32, .dest = &lod, .lo = 0, .hi = BW_MAX_LEVEL, .seen = &has_lod},
+        {"rows", 0, CLI_STRING, .dest = &rowsp},
+        {"region", 0, CLI_STRING, .dest = &regionp},
         {NULL}};
     int st;
     if (!cli_parse(argc, argv, opts, decode_help, NULL, &st))
@@ -100,10 +166,16 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_usage("needs -i IN.bwv and -o OUT");
     if (fmt < 0)
         fmt = format_of_name(outp);
-    if ((has_incoming || has_lod) && maskp)
-        return cli_usage("--mask is for a whole decode, not with --incoming or --level");
-    if (has_incoming && has_lod)
-        return cli_usage("give --incoming or --level, not both");
+    int parts = has_incoming + has_lod + !!rowsp + !!regionp;
+    if (parts && maskp)
+        return cli_usage("--mask is for a whole decode, not with --incoming, --rows, --region or "
+                         "--level");
+    if (parts > 1)
+        return cli_usage("give one of --incoming, --rows, --region and --level");
+    double reg[3];
+    size_t nreg = 0;
+    if (regionp && (cli_real_list(regionp, -360, 360, reg, 3, &nreg) != 0 || nreg != 3))
+        return cli_usage("--region THETA,PHI,RADIUS: three numbers, in degrees");
     if (fmt == BWH_OUT_ENVI && !strcmp(outp, "-"))
         return cli_usage("--output-format envi writes a header beside its data: not to '-'");
     uint8_t *p;
@@ -122,13 +194,45 @@ int bw_cmd_decode(int argc, char **argv)
     uint8_t *mask = NULL;
     bwh_salvage_t sv;
     bw_dims_t rowd;
-    int got = has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
-                                                 ints_only ? NULL : &v)
+    uint8_t *rows = NULL;
+    if (rowsp || regionp) {
+        bw_header_t f;
+        int bad = 0;
+        if (bwh_header_salvage(p, len, &f) != BW_OK) {
+            bad = cli_fail("%s: %s", inp, bw_strerror(bw_header_read(p, len, &f)));
+        } else if (!(rows = malloc(f.dims.n_in))) {
+            bad = cli_fail("out of memory");
+        } else if (rowsp) {
+            bad = parse_rows(rowsp, f.dims.n_in, rows);
+        } else {
+            int k = bwh_region_rows(&f, reg[0], reg[1], reg[2], rows);
+            if (k < 0) {
+                bad = cli_fail("%s: %s", inp, bwh_last_error());
+            } else if (!k) {
+                bad = cli_fail("%s: no incoming direction lies within %g degrees of (%g, %g)",
+                               inp, reg[2], reg[0], reg[1]);
+            } else {
+                fprintf(stderr, "decode: %d of %u incoming directions: rows ", k, f.dims.n_in);
+                print_rows(stderr, rows, f.dims.n_in);
+                fputc('\n', stderr);
+            }
+        }
+        if (bad) {
+            free(rows);
+            free(p);
+            return bad;
+        }
+    }
+    int got = rows           ? bwh_decode_rows(p, len, rows, &h, &rowd, &s, ints_only ? NULL : &v)
+              : has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
+                                                   ints_only ? NULL : &v)
               : has_lod    ? bwh_decode_level(p, len, lod, &h, &rowd, &s, ints_only ? NULL : &v)
                            : bwh_decode_salvage(p, len, max_samples, &h, &s,
                                                 ints_only ? NULL : &v, maskp ? &mask : NULL, &sv);
     if (got < 0 || bwh_meta_of_payload(p, len, &h, &meta) != 0 ||
-        (has_incoming && bwh_meta_row(&meta, &h.dims, incoming) != 0)) {
+        (has_incoming && bwh_meta_row(&meta, &h.dims, incoming) != 0) ||
+        (rows && bwh_meta_rows(&meta, &h.dims, rows) != 0)) {
+        free(rows);
         free(p);
         free(s);
         free(v);
@@ -137,7 +241,8 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_fail("%s: %s", inp, bwh_last_error());
     }
     free(p);
-    if (has_incoming || has_lod)
+    free(rows);
+    if (parts)
         h.dims = rowd;
     if (has_lod) { /* the source's missing samples are at its own level */
         free(meta.missing);

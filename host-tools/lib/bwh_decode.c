@@ -12,6 +12,7 @@
 #include "bwh_exact.h"
 #include "bwh_ext.h"
 #include "bwh_logmap.h"
+#include "geodesic.h"
 #include "bwh_values.h"
 
 /* The header of p[len], checked (with salvage, the fields alone when the
@@ -290,19 +291,19 @@ static int header_partial(const uint8_t *p, size_t len, bw_header_t *h, int32_t 
 }
 
 /* Runs a partial decode of rn samples into *r (allocated), the full work
- * area lent to it. */
-typedef bw_status_t (*partial_fn)(bw_ctx_t *ctx, const uint8_t *p, size_t len, uint32_t arg,
-                                  int32_t *out, size_t cap, int32_t *work, size_t wcap,
-                                  bw_header_t *h);
+ * area lent to it; arg points to what the decode takes (a row, a level,
+ * the rows' marks). */
+typedef bw_status_t (*partial_fn)(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
+                                  int32_t *out, size_t cap, int32_t *work, size_t wcap);
 
-static int run_partial(partial_fn fn, const uint8_t *p, size_t len, uint32_t arg,
+static int run_partial(partial_fn fn, const uint8_t *p, size_t len, const void *arg,
                        const bw_header_t *h, size_t rn, int32_t **r)
 {
     size_t n = bw_dims_samples(&h->dims), wb = bw_work_bound(n, h->dims.bands);
     int32_t *w = malloc(wb * sizeof *w);
     bw_ctx_t *ctx = malloc(sizeof *ctx);
     *r = malloc((rn ? rn : 1) * sizeof **r);
-    int st = !w || !*r || !ctx ? BW_ERR_ARG : fn(ctx, p, len, arg, *r, rn, w, wb, NULL);
+    int st = !w || !*r || !ctx ? BW_ERR_ARG : fn(ctx, p, len, arg, *r, rn, w, wb);
     bool oom = !w || !*r || !ctx;
     free(w);
     free(ctx);
@@ -324,10 +325,22 @@ static int partial_values(const uint8_t *p, const bw_header_t *h, const bw_dims_
     return values_of(p, &hp, r, samples, values);
 }
 
-static bw_status_t level_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, uint32_t arg,
-                            int32_t *out, size_t cap, int32_t *work, size_t wcap, bw_header_t *h)
+static bw_status_t level_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
+                            int32_t *out, size_t cap, int32_t *work, size_t wcap)
 {
-    return bw_decode_level(ctx, p, len, arg, out, cap, work, wcap, h);
+    return bw_decode_level(ctx, p, len, *(const unsigned *)arg, out, cap, work, wcap, NULL);
+}
+
+static bw_status_t incoming_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
+                               int32_t *out, size_t cap, int32_t *work, size_t wcap)
+{
+    return bw_decode_incoming(ctx, p, len, *(const uint32_t *)arg, out, cap, work, wcap, NULL);
+}
+
+static bw_status_t rows_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
+                           int32_t *out, size_t cap, int32_t *work, size_t wcap)
+{
+    return bw_decode_rows(ctx, p, len, arg, out, cap, work, wcap, NULL);
 }
 
 int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
@@ -344,7 +357,7 @@ int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *
     lod->level_out = (uint8_t)level;
     lod->n_out = 4u << (2u * level);
     int32_t *r;
-    if (run_partial(level_fn, p, len, level, h, bw_dims_samples(lod), &r) != 0)
+    if (run_partial(level_fn, p, len, &level, h, bw_dims_samples(lod), &r) != 0)
         return -1;
     return partial_values(p, h, lod, r, samples, values);
 }
@@ -362,7 +375,7 @@ int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *
                         d->shape == BW_SHAPE_SPECTRA ? "spectrum" : "incoming direction", in,
                         d->n_in - 1u);
     int32_t *r;
-    if (run_partial(bw_decode_incoming, p, len, in, h, (size_t)d->n_out * d->bands, &r) != 0)
+    if (run_partial(incoming_fn, p, len, &in, h, (size_t)d->n_out * d->bands, &r) != 0)
         return -1;
     memset(row, 0, sizeof *row);
     if (d->shape == BW_SHAPE_SPECTRA)
@@ -370,4 +383,60 @@ int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *
     else
         bw_dims_make(row, BW_SHAPE_REFLECTANCE, d->level_out, 0, 1, d->bands);
     return partial_values(p, h, row, r, samples, values);
+}
+
+int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header_t *h,
+                    bw_dims_t *sub, int32_t **samples, float **values)
+{
+    if (header_partial(p, len, h, samples, values) != 0)
+        return -1;
+    const bw_dims_t *d = &h->dims;
+    if (d->shape == BW_SHAPE_REFLECTANCE)
+        return bwh_fail("a reflectance has no incoming directions to choose from");
+    if (h->basis == BW_BASIS_PRED)
+        return bwh_fail("spectra coded by prediction decode one at a time (--incoming K) or "
+                        "whole");
+    uint32_t k = 0;
+    for (uint32_t t = 0; t < d->n_in; t++)
+        k += rows[t] != 0u;
+    if (!k)
+        return bwh_fail("no %s chosen", d->shape == BW_SHAPE_SPECTRA ? "spectrum"
+                                                                     : "incoming direction");
+    int32_t *r;
+    if (run_partial(rows_fn, p, len, rows, h, (size_t)k * d->n_out * d->bands, &r) != 0)
+        return -1;
+    memset(sub, 0, sizeof *sub);
+    if (d->shape == BW_SHAPE_SPECTRA)
+        bw_dims_make(sub, BW_SHAPE_SPECTRA, 0, 0, k, d->bands);
+    else
+        bw_dims_make(sub, BW_SHAPE_BRDF_ISO, d->level_out, 0, k, d->bands);
+    return partial_values(p, h, sub, r, samples, values);
+}
+
+int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, double radius_deg,
+                    uint8_t *rows)
+{
+    const bw_dims_t *d = &h->dims;
+    if (d->shape != BW_SHAPE_BRDF_FULL)
+        return bwh_fail("a region of the incoming hemisphere needs a full BRDF (a grid of "
+                        "incoming directions)");
+    if (!(theta_deg >= 0 && theta_deg <= 90) || !(phi_deg >= -360 && phi_deg <= 360) ||
+        !(radius_deg >= 0 && radius_deg <= 180))
+        return bwh_fail("a region is THETA (0..90), PHI (-360..360) and a RADIUS (0..180), "
+                        "in degrees");
+    double(*c)[3] = malloc((size_t)d->n_in * sizeof *c);
+    if (!c || bwh_grid_centres(d->level_in, c, NULL) != 0) {
+        free(c);
+        return bwh_fail("out of memory");
+    }
+    const double rad = 3.14159265358979323846 / 180;
+    double t = theta_deg * rad, f = phi_deg * rad;
+    double u[3] = {sin(t) * cos(f), sin(t) * sin(f), cos(t)}, lim = cos(radius_deg * rad);
+    int k = 0;
+    for (uint32_t i = 0; i < d->n_in; i++) {
+        rows[i] = c[i][0] * u[0] + c[i][1] * u[1] + c[i][2] * u[2] >= lim;
+        k += rows[i];
+    }
+    free(c);
+    return k;
 }

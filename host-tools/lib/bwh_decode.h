@@ -60,6 +60,25 @@ int bwh_decode_salvage(const uint8_t *p, size_t len, size_t max_samples, bw_head
 int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,
                         int32_t **samples, float **values);
 
+/* The incoming directions (rows) marked non-zero in rows[n_in] of a BRDF,
+ * or the spectra so marked of a set of spectra, decoded together
+ * (bw_decode_rows: only the segments and blocks they depend on, once):
+ * *samples and *values as bwh_decode_limit's for the marked rows in
+ * ascending order, *sub their dimensions (a BRDF of that many incoming
+ * directions, or that many spectra). Not with the reciprocity step, for
+ * spectra coded by prediction, nor a float payload that keeps bits in a
+ * tail. 0, or -1. */
+int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header_t *h,
+                    bw_dims_t *sub, int32_t **samples, float **values);
+
+/* Marks in rows[n_in] (h from bw_header_read or bwh_decode_*) the incoming
+ * directions of a full BRDF whose triangles' centres lie within radius_deg
+ * of the direction (theta_deg from the normal, phi_deg from the x axis):
+ * a region of the incoming hemisphere. Returns how many, or -1 (not a full
+ * BRDF, angles out of range). */
+int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, double radius_deg,
+                    uint8_t *rows);
+
 /* A directional measurement at a coarser outgoing level (bw_decode_level):
  * *samples and *values as bwh_decode_limit's for n_in * 4 4^level * bands
  * samples, *lod the dimensions of that level. Not with the reciprocity

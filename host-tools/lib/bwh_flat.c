@@ -48,10 +48,10 @@ int bwh_meta_area_from_json(const char *json, const bw_dims_t *d, uint8_t **area
     return rc;
 }
 
-/* The metadata of a payload (of row `row` alone, -1: all) as JSON. The
- * header as bwh_header_salvage reads it: the record is in what the segment
- * table's CRC vouches for. */
-static int meta_json(const uint8_t *p, size_t len, int64_t row, char **json)
+/* The metadata of a payload (of row `row` alone, or of the rows marked in
+ * rows; -1 and NULL: all) as JSON. The header as bwh_header_salvage reads
+ * it: the record is in what the segment table's CRC vouches for. */
+static int meta_json(const uint8_t *p, size_t len, int64_t row, const uint8_t *rows, char **json)
 {
     *json = NULL;
     bw_header_t h;
@@ -61,7 +61,8 @@ static int meta_json(const uint8_t *p, size_t len, int64_t row, char **json)
     bwh_meta_t m;
     if (bwh_meta_of_payload(p, len, &h, &m) != 0)
         return -1;
-    int rc = (row >= 0 && bwh_meta_row(&m, &h.dims, (uint32_t)row)) || bwh_meta_to_json(&m, json)
+    int rc = (row >= 0 && bwh_meta_row(&m, &h.dims, (uint32_t)row)) ||
+                     (rows && bwh_meta_rows(&m, &h.dims, rows)) || bwh_meta_to_json(&m, json)
                  ? -1
                  : 0;
     bwh_meta_free(&m);
@@ -70,12 +71,17 @@ static int meta_json(const uint8_t *p, size_t len, int64_t row, char **json)
 
 int bwh_meta_json_of_payload(const uint8_t *p, size_t len, char **json)
 {
-    return meta_json(p, len, -1, json);
+    return meta_json(p, len, -1, NULL, json);
 }
 
 int bwh_meta_row_json(const uint8_t *p, size_t len, uint32_t in, char **json)
 {
-    return meta_json(p, len, in, json);
+    return meta_json(p, len, in, NULL, json);
+}
+
+int bwh_meta_rows_json(const uint8_t *p, size_t len, const uint8_t *rows, char **json)
+{
+    return meta_json(p, len, -1, rows, json);
 }
 
 int bwh_read_flat(const char *const *paths, int n, const char *format, int level, int channel,

@@ -32,6 +32,9 @@ int bwh_meta_area_from_json(const char *json, const bw_dims_t *d, uint8_t **area
 int bwh_meta_json_of_payload(const uint8_t *p, size_t len, char **json);
 /* The same for row `in` alone (bwh_meta_row): what `decode --incoming` keeps. */
 int bwh_meta_row_json(const uint8_t *p, size_t len, uint32_t in, char **json);
+/* The same for the rows marked in rows[n_in] (bwh_meta_rows): what
+ * `decode --rows` keeps. */
+int bwh_meta_rows_json(const uint8_t *p, size_t len, const uint8_t *rows, char **json);
 
 /* Reads the files paths[n] (bwh_measure_read; format a name of
  * bwh_input.h, NULL or "auto": detected; level -1: the default; channel,

@@ -270,51 +270,77 @@ int bwh_meta_append_spectra(bwh_meta_t *d, size_t n_dst, const bwh_meta_t *s, si
 }
 
 /* keeps item k of a list of one per row (none: stays none) */
-static int keep_number(bwh_numbers_t *l, size_t k)
+/* Whether row i is kept: marked in rows, or (rows NULL) row k. */
+static int kept(const uint8_t *rows, size_t k, size_t i)
 {
-    if (l->n <= k) {
+    return rows ? rows[i] != 0 : i == k;
+}
+
+/* A per-row list cut to the rows kept, in order (a list of another length
+ * than the rows' is dropped). */
+static void keep_numbers(bwh_numbers_t *l, size_t n_rows, const uint8_t *rows, size_t k)
+{
+    if (l->n != n_rows) {
         free_numbers(l);
-        return 0;
+        return;
     }
-    l->v[0] = l->v[k];
-    l->n = 1;
-    return 0;
+    size_t j = 0;
+    for (size_t i = 0; i < l->n; i++)
+        if (kept(rows, k, i))
+            l->v[j++] = l->v[i];
+    l->n = j;
 }
 
-static int keep_string(bwh_strings_t *l, size_t k)
+static void keep_strings(bwh_strings_t *l, size_t n_rows, const uint8_t *rows, size_t k)
 {
-    if (l->n <= k) {
+    if (l->n != n_rows) {
         free_strings(l);
-        return 0;
+        return;
     }
-    char *x = l->s[k];
-    l->s[k] = NULL;
-    free_strings(l);
-    l->s = calloc(1, sizeof(char *));
-    if (!l->s) {
-        free(x);
-        return bwh_fail("out of memory");
+    size_t j = 0;
+    for (size_t i = 0; i < l->n; i++) {
+        if (kept(rows, k, i)) {
+            l->s[j++] = l->s[i];
+        } else {
+            free(l->s[i]);
+        }
     }
-    l->s[0] = x;
-    l->n = 1;
-    return 0;
+    l->n = j;
 }
 
-int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in)
+/* The rows kept of every per-row list; the missing values' list dropped
+ * (their positions are the source's). */
+static void keep_rows(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *rows, size_t k)
 {
     free(m->missing);
     m->missing = NULL;
     m->n_missing = 0;
     m->present &= ~BWH_M_MISSING;
+    size_t n = d->n_in;
     if (d->shape != BW_SHAPE_SPECTRA) {
-        free_numbers(&m->incidence);
-        return 0;
+        if (rows && d->shape == BW_SHAPE_BRDF_ISO)
+            keep_numbers(&m->incidence, n, rows, k);
+        else
+            free_numbers(&m->incidence);
+        return;
     }
-    return keep_string(&m->spectrum_names, in) || keep_number(&m->spectrum_times, in) ||
-                   keep_number(&m->spectrum_lat, in) || keep_number(&m->spectrum_lon, in) ||
-                   keep_number(&m->spectrum_alt, in)
-               ? -1
-               : 0;
+    keep_strings(&m->spectrum_names, n, rows, k);
+    keep_numbers(&m->spectrum_times, n, rows, k);
+    keep_numbers(&m->spectrum_lat, n, rows, k);
+    keep_numbers(&m->spectrum_lon, n, rows, k);
+    keep_numbers(&m->spectrum_alt, n, rows, k);
+}
+
+int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in)
+{
+    keep_rows(m, d, NULL, in);
+    return 0;
+}
+
+int bwh_meta_rows(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *rows)
+{
+    keep_rows(m, d, rows, 0);
+    return 0;
 }
 
 /* ---- names -------------------------------------------------------------- */

@@ -151,6 +151,10 @@ int bwh_meta_append_spectra(bwh_meta_t *dst, size_t n_dst, const bwh_meta_t *src
  * direction of a BRDF becomes a reflectance: no incidence list), missing
  * runs left out. 0, or -1. */
 int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in);
+/* The same for the rows marked in rows[n_in] (bwh_decode_rows): a set of
+ * spectra keeps the marked spectra's names, times and locations, an
+ * isotropic BRDF the marked incidences, in order. 0, or -1. */
+int bwh_meta_rows(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *rows);
 
 /* The metadata fits a measurement of these dimensions: one wavelength,
  * bandwidth and band name per band, one incidence angle per incoming

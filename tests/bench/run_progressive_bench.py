@@ -199,6 +199,78 @@ def partial_rows():
     return rows
 
 
+def region_rows():
+    """A region of the Ward set's incoming hemisphere (bwh_region_rows, then
+    bwh_decode_rows) against the whole decode and against decoding its rows
+    one at a time, through the library, in this run (best of 5 each); each
+    region's rows checked against the whole decode's."""
+    import ctypes
+    sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
+    from brdfwave._lib import Dims, Header, free, lib
+    L = lib()
+    inputs = {k: inp for k, _, inp, _ in sets()}
+    out = []
+    for what, args in (("no symmetry step, 1024 segments", ["--symmetry", "none"]),
+                       ("mirror, 1024 segments", ["--symmetry", "mirror"])):
+        pth = tmp("region_%d.bwv" % len(out))
+        run(["encode", "-q"] + inputs["ward"] + args +
+            ["--segments", "1024", "--max-error", "0.001", "-o", pth])
+        p = open(pth, "rb").read()
+
+        def timed(fn):
+            best, got = None, None
+            for _ in range(5):
+                t0 = time.perf_counter()
+                got = fn()
+                t = time.perf_counter() - t0
+                best = t if best is None else min(best, t)
+            return best, got
+
+        def whole():
+            h, v = Header(), ctypes.POINTER(ctypes.c_float)()
+            if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
+                sys.exit("bench-progressive: whole decode failed")
+            a = np.ctypeslib.as_array(v, shape=(h.dims.n_in * h.dims.n_out,)).copy()
+            free(v)
+            return a.reshape(h.dims.n_in, h.dims.n_out), h
+
+        tw, (ref, hw) = timed(whole)
+        for theta, phi, radius in ((30, 0, 5), (30, 0, 10), (30, 0, 20), (45, 60, 45)):
+            marks = np.zeros(hw.dims.n_in, dtype=np.uint8)
+
+            def region():
+                h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
+                if (L.bwh_region_rows(ctypes.byref(hw), theta, phi, radius,
+                                      marks.ctypes.data) <= 0 or
+                        L.bwh_decode_rows(p, len(p), marks.ctypes.data, ctypes.byref(h),
+                                          ctypes.byref(d), None, ctypes.byref(v)) != 0):
+                    sys.exit("bench-progressive: region decode failed")
+                a = np.ctypeslib.as_array(v, shape=(d.n_in * d.n_out,)).copy()
+                free(v)
+                return a.reshape(d.n_in, d.n_out)
+
+            def one_by_one():
+                rows = []
+                for k in np.flatnonzero(marks):
+                    h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
+                    if L.bwh_decode_incoming(p, len(p), int(k), ctypes.byref(h), ctypes.byref(d),
+                                             None, ctypes.byref(v)) != 0:
+                        sys.exit("bench-progressive: decode of row %d failed" % k)
+                    rows.append(np.ctypeslib.as_array(v, shape=(d.n_out,)).copy())
+                    free(v)
+                return rows
+
+            tr, got = timed(region)
+            to, _ = timed(one_by_one)
+            idx = np.flatnonzero(marks)
+            out.append({"payload": what, "bytes": len(p),
+                        "region": "(%g, %g), %g deg" % (theta, phi, radius), "rows": len(idx),
+                        "whole_ms": 1e3 * tw, "region_ms": 1e3 * tr, "ratio": tw / tr,
+                        "one_ms": 1e3 * to, "same": "yes" if np.array_equal(got, ref[idx])
+                        else "NO"})
+    return out
+
+
 def lod_rows():
     """A coarser outgoing level (bwh_decode_level) against the whole decode,
     in this run (best of 5 each)."""
@@ -394,6 +466,7 @@ def main():
     emb_sizes, emb_prefix = embed_rows()
     part = partial_rows()
     lods = lod_rows()
+    regs = region_rows()
     refl = [x for x in sets() if x[0] == "refl81"][0]
     dev = device_rows(refl[2])
     ram = stream_ram()
@@ -469,7 +542,7 @@ def main():
         else:
             md.append("| %s | 100 %% | %d | %.4g %% | %.4g | %s | | | | |" % (
                 r["set"], r["bytes"], r["rel"], r["rmse"], r["monotone"]))
-    md += ["", "## Decoding one incoming direction", "",
+    md += ["", "## Decoding one incoming direction, a region, a coarser level", "",
            "One incoming direction of a BRDF (one spectrum of a set) decoded alone "
            "(`bwh_decode_incoming`, `decode --incoming K`, `decode(..., incoming=K)`) against "
            "the whole decode (`bwh_decode_limit`), float values out, in this run: the best of 5 "
@@ -485,6 +558,18 @@ def main():
         md.append("| %s | %s | %d | %d | %.2f ms | %.3f ms | %.1f x | %s |" % (
             r["set"], r["payload"], r["bytes"], r["rows"], r["whole_ms"], r["row_ms"],
             r["ratio"], r["same"]))
+    md += ["", "A region of the Ward set's incoming hemisphere: the incoming directions whose "
+           "triangles' centres lie within a radius of a direction (`bwh_region_rows`, then "
+           "`bwh_decode_rows`; `decode --region THETA,PHI,RADIUS`, `decode(..., region=)`), "
+           "against the whole decode and against its rows decoded one at a time "
+           "(`bwh_decode_incoming` each), float values out, the best of 5 each, in this run; "
+           "*same*: the rows equal those of the whole decode.", "",
+           "| payload | bytes | region | rows | whole decode | region | ratio | row by row | "
+           "same |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in regs:
+        md.append("| %s | %d | %s | %d | %.2f ms | %.3f ms | %.1f x | %.3f ms | %s |" % (
+            r["payload"], r["bytes"], r["region"], r["rows"], r["whole_ms"], r["region_ms"],
+            r["ratio"], r["one_ms"], r["same"]))
     md += ["", "A coarser outgoing level (`bwh_decode_level`, `decode --level L`, "
            "`decode(..., level=L)`) against the whole decode, the best of 5 each, in this run "
            "(level 4 payloads):", "",
@@ -517,7 +602,8 @@ def main():
                                                   (ram.get("stream", 0) + mem) / 1024.0)]
     bad = ([r for r in loss if r["exact_elsewhere"] != "yes"] +
            [r for r in emb_prefix if r.get("monotone", "yes") != "yes"] +
-           [r for r in dev if r["same"] != "yes"] + [r for r in part if r["same"] != "yes"])
+           [r for r in dev if r["same"] != "yes"] + [r for r in part if r["same"] != "yes"] +
+           [r for r in regs if r["same"] != "yes"])
     md += ["", "Exact outside the lost part in every case: %s." % ("yes" if not bad else
                                                                     "NO (%d rows)" % len(bad))]
     open(os.path.join(OUT, "progressive.md"), "w").write("\n".join(md) + "\n")

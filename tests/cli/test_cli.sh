@@ -609,6 +609,37 @@ sys.exit(0 if np.array_equal(a[5], r) else 1)" && ok || bad "decode --incoming 5
 expect_error "decode --incoming past the last" "$BW" decode -i "$T/seg.bwv" --incoming 8 -o "$T/row8.f32"
 grep -q "past the last" "$T/err" && ok || bad "--incoming 8 message: $(cat "$T/err")"
 expect_error "decode --incoming with --mask" "$BW" decode -i "$T/seg.bwv" --incoming 1 --mask "$T/m" -o "$T/row1.f32"
+# a set of rows: those rows of the whole decode, in order; a region of a
+# full BRDF's incoming hemisphere: the rows it names on stderr
+expect_ok "decode --rows" "$BW" decode -i "$T/seg.bwv" --rows 6,1,3-4 -o "$T/rows.f32"
+$PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/segall.f32', '<f4').reshape(8, 1024)
+r = np.fromfile('$T/rows.f32', '<f4').reshape(-1, 1024)
+sys.exit(0 if np.array_equal(a[[1, 3, 4, 6]], r) else 1)" && ok || bad "decode --rows 6,1,3-4 is not rows 1, 3, 4 and 6 of the whole decode"
+for r in 4-2 8 1,,2 x 3- -1; do
+    expect_status "decode --rows $r" 2 "$BW" decode -i "$T/seg.bwv" --rows "$r" -o "$T/x.f32"
+done
+expect_status "decode --rows with --incoming" 2 "$BW" decode -i "$T/seg.bwv" --rows 1 --incoming 1 -o "$T/x.f32"
+expect_status "decode --region not three numbers" 2 "$BW" decode -i "$T/seg.bwv" --region 10,0 -o "$T/x.f32"
+expect_error "decode --region of incidences" "$BW" decode -i "$T/seg.bwv" --region 10,0,20 -o "$T/x.f32"
+grep -q "full BRDF" "$T/err" && ok || bad "--region on a BRDF of incidences: $(cat "$T/err")"
+"$BW" synth --model ward --ax 0.3 --ay 0.1 --kd 0.5 --ks 0.5 --level 2 --level-in 2 -o "$T/wr.f32" 2>/dev/null
+"$BW" encode -q -i "$T/wr.f32" --bands 1 --level 2 --level-in 2 --symmetry mirror --segments 64 --max-error 0.001 -o "$T/wr.bwv"
+"$BW" decode -i "$T/wr.bwv" -o "$T/wrall.f32" 2>/dev/null
+expect_ok "decode --region" "$BW" decode -i "$T/wr.bwv" --region 40,100,25 -o "$T/wreg.f32"
+rows=$(sed -n 's/.*: rows //p' "$T/err")
+[ -n "$rows" ] && "$BW" decode -i "$T/wr.bwv" --rows "$rows" -o "$T/wrows.f32" 2>/dev/null &&
+    cmp -s "$T/wreg.f32" "$T/wrows.f32" && $PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/wrall.f32', '<f4').reshape(64, 64)
+r = np.fromfile('$T/wreg.f32', '<f4').reshape(-1, 64)
+idx = []
+for it in '$rows'.split(','):
+    lo, _, hi = it.partition('-')
+    idx += range(int(lo), int(hi or lo) + 1)
+sys.exit(0 if 0 < len(idx) < 64 and np.array_equal(a[idx], r) else 1)" && ok || bad "decode --region: not the rows it names ($rows) of the whole decode"
+expect_error "decode --region with nothing inside" "$BW" decode -i "$T/wr.bwv" --region 0,0,0.5 -o "$T/x.f32"
 # a coarser level: 8 incidences x 64 triangles, each near the mean of its 16
 expect_ok "decode --level 2" "$BW" decode -i "$T/seg.bwv" --level 2 -o "$T/lod2.f32"
 $PY -c "

@@ -142,6 +142,31 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                         (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
                     "bw_decode_incoming differs from the whole decode's row", st);
     }
+    /* a set of rows (every third from one the input picks): a known
+     * status; on a whole payload, those rows of the whole decode (or a
+     * refusal it documents) */
+    if (hf.dims.n_in && hf.dims.shape != BW_SHAPE_REFLECTANCE && hf.dims.n_in <= n) {
+        static bw_ctx_t sctx;
+        uint8_t *marks = calloc(hf.dims.n_in, 1);
+        if (!marks)
+            abort();
+        size_t row = (size_t)hf.dims.n_out * hf.dims.bands, k = 0;
+        for (uint32_t t = (uint32_t)(size % 3u); t < hf.dims.n_in; t += 3u)
+            marks[t] = 1;
+        int st = bw_decode_rows(&sctx, data, size, marks, s2, n, w2, wb, NULL);
+        require(known(st), "bw_decode_rows: unknown status", st);
+        if (st1 == BW_OK && st == BW_OK)
+            for (uint32_t t = 0; t < hf.dims.n_in; t++)
+                if (marks[t])
+                    require(memcmp(s2 + k++ * row, s1 + (size_t)t * row, row * sizeof *s1) == 0,
+                            "bw_decode_rows differs from the whole decode's rows", st);
+        if (st1 == BW_OK)
+            require(st == BW_OK ||
+                        (st == BW_ERR_ARG && ((hf.flags & BW_FLAG_RECIPROCAL) ||
+                                              hf.basis == BW_BASIS_PRED)),
+                    "bw_decode_rows refuses a whole payload", st);
+        free(marks);
+    }
     /* a coarser level: a known status, and on a whole payload it decodes
      * (or is refused as documented) */
     if (hf.dims.shape != BW_SHAPE_SPECTRA && hf.dims.level_out <= BW_MAX_LEVEL) {

@@ -194,6 +194,35 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
             pass
         else:
             raise AssertionError("incoming=%d accepted" % bad_row)
+    # a set of rows: those rows of the whole decode, in order, named in .rows
+    s = brdfwave.decode_bytes(p, rows=[6, 1, 3])
+    assert s.shape == (3, 1024, 1) and list(s.rows) == [1, 3, 6], (s.shape, s.rows)
+    assert np.array_equal(np.asarray(s), np.asarray(whole)[[1, 3, 6]])
+    mk = np.zeros(8, dtype=bool)
+    mk[2:5] = True
+    assert np.array_equal(np.asarray(brdfwave.decode_bytes(p, rows=mk)), np.asarray(whole)[2:5])
+    for bad in (dict(rows=[8]), dict(rows=[]), dict(rows=[[1]]), dict(rows=np.ones(7, bool)),
+                dict(rows=[1], incoming=1), dict(region=(10, 0, 30))):
+        try:
+            brdfwave.decode_bytes(p, **bad)
+        except brdfwave.BrdfwaveError:
+            pass
+        else:
+            raise AssertionError("%r accepted" % (bad,))
+    # a region of a full BRDF's incoming hemisphere: the rows whose
+    # directions lie within the radius, as in the whole decode
+    bw("synth", "--model", "ward", "--ax", "0.3", "--ay", "0.1", "--level", "2", "--level-in",
+       "2", "-o", tmp("wr.f32"))
+    w = np.fromfile(tmp("wr.f32"), dtype="<f4").reshape(64, 64, 1)
+    q = brdfwave.encode(w, level=2, level_in=2, max_error=0.001, segments=64, symmetry="mirror")
+    wall = np.asarray(brdfwave.decode_bytes(q))
+    g = brdfwave.decode_bytes(q, region=(40, 100, 25))
+    u = np.array([np.sin(np.radians(40)) * np.cos(np.radians(100)),
+                  np.sin(np.radians(40)) * np.sin(np.radians(100)), np.cos(np.radians(40))])
+    inside = np.flatnonzero(brdfwave.decode_bytes(q).incoming @ u >= np.cos(np.radians(25)))
+    assert 0 < len(inside) < 64 and list(g.rows) == list(inside), (g.rows, inside)
+    assert np.array_equal(np.asarray(g), wall[inside])
+    assert np.all(g.incoming @ u >= np.cos(np.radians(25)))
     for bad in (0, -1, 2.5, 1 << 29):
         try:
             brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=bad)

@@ -439,15 +439,110 @@ static void one_incoming_direction_decodes_alone_as_in_the_whole(void **state)
     free(w);
 }
 
+/* A set of rows (a region of the incoming hemisphere, any subset) decoded
+ * together is those rows of the whole decode, in ascending order, with
+ * segments or without: every row, none, a run of neighbouring rows (a
+ * region), a scattered third, the last row alone (a full BRDF's mirrored
+ * half without its partner). */
+static void one_case_rows(const bw_dims_t *d, const bw_params_t *pa, const int32_t *x,
+                          const char *what)
+{
+    if (d->shape == BW_SHAPE_REFLECTANCE || (pa->flags & BW_FLAG_RECIPROCAL) ||
+        pa->basis == BW_BASIS_PRED)
+        return;
+    size_t n = bw_dims_samples(d), row = (size_t)d->n_out * d->bands;
+    size_t wb = bw_work_bound(n, d->bands);
+    uint32_t ni = d->n_in;
+    for (int seg = 0; seg < 2; seg++) {
+        bw_params_t p = *pa;
+        if (!seg)
+            p.segment_vectors = 0;
+        payload_t pl;
+        if (test_encode(d, &p, x, &pl) != BW_OK)
+            fail_msg("%s: encode", what);
+        int32_t *all = xmalloc(n * 4), *got = xmalloc(n * 4 + 4), *w = xmalloc(wb * 4);
+        uint8_t *mark = xmalloc(ni);
+        assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
+        static bw_ctx_t ctx;
+        for (unsigned pat = 0; pat < 5; pat++) {
+            size_t nm = 0;
+            for (uint32_t t = 0; t < ni; t++) {
+                mark[t] = pat == 0   ? 1u
+                          : pat == 1 ? 0u
+                          : pat == 2 ? t >= ni / 3u && t < ni / 3u + (ni + 3u) / 4u
+                          : pat == 3 ? (t * 2654435761u >> 7) % 3u == 0u
+                                     : t == ni - 1u;
+                nm += mark[t];
+            }
+            memset(w, 0x5A, wb * 4); /* nothing may come from stale work */
+            bw_status_t st = bw_decode_rows(&ctx, pl.p, pl.len, mark, got, nm * row, w, wb, NULL);
+            if (st != BW_OK)
+                fail_msg("%s%s: rows %u: %s", what, seg ? "" : " (one body)", pat,
+                         bw_strerror(st));
+            size_t k = 0;
+            for (uint32_t t = 0; t < ni; t++)
+                if (mark[t] && memcmp(got + k++ * row, all + (size_t)t * row, row * 4))
+                    fail_msg("%s%s: rows %u: row %u differs from the whole decode's", what,
+                             seg ? "" : " (one body)", pat, t);
+            if (nm && bw_decode_rows(&ctx, pl.p, pl.len, mark, got, nm * row - 1u, w, wb, NULL) !=
+                          BW_ERR_WORK)
+                fail_msg("%s: rows %u: a short output accepted", what, pat);
+        }
+        free(all);
+        free(got);
+        free(w);
+        free(mark);
+        free(pl.p);
+    }
+}
+
+static void a_set_of_rows_decodes_as_in_the_whole(void **state)
+{
+    (void)state;
+    if (!segments_built())
+        skip();
+    assert_true(for_each_case(one_case_rows) > (quick() ? 100u : 200u));
+    /* refused: a reflectance, reciprocity, no mark array */
+    static bw_ctx_t ctx;
+    bw_dims_t d;
+    uint8_t mark[16];
+    int32_t got[64];
+    memset(mark, 1, sizeof mark);
+    for (int k = 0; k < 2; k++) {
+        if (k)
+            assert_int_equal(bw_dims_make(&d, BW_SHAPE_BRDF_FULL, 1, 1, 0, 2), BW_OK);
+        else
+            assert_int_equal(bw_dims_make(&d, BW_SHAPE_REFLECTANCE, 1, 0, 1, 2), BW_OK);
+        size_t n = bw_dims_samples(&d), wb = bw_work_bound(n, 2);
+        int32_t *x = xmalloc(n * 4), *w = xmalloc(wb * 4);
+        fill(x, &d);
+        bw_params_t pa;
+        memset(&pa, 0, sizeof pa);
+        pa.basis = BW_BASIS_HAAR;
+        pa.flags = k ? BW_FLAG_RECIPROCAL : 0u;
+        payload_t pl;
+        assert_int_equal(test_encode(&d, &pa, x, &pl), BW_OK);
+        assert_int_equal(bw_decode_rows(&ctx, pl.p, pl.len, mark, got, 64, w, wb, NULL),
+                         BW_ERR_ARG);
+        assert_int_equal(bw_decode_rows(&ctx, pl.p, pl.len, NULL, got, 64, w, wb, NULL),
+                         BW_ERR_ARG);
+        free(pl.p);
+        free(x);
+        free(w);
+    }
+}
+
 /* A coarser outgoing level is the whole decode's samples taken up the
  * outgoing Bio-Haar tree to that level (the lifting, on the spectral
  * coefficients of each vector, then back): exactly, as the integer lifting
  * inverts exactly (for a full BRDF too: the incoming steps come first in
  * both); with the mirror step, whose differences are taken at the finest
  * level while the coarse decode adds the partners back at its own, within
- * 4 prequantised units a level (the roundings of the lifting, spectral and
- * directional, on the differences and on the partners; 4 at most here). Its
- * own level is the whole decode. */
+ * 4 prequantised units a level, 8 with the 9/7 (the roundings of the
+ * lifting, spectral and directional, on the differences and on the
+ * partners: the 9/7's four lifting steps and scaling round more; over
+ * twelve seeds of these cases at most 2 a level with Haar, 3 with the 5/3,
+ * 6 with the 9/7). Its own level is the whole decode. */
 static double worst_mirror = 0;
 
 static void coarse_reference(const bw_dims_t *d, unsigned basis, const int32_t *all,
@@ -516,7 +611,8 @@ static void one_case_level(const bw_dims_t *d, const bw_params_t *pa, const int3
             double e = fabs(lod[k] - ref[k]);
             if (mirror && e > worst_mirror * h.prequant)
                 worst_mirror = e / h.prequant;
-            if (mirror ? e > 4.0 * (L - l) * h.prequant : e != 0.0)
+            if (mirror ? e > (h.basis == BW_BASIS_97 ? 8.0 : 4.0) * (L - l) * h.prequant
+                       : e != 0.0)
                 fail_msg("%s: level %u, value %zu: %d, taken up the tree %g", what, l, k, lod[k],
                          ref[k]);
         }
@@ -546,6 +642,7 @@ int main(void)
         cmocka_unit_test(salvage_reports_the_lost_segments_and_keeps_the_rest_exact),
         cmocka_unit_test(a_body_in_one_piece_is_not_salvaged),
         cmocka_unit_test(one_incoming_direction_decodes_alone_as_in_the_whole),
+        cmocka_unit_test(a_set_of_rows_decodes_as_in_the_whole),
         cmocka_unit_test(a_coarser_level_is_the_whole_decode_taken_up_the_tree),
         cmocka_unit_test(the_streaming_encoder_writes_the_same_segments),
     };

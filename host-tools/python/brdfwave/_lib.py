@@ -150,6 +150,17 @@ def lib():
     L.bwh_decode_level.restype = ctypes.c_int
     L.bwh_decode_level.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint, P(Header),
                                    P(Dims), P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
+    L.bwh_decode_rows.restype = ctypes.c_int
+    L.bwh_decode_rows.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, P(Header),
+                                  P(Dims), P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
+    L.bwh_region_rows.restype = ctypes.c_int
+    L.bwh_region_rows.argtypes = [P(Header), ctypes.c_double, ctypes.c_double, ctypes.c_double,
+                                  ctypes.c_void_p]
+    L.bwh_header_salvage.restype = ctypes.c_int
+    L.bwh_header_salvage.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
+    L.bwh_meta_rows_json.restype = ctypes.c_int
+    L.bwh_meta_rows_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p,
+                                     P(ctypes.c_char_p)]
     L.bwh_meta_row_json.restype = ctypes.c_int
     L.bwh_meta_row_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
                                     P(ctypes.c_char_p)]

@@ -81,10 +81,12 @@ class Measurement(np.ndarray):
                        (rebuilt from coarser levels), 2 missing; else None
       segments, lost_segments   decode(..., salvage=True): the payload's segments,
                        and how many of them were lost
+      rows             decode(..., rows=) or region=: the source's rows decoded
+                       (indices, ascending), else None
     """
 
     _ATTRS = ("metadata", "header", "layout", "level", "level_in", "directions", "incoming",
-              "guarantee", "mask", "segments", "lost_segments")
+              "guarantee", "mask", "segments", "lost_segments", "rows")
 
     def __new__(cls, values, metadata=None, layout=None, level=None, level_in=None,
                 header=None, wavelengths=None):
@@ -99,7 +101,7 @@ class Measurement(np.ndarray):
         obj.directions = _directions(level) if layout and layout != "spectra" else None
         obj.incoming = _directions(level_in) if layout == "brdf-full" else None
         obj.guarantee = None
-        obj.mask = obj.segments = obj.lost_segments = None
+        obj.mask = obj.segments = obj.lost_segments = obj.rows = None
         return obj
 
     def __array_finalize__(self, obj):
@@ -197,14 +199,14 @@ def _put_missing(values, meta):
 
 
 def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0, salvage=False,
-                 incoming=None, level=None):
+                 incoming=None, level=None, rows=None, region=None):
     """Decodes a payload held in memory; see decode()."""
     return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples,
-                  salvage=salvage, incoming=incoming, level=level)
+                  salvage=salvage, incoming=incoming, level=level, rows=rows, region=region)
 
 
 def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=False,
-           incoming=None, level=None):
+           incoming=None, level=None, rows=None, region=None):
     """Decodes a payload (bytes, or the path of a payload file) to a
     Measurement: float32 values (integers=True: the codec's int32 samples) in
     the layout of `brdfwave decode`, [incoming][outgoing][band], with the
@@ -225,11 +227,22 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     segments, only the segments that hold it); not for a full BRDF coded
     with the reciprocity step. level=L: a directional measurement at a
     coarser outgoing level L (level of detail), each triangle's value the
-    mean of the samples below it, decoding only the coarser levels."""
+    mean of the samples below it, decoding only the coarser levels.
+    rows=[K, ...] (indices, or a boolean array of n_in): only those incoming
+    directions of a BRDF, or those spectra, in ascending order, as a BRDF
+    of that many incoming directions ((k, n_out, bands)) or that many
+    spectra, decoding what they share once; region=(theta, phi, radius), in
+    degrees: the incoming directions of a full BRDF whose triangles'
+    centres lie within radius of the direction (theta, phi). With either,
+    the Measurement's `rows` names the source rows decoded (and `incoming`
+    their directions, for a full BRDF)."""
     payload, path = _read_bytes(source)
     try:
-        if (incoming is not None) + (level is not None) + bool(salvage) > 1:
-            raise BrdfwaveError("give one of incoming=, level= and salvage=True")
+        if ((incoming is not None) + (level is not None) + bool(salvage) + (rows is not None) +
+                (region is not None) > 1):
+            raise BrdfwaveError("give one of incoming=, rows=, region=, level= and salvage=True")
+        if rows is not None or region is not None:
+            return _decode_rows(payload, rows, region, wavelengths, integers)
         if incoming is not None:
             return _decode_row(payload, incoming, wavelengths, integers)
         if level is not None:
@@ -285,12 +298,13 @@ def _measurement(vals, meta, d, h, payload, wavelengths):
 
 
 def _decode_part(call, payload, arg, integers):
-    """A partial decode (bwh_decode_incoming, bwh_decode_level): its values
-    (or integers), the payload's header and the dims decoded."""
+    """A partial decode (bwh_decode_incoming, bwh_decode_level,
+    bwh_decode_rows): its values (or integers), the payload's header and the
+    dims decoded."""
     h, d = Header(), Dims()
     s = ctypes.POINTER(ctypes.c_int32)()
     v = ctypes.POINTER(ctypes.c_float)()
-    if call(payload, len(payload), int(arg), ctypes.byref(h), ctypes.byref(d),
+    if call(payload, len(payload), arg, ctypes.byref(h), ctypes.byref(d),
             ctypes.byref(s) if integers else None, None if integers else ctypes.byref(v)) != 0:
         raise _error()
     try:
@@ -305,7 +319,7 @@ def _decode_part(call, payload, arg, integers):
 def _decode_lod(payload, level, wavelengths, integers):
     if not (isinstance(level, (int, np.integer)) and 0 <= level <= 6):
         raise BrdfwaveError("level must be a whole number from 0 to 6")
-    vals, h, d = _decode_part(lib().bwh_decode_level, payload, level, integers)
+    vals, h, d = _decode_part(lib().bwh_decode_level, payload, int(level), integers)
     meta = _meta_of(payload)
     meta.pop("missing", None)  # the source's missing samples are at its own level
     return _measurement(vals, meta, d, h, payload, wavelengths)
@@ -314,8 +328,61 @@ def _decode_lod(payload, level, wavelengths, integers):
 def _decode_row(payload, incoming, wavelengths, integers):
     if not (isinstance(incoming, (int, np.integer)) and 0 <= incoming < 2 ** 32 - 1):
         raise BrdfwaveError("incoming must be a whole number from 0")
-    vals, h, d = _decode_part(lib().bwh_decode_incoming, payload, incoming, integers)
+    vals, h, d = _decode_part(lib().bwh_decode_incoming, payload, int(incoming), integers)
     return _measurement(vals, _meta_of(payload, incoming), d, h, payload, wavelengths)
+
+
+def _row_marks(payload, rows, region):
+    """The rows to decode as one byte per row of the payload, and its header."""
+    L = lib()
+    h = Header()
+    st = L.bwh_header_salvage(payload, len(payload), ctypes.byref(h))
+    if st != 0:
+        raise BrdfwaveError(L.bw_strerror(st).decode())
+    n = h.dims.n_in
+    marks = np.zeros(n, dtype=np.uint8)
+    if region is not None:
+        try:
+            theta, phi, radius = (float(x) for x in region)
+        except (TypeError, ValueError):
+            raise BrdfwaveError("region must be (theta, phi, radius) in degrees") from None
+        k = L.bwh_region_rows(ctypes.byref(h), theta, phi, radius, marks.ctypes.data)
+        if k < 0:
+            raise _error()
+        if k == 0:
+            raise BrdfwaveError("no incoming direction lies within %g degrees of (%g, %g)"
+                                % (radius, theta, phi))
+        return marks, h
+    r = np.asarray(rows)
+    if r.dtype == np.bool_:
+        if r.shape != (n,):
+            raise BrdfwaveError("rows as a mask needs %d values, one per row" % n)
+        marks[r] = 1
+    else:
+        if r.ndim != 1 or not np.issubdtype(r.dtype, np.integer) or not r.size:
+            raise BrdfwaveError("rows must be row indices (or a boolean mask of the rows)")
+        if r.min() < 0 or r.max() >= n:
+            raise BrdfwaveError("rows must lie in 0..%d" % (n - 1))
+        marks[r] = 1
+    return marks, h
+
+
+def _decode_rows(payload, rows, region, wavelengths, integers):
+    L = lib()
+    marks, src = _row_marks(payload, rows, region)
+    vals, h, d = _decode_part(L.bwh_decode_rows, payload, marks.ctypes.data, integers)
+    j = ctypes.c_char_p()
+    if L.bwh_meta_rows_json(payload, len(payload), marks.ctypes.data, ctypes.byref(j)) != 0:
+        raise _error()
+    try:
+        meta = json.loads(j.value.decode("utf-8"))
+    finally:
+        free(j)
+    m = _measurement(vals, meta, d, h, payload, wavelengths)
+    m.rows = np.flatnonzero(marks)
+    if src.dims.shape == 3:
+        m.incoming = _directions(src.dims.level_in)[m.rows]
+    return m
 
 
 def _decode(payload, wavelengths, integers, max_samples, salvage=False):
