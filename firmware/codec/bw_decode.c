@@ -39,12 +39,13 @@ typedef struct {
 /* An embedded segment (below); out of line, so that its iterator stays off
  * the stack of every other decode. */
 static BW_NOINLINE bw_status_t decode_embedded(bw_iter_t *it, size_t nvec, const uint8_t *in,
-                                               size_t sl, size_t there, bool *inexact)
+                                               size_t sl, size_t there, bw_models_t *m,
+                                               bool *inexact)
 {
     bw_iter_t start = *it;
     bool cut = there < sl;
     bw_status_t st = bw_embed_decode(&start, nvec * it->pl->dims.bands, in, cut ? there : sl,
-                                     cut, inexact);
+                                     cut, m, inexact);
     *inexact = *inexact && cut; /* a whole segment decodes to what its encoder coded */
     for (size_t k = 0; k < nvec; k++)
         bw_iter_next_vec(it);
@@ -63,7 +64,7 @@ static bw_status_t decode_segment(bw_iter_t *it, const bw_plan_t *pl, size_t nve
     *inexact = false;
 #if BW_CFG_EMBED
     if (pl->embed)
-        return decode_embedded(it, nvec, in, sl, there, inexact);
+        return decode_embedded(it, nvec, in, sl, there, m, inexact);
 #else
     (void)there;
 #endif

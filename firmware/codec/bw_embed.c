@@ -32,6 +32,10 @@ typedef struct {
     bw_prob_t ref[2][BW_CODER_CLASSES];
 } embed_models_t;
 
+/* the models live in the strip coder's (bw_models_t, unused by an embedded
+ * segment): off the stack of a device */
+_Static_assert(sizeof(embed_models_t) <= sizeof(bw_models_t), "embedded models in bw_models_t");
+
 /* The plane offsets of the spectral subbands (Mallat order: subband 0 the
  * approximation, then the details coarse to fine) and where each begins. */
 typedef struct {
@@ -103,7 +107,7 @@ typedef struct {
     bool inpar_on;  /* form 2: the incoming parent block as a neighbour */
     spec_off_t so;
     const int32_t *x0;
-    embed_models_t m;
+    embed_models_t *m;
     bool stopped;
 } embed_t;
 
@@ -279,7 +283,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
             uint8_t cls0 = (uint8_t)bw_coef_cls(w.it.pl->spec_cls[w.it.k], w.it.cls_dir);
             if (s >= limit || !room(c))
                 return s;
-            if (!bit(c, &c->m.group[pg][cls0], c->enc && c->gtop[gi] == P + 1u)) {
+            if (!bit(c, &c->m->group[pg][cls0], c->enc && c->gtop[gi] == P + 1u)) {
                 s += GROUP - STRIP; /* the next group */
                 continue;
             }
@@ -292,7 +296,7 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
             unsigned pp = is_sig(c, bw_parent_of(w.it.par, w.it.vec, sc, w.it.k));
             if (s >= limit || !room(c))
                 return s;
-            if (!bit(c, &c->m.strip[pp][pc][cls0], c->enc && c->stop[si] == P + 1u))
+            if (!bit(c, &c->m->strip[pp][pc][cls0], c->enc && c->stop[si] == P + 1u))
                 continue;
         }
         for (size_t k = 0; k < cnt; k++) {
@@ -313,19 +317,19 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
             if (s + k >= limit || !room(c))
                 return s + k;
             if (sig) { /* refinement */
-                unsigned r = bit(c, &c->m.ref[(a >> (b + 1u)) == 1u][cls], (a >> b) & 1u);
+                unsigned r = bit(c, &c->m->ref[(a >> (b + 1u)) == 1u][cls], (a >> b) & 1u);
                 if (!c->enc && r)
                     *p = *p < 0 ? -(int32_t)(a | 1u << b) : (int32_t)(a | 1u << b);
                 continue;
             }
             unsigned pc = par ? 1u + nb_state(c, par, b) : 0u;
             unsigned ctx = ((cls * 4u + pc) * 3u + nb_state(c, left, b)) * 3u + nb_state(c, prv, b);
-            if (!bit(c, &c->m.sig[ctx], (a >> b) & 1u))
+            if (!bit(c, &c->m->sig[ctx], (a >> b) & 1u))
                 continue;
             /* its sign, then it is significant */
             if (!room(c))
                 return s + k;
-            unsigned neg = bit(c, &c->m.sign[3u * sgn(c, par) + sgn(c, left)], *p < 0);
+            unsigned neg = bit(c, &c->m->sign[3u * sgn(c, par) + sgn(c, left)], *p < 0);
             if (c->enc)
                 set_sig(c, p);
             else
@@ -400,7 +404,7 @@ static void scratch_of(embed_t *c, const bw_plan_t *pl, int32_t *x, size_t n)
 }
 
 /* A coder of the n coefficients from start: its state, models, scratch. */
-static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n)
+static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, bw_models_t *m)
 {
     c->enc = enc;
     c->bad = c->stopped = false;
@@ -410,14 +414,15 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n)
     c->groups_on = start->pl->embed >= 2u;
     c->inpar_on = start->pl->embed >= 3u;
     spec_offsets(start->pl, c->weigh, &c->so);
-    models_init(&c->m);
+    c->m = (embed_models_t *)(void *)m;
+    models_init(c->m);
 }
 
 size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t cap, bool truncate,
-                       bool *over)
+                       bw_models_t *m, bool *over)
 {
     embed_t c;
-    embed_init(&c, true, start, n);
+    embed_init(&c, true, start, n, m);
     *over = out && cap < EMBED_HEAD;
     if (*over)
         return EMBED_HEAD;
@@ -441,10 +446,10 @@ size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t ca
 }
 
 bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in, size_t len,
-                            bool cut, bool *inexact)
+                            bool cut, bw_models_t *m, bool *inexact)
 {
     embed_t c;
-    embed_init(&c, false, start, n);
+    embed_init(&c, false, start, n, m);
     walk_t w;
     walk_start(&w, start, &c.so, c.weigh, false);
     for (size_t k = 0; k < n; k++) { /* the coefficients start at zero */

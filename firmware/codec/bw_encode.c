@@ -120,7 +120,7 @@ static bool auto_rice(const bw_plan_t *pl, bw_params_t *chosen, unsigned mode, i
 /* The bytes of every embedded segment coded whole (counted): a byte
  * budget over several cuts each at its share. Out of line, as the next:
  * their iterators stay off the strip coder's stack. */
-static BW_NOINLINE size_t embed_total(const bw_plan_t *pl, int32_t *x)
+static BW_NOINLINE size_t embed_total(const bw_plan_t *pl, int32_t *x, bw_models_t *m)
 {
     uint32_t segs = bw_plan_segments(pl);
     size_t nv = (size_t)pl->dims.n_in * pl->dims.n_out, total = 0;
@@ -132,7 +132,7 @@ static BW_NOINLINE size_t embed_total(const bw_plan_t *pl, int32_t *x)
         bw_iter_segment(&c);
         bw_iter_t start = c;
         bool o;
-        total += bw_embed_encode(&start, nvec * pl->dims.bands, NULL, 0, false, &o);
+        total += bw_embed_encode(&start, nvec * pl->dims.bands, NULL, 0, false, m, &o);
         for (size_t k = 0; k < nvec; k++)
             bw_iter_next_vec(&c);
     }
@@ -143,17 +143,18 @@ static BW_NOINLINE size_t embed_total(const bw_plan_t *pl, int32_t *x)
  * out[cap]; with a budget over several (total > spare), cut at its share
  * of spare. */
 static BW_NOINLINE size_t embed_segment(bw_iter_t *it, size_t nvec, uint8_t *out, size_t cap,
-                                        bool truncate, size_t spare, size_t total, bool *over)
+                                        bool truncate, size_t spare, size_t total,
+                                        bw_models_t *m, bool *over)
 {
     bw_iter_t start = *it;
     size_t n = nvec * it->pl->dims.bands;
     if (total > spare) { /* this segment's share of the budget, its start at least */
         bool o;
         size_t share =
-            (size_t)((uint64_t)spare * bw_embed_encode(&start, n, NULL, 0, false, &o) / total);
+            (size_t)((uint64_t)spare * bw_embed_encode(&start, n, NULL, 0, false, m, &o) / total);
         cap = share < 8u ? (cap < 8u ? cap : 8u) : share < cap ? share : cap;
     }
-    size_t sl = bw_embed_encode(&start, n, out, cap, truncate, over);
+    size_t sl = bw_embed_encode(&start, n, out, cap, truncate, m, over);
     for (size_t k = 0; k < nvec; k++)
         bw_iter_next_vec(it);
     return sl;
@@ -177,7 +178,7 @@ static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se,
      * of the bytes, in proportion to its whole coding (counted first) */
     size_t total = 0, spare = cap > pos ? cap - pos : 0u;
     if (pl->embed && truncate && body && segs > 1u)
-        total = embed_total(pl, x);
+        total = embed_total(pl, x, &se->m);
 #else
     (void)truncate;
 #endif
@@ -192,7 +193,7 @@ static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se,
 #if BW_CFG_EMBED
         if (pl->embed) {
             sl = embed_segment(&it, nvec, body ? body + at : NULL, cap - at, truncate, spare, total,
-                               &so);
+                               &se->m, &so);
         } else
 #endif
         {

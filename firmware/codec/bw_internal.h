@@ -271,15 +271,16 @@ static inline size_t bw_segment_table_size(uint32_t segs) { return BW_SEGMENT_TA
  * coded bit plane by bit plane into out[cap] (NULL: counted), the coder's
  * state in the work area after the plan's tables (BW_WORK_BOUND); with
  * truncate the coding stops before it passes cap (a byte budget), else
- * *over says it did not fit. Returns the bytes. */
+ * *over says it did not fit; its models in m's storage. Returns the
+ * bytes. */
 size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t cap, bool truncate,
-                       bool *over);
+                       bw_models_t *m, bool *over);
 /* Decodes one into the n coefficients from start: a whole segment (in[len])
  * to where its encoder stopped, a cut one (cut) to where its bytes end.
  * *inexact: the coefficients are not all the encoder's. BW_ERR_CORRUPT for
- * a malformed start. */
+ * a malformed start. Its models in m's storage. */
 bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in, size_t len,
-                            bool cut, bool *inexact);
+                            bool cut, bw_models_t *m, bool *inexact);
 
 /* The next coefficient, its class and where its contexts come from: the
  * parent (directional, else spectral) and the same band of the previous

@@ -222,6 +222,12 @@ bool bw_hello_unpack(const uint8_t *in, size_t len, uint8_t *version, bw_limits_
 bw_status_t bw_limits_admit(const bw_limits_t *lim, const bw_dims_t *d, const bw_params_t *p,
                             bool *streamed)
 {
+    /* embedded segments need coarse-to-fine order: the encoder refuses
+     * stream order with them, and so does the streaming path */
+    if (p->progressive && (p->flags & BW_FLAG_STREAM_ORDER)) {
+        *streamed = false;
+        return BW_ERR_ARG;
+    }
     *streamed = (p->flags & BW_FLAG_STREAM_ORDER) && p->mode != BW_MODE_BYTES &&
                 p->basis < BW_BASIS_COUNT && d->shape != BW_SHAPE_BRDF_FULL &&
                 d->bands <= lim->stream_bands && d->level_out <= lim->stream_level;
@@ -268,17 +274,23 @@ void bw_job_params(const bw_job_t *j, bw_params_t *p)
     p->ext = j->ext;
     p->ext_len = j->ext_len;
     /* segments travel as the job's first record, BW_EXT_SEGMENTS with V (a
-     * varint): the encoder writes that record itself (a device that
-     * predates segments refuses the job: a critical record it does not
-     * know) */
+     * varint), embedded segments as a BW_EXT_EMBEDDED record without data
+     * right after it: the encoder writes those records itself (a device
+     * that predates segments refuses the job: a critical record it does
+     * not know; one that predates embedded segments refuses a record 0x04
+     * among the payload's records) */
     const uint8_t *e = j->ext;
     if (j->ext_len >= 3u && e[0] == BW_EXT_SEGMENTS && e[1] >= 1u && e[1] <= 5u &&
         2u + (uint32_t)e[1] <= j->ext_len) {
-        uint32_t v = 0;
+        uint32_t v = 0, used = 2u + e[1];
         for (unsigned k = 0; k < e[1]; k++)
             v |= (uint32_t)(e[2 + k] & 0x7Fu) << (7u * k);
         p->segment_vectors = v;
-        p->ext = j->ext_len > 2u + e[1] ? e + 2u + e[1] : NULL;
-        p->ext_len = j->ext_len - 2u - e[1];
+        if (j->ext_len >= used + 2u && e[used] == BW_EXT_EMBEDDED && e[used + 1u] == 0u) {
+            p->progressive = 1u;
+            used += 2u;
+        }
+        p->ext = j->ext_len > used ? e + used : NULL;
+        p->ext_len = j->ext_len - used;
     }
 }

@@ -128,8 +128,9 @@ size_t bw_hello_pack(const bw_limits_t *lim, uint8_t *out); /* BW_HELLO_SIZE */
 bool bw_hello_unpack(const uint8_t *in, size_t len, uint8_t *version, bw_limits_t *lim);
 
 /* Whether a device with these limits takes the job: BW_OK (and *streamed
- * when it encodes it spectrum by spectrum) or BW_ERR_WORK. The device
- * application and the host both decide with this one rule. */
+ * when it encodes it spectrum by spectrum) or BW_ERR_WORK; BW_ERR_ARG for
+ * embedded segments in stream order. The device application and the host
+ * both decide with this one rule. */
 bw_status_t bw_limits_admit(const bw_limits_t *lim, const bw_dims_t *d, const bw_params_t *p,
                             bool *streamed);
 /* BW_JOB_SIZE + job->ext_len bytes (at most BW_FRAME_MAX_DATA); the

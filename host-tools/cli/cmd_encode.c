@@ -400,6 +400,9 @@ int bw_cmd_encode(int argc, char **argv)
         (sh.has_level || o.mode > BW_MODE_MAX_ERROR || (o.flags & BW_FLAG_STREAM_ORDER)))
         return cli_usage("--basis pred codes sets of spectra (no --level) with --lossless "
                          "or --max-error, not --stream");
+    if (progressive && (stream || o.basis == BW_BASIS_PRED))
+        return cli_usage("--progressive codes transform coefficients coarse to fine: not with "
+                         "--stream or --basis pred");
     if (in.n > 1 && fmt >= BWH_IN_F32 && fmt <= BWH_IN_I32)
         return cli_usage("several inputs make a set of spectra: not for raw input");
     if ((fmt == BWH_IN_F32 || fmt == BWH_IN_U16 || fmt == BWH_IN_I32) && !sh.has_bands)

@@ -266,8 +266,12 @@ int bwh_device_open(bwh_device_t *dv, const char *device, const char *firmware)
 int bwh_device_admit(const bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p)
 {
     bool streamed;
-    if (!dv->have_limits || bw_limits_admit(&dv->limits, dims, p, &streamed) == BW_OK)
+    bw_status_t st = dv->have_limits ? bw_limits_admit(&dv->limits, dims, p, &streamed) : BW_OK;
+    if (st == BW_OK)
         return 0;
+    if (st == BW_ERR_ARG)
+        return bwh_fail("embedded segments (--progressive) are coded in coarse-to-fine order, "
+                        "not in stream order");
     explain_device_error(dims, BW_ERR_WORK, &dv->limits);
     return -1;
 }
@@ -298,20 +302,28 @@ int bwh_device_run(bwh_device_t *dv, const bw_dims_t *dims, const bw_params_t *p
     }
     bw_job_t job;
     bw_job_make(&job, dims, p);
-    /* segments: the job's first record (bw_job_params) */
-    if (p->segment_vectors) {
-        seg_ext = malloc(p->ext_len + 7u);
+    /* segments: the job's first record, embedded segments a record 0x04
+     * without data after it (bw_job_params); embedded without segments is
+     * one segment of every vector */
+    if (p->segment_vectors || p->progressive) {
+        seg_ext = malloc(p->ext_len + 9u);
         if (!seg_ext) {
             bwh_fail("out of memory");
             goto out;
         }
-        size_t k = bwh_varint_put(seg_ext + 2, p->segment_vectors);
+        uint32_t nv = dims->n_in * dims->n_out;
+        size_t k = bwh_varint_put(seg_ext + 2, p->segment_vectors ? p->segment_vectors : nv);
         seg_ext[0] = BW_EXT_SEGMENTS;
         seg_ext[1] = (uint8_t)k;
+        k += 2u;
+        if (p->progressive) {
+            seg_ext[k++] = BW_EXT_EMBEDDED;
+            seg_ext[k++] = 0;
+        }
         if (p->ext_len)
-            memcpy(seg_ext + 2 + k, p->ext, p->ext_len);
+            memcpy(seg_ext + k, p->ext, p->ext_len);
         job.ext = seg_ext;
-        job.ext_len = p->ext_len + 2u + (uint32_t)k;
+        job.ext_len = p->ext_len + (uint32_t)k;
     }
     strcpy(job.source, input); /* shorter than the field */
     if (job.ext_len > BW_JOB_EXT_MAX) {

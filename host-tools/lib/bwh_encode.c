@@ -104,11 +104,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
         if (x[i] > BW_SAMPLE_MAX || x[i] < -BW_SAMPLE_MAX)
             return bwh_fail("sample %zu = %d is outside the codec's range +-%d", i, x[i], BW_SAMPLE_MAX);
     /* a device is asked first what it takes: a job it cannot take is
-     * refused before the host spends any work on it; its jobs do not ask
-     * for embedded segments */
-    if (o->device && o->progressive)
-        return bwh_fail("the device does not code embedded segments (--progressive): encode "
-                        "on the host");
+     * refused before the host spends any work on it */
     bwh_device_t dv;
     if (o->device && (bwh_device_open(&dv, o->device->device, o->device->firmware) != 0))
         return -1;

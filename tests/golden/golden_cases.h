@@ -20,8 +20,13 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
     uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too;
-                     * BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL */
+                     * BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL;
+                     * GOLDEN_EMBED: embedded segments (bw_params_t.progressive) */
 } golden_case_t;
+
+/* BW_FLAG_EXT is the header's (no caller gives it): here it marks a case
+ * with embedded segments */
+#define GOLDEN_EMBED BW_FLAG_EXT
 
 static const golden_case_t golden_cases[] = {
     {"refl3x81_lossless_haar", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_LOSSLESS, BW_BASIS_HAAR, 0, 0},
@@ -92,6 +97,10 @@ static const golden_case_t golden_cases[] = {
      BW_BASIS_53, 2, BW_FLAG_STREAM_ORDER | BW_FLAG_MS},
     {"spectra6x300_maxerr2_pred_ms", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR,
      BW_BASIS_PRED, 2, BW_FLAG_MS},
+    {"refl3x81_maxerr4_53_embedded", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR,
+     BW_BASIS_53, 4, GOLDEN_EMBED},
+    {"full1x1x9_bytes600_97_embedded", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97,
+     600, GOLDEN_EMBED},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)
@@ -119,7 +128,8 @@ static inline bw_params_t golden_params(const golden_case_t *g)
     p.max_error = g->mode == BW_MODE_MAX_ERROR ? g->param : 0u;
     p.byte_budget = g->mode == BW_MODE_BYTES ? g->param : 0u;
     p.step_q8 = g->mode == BW_MODE_STEP ? g->param : 0u;
-    p.flags = g->flags;
+    p.flags = g->flags & (uint8_t)~GOLDEN_EMBED;
+    p.progressive = (g->flags & GOLDEN_EMBED) != 0u;
     return p;
 }
 

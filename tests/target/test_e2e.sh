@@ -90,6 +90,16 @@ same_payload "reflectance streamed, rice" -i "$T/r.i32" --input-format i32 --ban
 same_payload "field spectra in segments, prediction" --input-format sed -i $DATA/*.sed --lossless --basis pred --segments 6
 same_payload "reflectance streamed in segments" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --segments 9
 "$BW" info "$T/dev.bwv" | grep -q "^segments: 9" && ok || bad "the device's payload has not its 9 segments"
+# embedded segments: a record 0x04 after the segments' in the job; the
+# device's payload is the host's; a byte budget the exact coding cut under it
+# (16384 samples at 64:1 against float32: 1024 bytes); not in stream order
+same_payload "phong ratio 64, embedded" -i "$T/p.f32" --bands 1 --level 4 --incoming 16 --ratio 64 --progressive
+"$BW" info "$T/dev.bwv" | grep -q "^order: embedded" && ok || bad "the device's payload is not embedded: $("$BW" info "$T/dev.bwv" | grep order)"
+[ "$(stat -c %s "$T/dev.bwv")" -le 1024 ] && [ "$(stat -c %s "$T/dev.bwv")" -ge 1014 ] && ok ||
+    bad "embedded byte budget of 1024: $(stat -c %s "$T/dev.bwv") bytes"
+same_payload "reflectance in 4 embedded segments" -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --max-error 0.001 --scale 0.0001 --segments 4 --progressive
+"$BW" encode --device qemu -i "$T/r.i32" --input-format i32 --bands 81 --level 3 --stream --basis 53 --progressive -o "$T/x.bwv" >/dev/null 2>"$T/err"
+[ $? = 2 ] && [ "$(wc -l <"$T/err")" = 1 ] && ok || bad "embedded segments streamed on the device: $(cat "$T/err")"
 
 # resend: the host loses a chunk and asks for it again
 "$BW" encode --device qemu --input-format sed -i $DATA/*.sed --basis 53 -o "$T/dev.bwv" --drop-chunk 5 >/dev/null 2>"$T/err" &&

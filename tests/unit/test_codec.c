@@ -2959,12 +2959,13 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
     uint32_t crc[GOLDEN_CASES];
     size_t len[GOLDEN_CASES];
     bool found[GOLDEN_CASES] = {false};
-    /* else the cases of prediction and of the multi-symbol coder are left
-     * out (counted as found) */
+    /* else the cases of prediction, of the multi-symbol coder and of
+     * embedded segments are left out (counted as found) */
     bool pred = pred_built();
     for (size_t i = 0; i < GOLDEN_CASES; i++) {
         if ((golden_cases[i].basis == BW_BASIS_PRED && !pred) ||
-            (!BW_CFG_CODER_MS && (golden_cases[i].flags & BW_FLAG_MS))) {
+            (!BW_CFG_CODER_MS && (golden_cases[i].flags & BW_FLAG_MS)) ||
+            (!BW_CFG_EMBED && (golden_cases[i].flags & GOLDEN_EMBED))) {
             found[i] = true;
             continue;
         }
@@ -2974,9 +2975,9 @@ static void payloads_of_fixed_inputs_match_the_golden_checksums(void **state)
     if (env_on("BW_GOLDEN_UPDATE")) {
         if (!pred)
             fail_msg("this build leaves prediction out: update the golden file from another");
-        if (!BW_CFG_CODER_MS)
-            fail_msg("this build leaves the multi-symbol coder out: update the golden file from "
-                     "another");
+        if (!BW_CFG_CODER_MS || !BW_CFG_EMBED)
+            fail_msg("this build leaves the multi-symbol coder or embedded segments out: update "
+                     "the golden file from another");
         FILE *f = fopen(GOLDEN_PATH, "w");
         if (f == NULL)
             fail_msg("cannot write %s (run from the repository root)", GOLDEN_PATH);

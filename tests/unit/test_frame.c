@@ -203,6 +203,53 @@ static void jobs_round_trip_and_bad_jobs_are_refused(void **state)
     assert_int_equal(p.ext_len, BW_JOB_EXT_MAX);
 }
 
+/* Segments travel as the job's first record (0x03, V), embedded segments
+ * as a record 0x04 without data right after it: bw_job_params takes both
+ * out and leaves the payload's own records; a 0x04 elsewhere stays among
+ * the records (the encoder then refuses the job); the admission rule
+ * refuses embedded segments in stream order. */
+static void segments_and_embedding_travel_in_the_job_records(void **state)
+{
+    (void)state;
+    bw_job_t j;
+    memset(&j, 0, sizeof j);
+    static const uint8_t recs[][12] = {
+        {BW_EXT_SEGMENTS, 2, 0x80, 0x01, BW_EXT_EMBEDDED, 0, 0x81, 1, 7},
+        {BW_EXT_SEGMENTS, 1, 9, 0x81, 1, 7},
+        {BW_EXT_SEGMENTS, 1, 9, BW_EXT_EMBEDDED, 1, 2},
+        {BW_EXT_EMBEDDED, 0, 0x81, 1, 7},
+    };
+    static const struct {
+        uint32_t len, v, prog, rest;
+    } want[] = {{9, 128, 1, 3}, {6, 9, 0, 3}, {6, 9, 0, 3}, {5, 0, 0, 5}};
+    for (unsigned r = 0; r < 4; r++) {
+        j.ext = recs[r];
+        j.ext_len = want[r].len;
+        bw_params_t p;
+        bw_job_params(&j, &p);
+        assert_int_equal(p.segment_vectors, want[r].v);
+        assert_int_equal(p.progressive, want[r].prog);
+        assert_int_equal(p.ext_len, want[r].rest);
+        assert_memory_equal(p.ext, recs[r] + want[r].len - want[r].rest, want[r].rest);
+    }
+    bw_limits_t lim = {1u << 20, 4096, 128, 65536, 4};
+    bw_dims_t d;
+    assert_int_equal(bw_dims_make(&d, BW_SHAPE_REFLECTANCE, 3, 0, 1, 8), BW_OK);
+    bw_params_t p;
+    memset(&p, 0, sizeof p);
+    p.basis = BW_BASIS_53;
+    p.progressive = 1;
+    bool streamed = true;
+    assert_int_equal(bw_limits_admit(&lim, &d, &p, &streamed), BW_OK);
+    assert_false(streamed);
+    p.flags = BW_FLAG_STREAM_ORDER;
+    assert_int_equal(bw_limits_admit(&lim, &d, &p, &streamed), BW_ERR_ARG);
+    assert_false(streamed);
+    p.progressive = 0;
+    assert_int_equal(bw_limits_admit(&lim, &d, &p, &streamed), BW_OK);
+    assert_true(streamed);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -211,6 +258,7 @@ int main(void)
         cmocka_unit_test(a_header_with_an_impossible_length_is_skipped),
         cmocka_unit_test(frames_buffered_behind_a_false_header_come_out_without_more_bytes),
         cmocka_unit_test(jobs_round_trip_and_bad_jobs_are_refused),
+        cmocka_unit_test(segments_and_embedding_travel_in_the_job_records),
     };
     return cmocka_run_group_tests_name("frame", tests, NULL, NULL);
 }
