@@ -390,6 +390,11 @@ bw_status_t bw_header_read(const uint8_t *payload, size_t len, bw_header_t *hdr)
 /* Parses and validates the header of payload[len] without the CRC check;
  * the body is what lies between the header and the last 4 bytes. */
 bw_status_t bw_header_parse_fields(const uint8_t *payload, size_t len, bw_header_t *hdr);
+/* The same for a payload that may be cut (bw_decode_salvage): a tail
+ * (record 0x01) longer than what follows the header is cut to what is
+ * there (the segment table, whose CRC vouches for the header, says where
+ * the body ends). Not in a core built without BW_CFG_SALVAGE. */
+bw_status_t bw_header_parse_cut(const uint8_t *payload, size_t len, bw_header_t *hdr);
 
 /* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.
  * samples may be the same array as work. */

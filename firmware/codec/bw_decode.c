@@ -199,12 +199,12 @@ bw_status_t bw_decode_salvage(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
     seg_out_t so = {st != BW_OK, seg_ok, seg_cap, vec_lost, 0};
     if (BW_CFG_SALVAGE && (st == BW_ERR_CRC || st == BW_ERR_HEADER)) {
         /* not whole: the header's fields as they read, which the segment
-         * table's CRC vouches for; a payload without segments, or with
-         * the host's tail (whose place a cut moves), is lost whole */
+         * table's CRC vouches for (the segments are found from the table:
+         * a host's tail, whose place a cut moves, plays no part); a payload
+         * without segments is lost whole */
         bw_header_t f;
         memset(&f, 0, sizeof f);
-        if (bw_header_parse_fields(payload, len, &f) == BW_OK && f.segment_vectors &&
-            f.payload_len - BW_TRAILER_SIZE == f.header_len + f.body_len) {
+        if (bw_header_parse_cut(payload, len, &f) == BW_OK && f.segment_vectors) {
             h = f;
             st = BW_OK;
         }

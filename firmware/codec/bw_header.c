@@ -183,7 +183,9 @@ bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
     return st;
 }
 
-bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
+/* The fields; with cut, a tail (record 0x01) longer than what follows the
+ * header is cut to it. */
+static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bool cut)
 {
     if (len >= 2u && (p[0] != BW_MAGIC0 || p[1] != BW_MAGIC1))
         return BW_ERR_MAGIC;
@@ -242,8 +244,11 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
             return (bw_status_t)tail;
         q += el;
         /* the tail is the host's, between the coded body and the CRC */
-        if ((size_t)tail > (size_t)(end - q))
-            return BW_ERR_HEADER;
+        if ((size_t)tail > (size_t)(end - q)) {
+            if (!(BW_CFG_SALVAGE && cut))
+                return BW_ERR_HEADER;
+            tail = (int32_t)(end - q);
+        }
         end -= tail;
     }
     h->header_len = (uint32_t)(q - p);
@@ -271,3 +276,15 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     }
     return pc; /* a valid header, or one this build cannot decode */
 }
+
+bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
+{
+    return parse_fields(p, len, h, false);
+}
+
+#if BW_CFG_SALVAGE
+bw_status_t bw_header_parse_cut(const uint8_t *p, size_t len, bw_header_t *h)
+{
+    return parse_fields(p, len, h, true);
+}
+#endif

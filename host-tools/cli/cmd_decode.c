@@ -37,7 +37,8 @@ static const char decode_help[] =
     "                     can describe gigabytes\n"
     "  --mask FILE        write the state of every sample, one byte each in the\n"
     "                     output's layout: 0 exact, 1 approximate (rebuilt from\n"
-    "                     coarser levels: segments lost), 2 missing\n"
+    "                     coarser levels: segments lost; or a float payload's\n"
+    "                     value without the low bits its lost tail held), 2 missing\n"
     "  --incoming K       decode only incoming direction K of a BRDF (or spectrum K\n"
     "                     of a set of spectra), as a reflectance (one spectrum): only\n"
     "                     what it depends on is decoded (with --segments, only the\n"
@@ -274,10 +275,12 @@ int bw_cmd_decode(int argc, char **argv)
     if (rc)
         return cli_fail("%s", bwh_last_error());
     if (got == 1) {
-        cli_fail("%s: damaged or cut: %u of %u segments lost; %zu of %zu samples (%.2f %%) "
-                 "rebuilt from coarser levels, %zu (%.2f %%) missing%s",
-                 inp, sv.lost_segments, sv.segments, sv.approx, n,
-                 n ? 100.0 * (double)sv.approx / (double)n : 0.0, sv.missing,
+        cli_fail("%s: damaged or cut: %u of %u segments lost%s; %zu of %zu samples (%.2f %%) "
+                 "%s, %zu (%.2f %%) missing%s",
+                 inp, sv.lost_segments, sv.segments,
+                 sv.tail_lost ? ", and the float tail (the values' low bits and exceptions)" : "",
+                 sv.approx, n, n ? 100.0 * (double)sv.approx / (double)n : 0.0,
+                 sv.tail_lost ? "approximate" : "rebuilt from coarser levels", sv.missing,
                  n ? 100.0 * (double)sv.missing / (double)n : 0.0,
                  maskp ? "" : " (--mask FILE marks them)");
         return CLI_EXIT_INCOMPLETE;

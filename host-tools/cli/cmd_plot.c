@@ -143,9 +143,11 @@ static int load_payload(const char *path, data_t *m)
     if (rc < 0)
         return bwh_fail("%s: %s", path, bwh_last_error());
     if (rc == 1)
-        fprintf(stderr, "brdfwave plot: %s: damaged or cut: %u of %u segments lost; the picture "
-                        "shows what the rest rebuilds (%zu samples approximate, %zu missing)\n",
-                path, sv.lost_segments, sv.segments, sv.approx, sv.missing);
+        fprintf(stderr, "brdfwave plot: %s: damaged or cut: %u of %u segments lost%s; the "
+                        "picture shows what the rest rebuilds (%zu samples approximate, %zu "
+                        "missing)\n",
+                path, sv.lost_segments, sv.segments, sv.tail_lost ? ", and the float tail" : "",
+                sv.approx, sv.missing);
     m->d = m->h.dims;
     m->n = bw_dims_samples(&m->d);
     m->payload = 1;

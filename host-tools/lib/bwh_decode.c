@@ -22,7 +22,7 @@ int bwh_header_salvage(const uint8_t *p, size_t len, bw_header_t *h)
 {
     int st = bw_header_read(p, len, h);
     bw_header_t f;
-    if ((st == BW_ERR_CRC || st == BW_ERR_HEADER) && bw_header_parse_fields(p, len, &f) == BW_OK &&
+    if ((st == BW_ERR_CRC || st == BW_ERR_HEADER) && bw_header_parse_cut(p, len, &f) == BW_OK &&
         f.segment_vectors) {
         size_t t = (size_t)f.header_len + BW_SEGMENT_TABLE_SIZE(f.segments) - 4u;
         if (t + 4u <= len && bw_crc32(p, t) == ((uint32_t)p[t] | (uint32_t)p[t + 1] << 8 |
@@ -148,9 +148,11 @@ int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_heade
     return 0;
 }
 
-/* The samples and values of a decode (decode_ints), *w taken over. */
+/* The samples and values of a decode (decode_ints), *w taken over; with
+ * tail_lost (may be NULL) a payload that is not whole: a float tail is not
+ * used, and *tail_lost says whether that left values approximate. */
 static int values_of(const uint8_t *p, bw_header_t *h, int32_t *w, int32_t **samples,
-                     float **values);
+                     float **values, int *tail_lost);
 static int decode_any(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
                       int32_t **samples, float **values, uint8_t **mask, bwh_salvage_t *sv);
 
@@ -180,18 +182,30 @@ static int decode_any(const uint8_t *p, size_t len, size_t max_samples,
     int got = decode_ints(p, len, max_samples, h, &w, mask, sv);
     if (got < 0)
         return -1;
-    if (values_of(p, h, w, samples, values) != 0) {
+    /* a payload that is not whole: its float tail, which no CRC of its own
+     * covers, is not used */
+    bw_header_t hw;
+    int lost = 0, *tl = sv && bw_header_read(p, len, &hw) != BW_OK ? &lost : NULL;
+    if (values_of(p, h, w, samples, values, tl) != 0) {
         if (mask) {
             free(*mask);
             *mask = NULL;
         }
         return -1;
     }
+    if (lost) { /* every exact sample's value is approximate now */
+        size_t n = bw_dims_samples(&h->dims);
+        sv->tail_lost = 1;
+        sv->approx = n - sv->missing;
+        for (size_t i = 0; mask && *mask && i < n; i++)
+            (*mask)[i] = (*mask)[i] == BW_SAMPLE_EXACT ? BW_SAMPLE_APPROX : (*mask)[i];
+        got = 1;
+    }
     return got;
 }
 
 static int values_of(const uint8_t *p, bw_header_t *h, int32_t *w, int32_t **samples,
-                     float **values)
+                     float **values, int *tail_lost)
 {
     size_t n = bw_dims_samples(&h->dims);
     if (values) {
@@ -239,14 +253,17 @@ static int values_of(const uint8_t *p, bw_header_t *h, int32_t *w, int32_t **sam
             }
             v[i] = x;
         }
-        int map;
+        int map, ea = 0;
         size_t tl = bwh_ext_tail(p, h, &tail);
-        if (fx == 1 && bwh_exact_apply(xd, xl, tail, tl, w, v, n, &map) != 0) {
+        if (fx == 1 && (ea = bwh_exact_apply(xd, xl, tail_lost ? NULL : tail, tl, w, v, n,
+                                             &map)) < 0) {
             if (v != (float *)(void *)w)
                 free(v);
             free(w);
             return -1;
         }
+        if (tail_lost)
+            *tail_lost = ea == 1;
         *values = v;
     }
     if (samples)
@@ -322,7 +339,7 @@ static int partial_values(const uint8_t *p, const bw_header_t *h, const bw_dims_
 {
     bw_header_t hp = *h;
     hp.dims = *dims;
-    return values_of(p, &hp, r, samples, values);
+    return values_of(p, &hp, r, samples, values, NULL);
 }
 
 static bw_status_t level_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,

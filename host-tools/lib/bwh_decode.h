@@ -36,7 +36,12 @@ int bwh_header_salvage(const uint8_t *p, size_t len, bw_header_t *h);
 typedef struct {
     uint32_t segments;      /* the payload's segments (1: a body in one piece) */
     uint32_t lost_segments; /* of them lost: damaged, or cut off */
-    size_t approx, missing; /* samples rebuilt from coarser levels; samples lost */
+    size_t approx, missing; /* samples rebuilt from coarser levels (or, below,
+                             * without their float bits); samples lost */
+    uint32_t tail_lost;     /* 1: a float payload's tail (record 0x01) was not
+                             * used (the payload is not whole): every value
+                             * decoded from the samples alone, approximate
+                             * where the tail held low bits or exceptions */
 } bwh_salvage_t;
 
 /* As bwh_decode_limit, for a payload that may be damaged or cut (a file

@@ -328,24 +328,24 @@ int bwh_exact_apply(const uint8_t *d, uint32_t dl, const uint8_t *tail, size_t t
                     const int32_t *q, float *v, size_t n, int *map)
 {
     exact_rec_t r;
-    if (parse(d, dl, &r) != 0 || r.tail != tail_len)
+    if (parse(d, dl, &r) != 0 || (tail && r.tail != tail_len))
         return bwh_fail("the payload's float exact record is malformed");
     *map = r.map;
     size_t k = 0;
     if (r.map == BWH_EXACT_PLANES) {
         size_t plane = (n * r.s + 7u) / 8u;
-        if (plane > tail_len)
+        if (tail && plane > tail_len)
             return bwh_fail("the payload's float exact tail is too short");
         uint64_t acc = 0;
         unsigned nb = 0;
-        uint32_t mask = (1u << r.s) - 1u;
+        uint32_t mask = (1u << r.s) - 1u, mid = r.s ? 1u << (r.s - 1u) : 0u;
         for (size_t i = 0; i < n; i++) {
-            while (nb < r.s) {
+            while (tail && nb < r.s) {
                 acc = acc << 8 | tail[k++];
                 nb += 8u;
             }
-            uint32_t lowbits = (uint32_t)(acc >> (nb - r.s)) & mask;
-            nb -= r.s;
+            uint32_t lowbits = tail ? (uint32_t)(acc >> (nb - r.s)) & mask : mid;
+            nb -= tail ? r.s : 0u;
             int64_t m = ((int64_t)q[i] + r.c) * ((int64_t)1 << r.s) + lowbits;
             if (m < INT32_MIN || m > INT32_MAX)
                 return bwh_fail("sample %zu decodes outside the float32 bit patterns", i);
@@ -353,6 +353,8 @@ int bwh_exact_apply(const uint8_t *d, uint32_t dl, const uint8_t *tail, size_t t
         }
         k = plane;
     }
+    if (!tail)
+        return (r.map == BWH_EXACT_PLANES && r.s) || r.n_exc ? 1 : 0;
     size_t at = 0;
     const uint8_t *p = tail + k, *end = tail + tail_len;
     for (uint32_t j = 0; j < r.n_exc; j++) {

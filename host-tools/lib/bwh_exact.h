@@ -60,7 +60,10 @@ int bwh_exact_exceptions(const float *x, const size_t *idx, size_t k, bwh_exact_
  * (data d[dl]) with the payload's tail: for BWH_EXACT_PLANES from the
  * planes, for BWH_EXACT_VALUES by overwriting the exceptions in v (which the
  * value map filled). *map receives the map. 0, or -1 for a malformed record
- * or tail. */
+ * or tail. tail NULL: the tail is not there to trust (a payload that is not
+ * whole: no CRC of its own vouches for it): the planes' low bits take the
+ * middle of their range and the exceptions stay as the map gives them;
+ * then 1 when that leaves values approximate (low bits, or exceptions). */
 int bwh_exact_apply(const uint8_t *d, uint32_t dl, const uint8_t *tail, size_t tail_len,
                     const int32_t *q, float *v, size_t n, int *map);
 /* The map of record 0x01 (data d[dl]) without applying it; -1 if malformed. */

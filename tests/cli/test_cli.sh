@@ -590,6 +590,45 @@ b = bytearray(open('$T/seg.bwv', 'rb').read()); b[len(b) // 2] ^= 0x40
 open('$T/segbad.bwv', 'wb').write(bytes(b))"
 "$BW" decode -i "$T/segbad.bwv" -o "$T/segbad.f32" 2>"$T/err"
 [ $? = 3 ] && grep -q "1 of 4 segments lost" "$T/err" && [ -s "$T/segbad.f32" ] && ok || bad "decode of a damaged payload in segments: $(cat "$T/err")"
+# a float payload kept bit for bit (record 0x01: its low bits and
+# exceptions in a tail) in segments: cut or damaged, its whole segments
+# still decode; the tail, which no CRC of its own covers, is not used: the
+# values from the samples alone, each marked approximate and close
+$PY -c "
+import numpy as np
+x = np.exp(np.random.default_rng(3).normal(0, 3, (8, 1024))).astype('<f4')
+x[2, 7] = np.nan
+x.tofile('$T/fx.f32')"
+"$BW" encode -q -i "$T/fx.f32" --bands 1 --level 4 --incoming 8 --lossless --segments 8 -o "$T/fx.bwv"
+"$BW" info "$T/fx.bwv" | grep -q "^values: float32 bits: the samples their high plane" && ok || bad "the float payload does not keep bit planes in a tail"
+n=$(stat -c %s "$T/fx.bwv")
+head -c $((n * 9 / 10)) "$T/fx.bwv" >"$T/fxcut.bwv"
+"$BW" decode -i "$T/fxcut.bwv" -o "$T/fxcut.f32" --mask "$T/fxcut.m" 2>"$T/err"
+[ $? = 3 ] && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "0 of 8 segments lost, and the float tail" "$T/err" && ok ||
+    bad "a float payload cut in its tail: $(cat "$T/err")"
+$PY - "$T/fx.f32" "$T/fxcut.f32" "$T/fxcut.m" <<'PY' && ok || bad "a float payload cut in its tail: values not approximate within 2^-18 or the mask not all 1"
+import numpy as np, sys
+x, y = np.fromfile(sys.argv[1], '<f4'), np.fromfile(sys.argv[2], '<f4')
+m = np.fromfile(sys.argv[3], np.uint8)
+f = np.isfinite(x)
+sys.exit(0 if (m == 1).all() and np.max(np.abs(y[f] - x[f]) / np.abs(x[f])) < 2.0 ** -18 and
+         not np.array_equal(x[f], y[f]) else 1)
+PY
+head -c $((n / 2)) "$T/fx.bwv" >"$T/fxhalf.bwv"
+"$BW" decode -i "$T/fxhalf.bwv" -o "$T/fxhalf.f32" --mask "$T/fxhalf.m" 2>"$T/err"
+[ $? = 3 ] && $PY -c "
+import numpy as np, sys
+m = np.fromfile('$T/fxhalf.m', np.uint8)
+sys.exit(0 if (m == 1).any() and (m == 2).any() and not (m == 0).any() else 1)" && ok || bad "a float payload cut in half: $(cat "$T/err")"
+# a byte of the tail changed (the length as sent): the segments are whole,
+# the tail not trusted
+$PY -c "
+b = bytearray(open('$T/fx.bwv', 'rb').read()); b[-10] ^= 0x40
+open('$T/fxbad.bwv', 'wb').write(bytes(b))"
+"$BW" decode -i "$T/fxbad.bwv" -o "$T/fxbad.f32" --mask "$T/fxbad.m" 2>"$T/err"
+[ $? = 3 ] && grep -q "0 of 8 segments lost, and the float tail" "$T/err" && ok || bad "a float payload with a changed tail: $(cat "$T/err")"
+expect_ok "the whole float payload" "$BW" decode -i "$T/fx.bwv" -o "$T/fxw.f32"
+cmp -s "$T/fx.f32" "$T/fxw.f32" && ok || bad "the whole float payload is not bit for bit"
 # without segments a damaged payload is lost whole, as ever
 "$BW" encode -q -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --max-error 0.001 -o "$T/one.bwv"
 head -c 900 "$T/one.bwv" >"$T/onecut.bwv"

@@ -178,6 +178,16 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
     exact = m.mask == 0
     assert exact.any() and (m.mask == 2).any()
     assert np.array_equal(np.asarray(m)[exact], np.asarray(whole)[exact])
+    assert m.tail_lost is False
+    # a float payload kept bit for bit (a tail of low bits) cut in its tail:
+    # every segment whole, every value approximate, the tail named lost
+    f = np.exp(np.random.default_rng(5).normal(0, 3, (8, 1024, 1))).astype(np.float32)
+    fp = brdfwave.encode(f, level=4, incoming=True, lossless=True, segments=8)
+    fm = brdfwave.decode_bytes(fp[:len(fp) * 9 // 10], salvage=True)
+    assert fm.tail_lost and fm.lost_segments == 0 and (fm.mask == 1).all(), (fm.tail_lost,
+                                                                             fm.lost_segments)
+    assert np.max(np.abs(np.asarray(fm) - f) / f) < 2.0 ** -18
+    assert np.array_equal(np.asarray(brdfwave.decode_bytes(fp)), f)
     # one incoming direction alone: that row of the whole decode
     r = brdfwave.decode_bytes(p, incoming=5)
     assert r.layout == "reflectance" and r.shape == (1024, 1), (r.layout, r.shape)

@@ -59,7 +59,8 @@ class EncodeOpts(ctypes.Structure):
 class Salvage(ctypes.Structure):
     """bwh_salvage_t (host-tools/lib/bwh_decode.h): what a decode in part found."""
     _fields_ = [("segments", ctypes.c_uint32), ("lost_segments", ctypes.c_uint32),
-                ("approx", ctypes.c_size_t), ("missing", ctypes.c_size_t)]
+                ("approx", ctypes.c_size_t), ("missing", ctypes.c_size_t),
+                ("tail_lost", ctypes.c_uint32)]
 
 
 # the I2C client's transport (bwh_i2c_t, host-tools/lib/bwh_i2c.h)

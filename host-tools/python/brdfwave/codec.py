@@ -81,12 +81,15 @@ class Measurement(np.ndarray):
                        (rebuilt from coarser levels), 2 missing; else None
       segments, lost_segments   decode(..., salvage=True): the payload's segments,
                        and how many of them were lost
+      tail_lost        decode(..., salvage=True): True when a float payload's tail
+                       (its values' low bits and exceptions, record 0x01) was not
+                       used: the values from the samples alone, approximate
       rows             decode(..., rows=) or region=: the source's rows decoded
                        (indices, ascending), else None
     """
 
     _ATTRS = ("metadata", "header", "layout", "level", "level_in", "directions", "incoming",
-              "guarantee", "mask", "segments", "lost_segments", "rows")
+              "guarantee", "mask", "segments", "lost_segments", "tail_lost", "rows")
 
     def __new__(cls, values, metadata=None, layout=None, level=None, level_in=None,
                 header=None, wavelengths=None):
@@ -101,7 +104,7 @@ class Measurement(np.ndarray):
         obj.directions = _directions(level) if layout and layout != "spectra" else None
         obj.incoming = _directions(level_in) if layout == "brdf-full" else None
         obj.guarantee = None
-        obj.mask = obj.segments = obj.lost_segments = obj.rows = None
+        obj.mask = obj.segments = obj.lost_segments = obj.tail_lost = obj.rows = None
         return obj
 
     def __array_finalize__(self, obj):
@@ -418,6 +421,7 @@ def _decode(payload, wavelengths, integers, max_samples, salvage=False):
     if salvage:
         m.mask = None if mask is None else mask.reshape(m.shape)
         m.segments, m.lost_segments = int(sv.segments), int(sv.lost_segments)
+        m.tail_lost = bool(sv.tail_lost)
     return m
 
 
