@@ -490,6 +490,23 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
                             int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
                             bw_header_t *hdr_out);
 
+/*
+ * The same at a coarser level of both hemispheres of a full BRDF: outgoing
+ * level `level` and incoming level `level_in` (BW_LEVEL_OWN: the payload's
+ * own), n_in = 4 4^level_in (a full BRDF; other shapes keep their n_in and
+ * take BW_LEVEL_OWN or 0) times 4 4^level * bands samples in the layout of
+ * a full BRDF of those levels. Only the coefficients of the levels above
+ * on both sides are decoded: the first 4 4^level_in incoming blocks (in
+ * segments, the segments that hold them), each to its first 4 4^level
+ * vectors. Each value is the scaling value of its pair of triangles,
+ * within a few units of the whole decode taken up both trees (the
+ * lifting's roundings, incoming and outgoing, in the decoder's order).
+ */
+#define BW_LEVEL_OWN 0xFFu
+bw_status_t bw_decode_lod(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
+                          unsigned level_in, int32_t *samples, size_t samples_cap, int32_t *work,
+                          size_t work_cap, bw_header_t *hdr_out);
+
 /* What bw_decode_salvage rebuilt, per direction pair (every band alike):
  * exact (as the whole payload decodes), approximate (rebuilt from the
  * coarser levels that were kept, without finer details that were lost), or

@@ -280,6 +280,7 @@ typedef struct {
     size_t coarse;
     const uint8_t *rows;
     const bw_plan_t *pl;
+    size_t blocks; /* with `coarse`: of the first `blocks` blocks only (0: all) */
 } want_t;
 
 /* Whether row t is rebuilt: marked, or the partner that a marked row of a
@@ -325,7 +326,11 @@ static size_t wanted_end(const want_t *w, size_t no, size_t a, size_t b)
                 return (c + 1u) * no < b ? (c + 1u) * no : b;
         return a;
     }
-    if (!w->nr) { /* the first `coarse` vectors of each block */
+    if (!w->nr) { /* the first `coarse` vectors of each block (of the first `blocks`) */
+        if (w->blocks && b > w->blocks * no)
+            b = w->blocks * no;
+        if (b <= a)
+            return a;
         size_t k = (b - 1u) / no * no;
         e = k + w->coarse < b ? k + w->coarse : b;
         return e > a ? e : a;
@@ -346,7 +351,7 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
     bw_iter_t it;
     size_t no = pl->dims.n_out, nv = (size_t)pl->dims.n_in * no;
     if (!V) { /* whole strips: a strip's presence is of all its 32 values */
-        size_t last = w->rows ? wanted_end(w, no, 0, nv) : w->nr ? w->r[w->nr - 1u][1] : nv;
+        size_t last = w->nr ? w->r[w->nr - 1u][1] : wanted_end(w, no, 0, nv);
         size_t c = (last * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
         bw_iter_init(&it, pl, x);
         return bw_decode_coefs(&it, c < pl->n ? c : pl->n, p + h->header_len, h->body_len,
@@ -481,7 +486,7 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
             r[nr][0] = (size_t)(k || pl.basis != BW_BASIS_PRED ? ci[k] : first) * no;
             r[nr++][1] = ((size_t)ci[k] + 1u) * no;
         }
-    want_t w = {r, nr, 0, NULL, NULL};
+    want_t w = {r, nr, 0, NULL, NULL, 0};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
@@ -528,7 +533,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
         return BW_ERR_WORK;
     bw_plan_t pl;
     plan_of(&pl, &h, work, n);
-    want_t w = {NULL, 0, 0, rows, &pl};
+    want_t w = {NULL, 0, 0, rows, &pl, 0};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
@@ -561,19 +566,24 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
 
 /* ---- a coarser outgoing level ---------------------------------------------- */
 
-bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
-                            int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
-                            bw_header_t *hdr_out)
+bw_status_t bw_decode_lod(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
+                          unsigned level_in, int32_t *samples, size_t samples_cap, int32_t *work,
+                          size_t work_cap, bw_header_t *hdr_out)
 {
     bw_header_t h;
     bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
     if (st != BW_OK)
         return st;
     const bw_dims_t *d = &h.dims;
+    bool full = bw_has_in(d);
+    if (level_in == BW_LEVEL_OWN)
+        level_in = d->level_in;
     size_t n = bw_dims_samples(d), b = d->bands, nc = (size_t)4u << (2u * level);
-    if (!bw_has_out(d) || level > d->level_out || (h.flags & BW_FLAG_RECIPROCAL))
+    size_t ni = full ? (size_t)4u << (2u * level_in) : d->n_in;
+    if (!bw_has_out(d) || level > d->level_out || level_in > d->level_in ||
+        (h.flags & BW_FLAG_RECIPROCAL))
         return BW_ERR_ARG;
-    if (samples_cap < (size_t)d->n_in * nc * b || work_cap < bw_work_bound(n, b))
+    if (samples_cap < ni * nc * b || work_cap < bw_work_bound(n, b))
         return BW_ERR_WORK;
     bw_plan_t pl;
     plan_of(&pl, &h, work, n);
@@ -582,23 +592,27 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
     if (pl.step_q8 > BW_STEP_ONE_Q8)
         memset(work, 0, n * sizeof *work);
     /* the first 4 4^level vectors of each block in coarse-to-fine order are
-     * the coefficients of the levels above (streamed order: all) */
-    want_t w = {NULL, 0, pl.stream ? d->n_out : nc, NULL, NULL};
+     * the coefficients of the outgoing levels above (streamed order: all),
+     * the first 4 4^level_in blocks those of the incoming levels above */
+    want_t w = {NULL, 0, pl.stream ? d->n_out : nc, NULL, NULL, full ? ni : 0u};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
     if (pl.step_q8 > BW_STEP_ONE_Q8)
         bw_quantise(&pl, work, false);
     /* the coarse coefficients into a level's layout: at level L, position
-     * t << 2 (L - level) of the same coefficient at `level` */
-    unsigned sh = 2u * (d->level_out - level);
-    for (uint32_t i = 0; i < d->n_in; i++)
+     * t << 2 (L - level) of the same coefficient at `level`, on both
+     * hemispheres */
+    unsigned sh = 2u * (d->level_out - level), shi = full ? 2u * (d->level_in - level_in) : 0u;
+    for (size_t i = 0; i < ni; i++)
         for (size_t t = 0; t < nc; t++)
-            memmove(work + ((size_t)i * nc + t) * b,
-                    work + ((size_t)i * d->n_out + (t << sh)) * b, b * sizeof *work);
+            memmove(work + (i * nc + t) * b, work + ((i << shi) * d->n_out + (t << sh)) * b,
+                    b * sizeof *work);
     bw_dims_t dl = *d;
     dl.level_out = (uint8_t)level;
     dl.n_out = (uint32_t)nc;
+    dl.level_in = (uint8_t)level_in;
+    dl.n_in = (uint32_t)ni;
     bw_plan_t pc = pl;
     pc.dims = dl;
     pc.n = bw_dims_samples(&dl);
@@ -607,4 +621,12 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
         bw_symmetry(&pc, work, false);
     put_row(work, pc.n, pl.prequant, samples);
     return BW_OK;
+}
+
+bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
+                            int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                            bw_header_t *hdr_out)
+{
+    return bw_decode_lod(ctx, payload, len, level, BW_LEVEL_OWN, samples, samples_cap, work,
+                         work_cap, hdr_out);
 }

@@ -18,7 +18,7 @@
 static const char decode_help[] =
     "usage: brdfwave decode -i IN.bwv -o OUT [--output-format F] [--max-samples N]\n"
     "                       [--mask MASK.u8] [--incoming K | --rows LIST |\n"
-    "                       --region THETA,PHI,RADIUS | --level L]\n"
+    "                       --region THETA,PHI,RADIUS | [--level L] [--level-in Li]]\n"
     "\n"
     "Decodes a payload in the encoder's layout, [incoming][outgoing][band], with\n"
     "its metadata (wavelengths, units, incidence angles, ...: 'brdfwave info').\n"
@@ -57,7 +57,9 @@ static const char decode_help[] =
     "                     each triangle's value is the mean of the samples below it\n"
     "                     (its Bio-Haar scaling value); only the coarser levels'\n"
     "                     coefficients are decoded (with --segments, only the\n"
-    "                     segments that hold them)\n"
+    "                     segments that hold them)\n"    "  --level-in Li      a full BRDF at a coarser incoming level Li (with --level,\n"
+    "                     both): each value the mean over the incoming triangle too;\n"
+    "                     only the coarser incoming blocks are decoded\n"
     "--incoming, --rows and --region decode what the rows need alone, with\n"
     "segments only the segments that hold it.\n"
     "A payload coded in segments (encode --segments) that arrives damaged or cut\n"
@@ -145,8 +147,8 @@ int bw_cmd_decode(int argc, char **argv)
 {
     const char *inp = NULL, *outp = NULL, *maskp = NULL, *rowsp = NULL, *regionp = NULL;
     int fmt = -1;
-    uint32_t max_samples = 0, incoming = 0, lod = 0;
-    int has_incoming = 0, has_lod = 0;
+    uint32_t max_samples = 0, incoming = 0, lod = 0, lodin = 0;
+    int has_incoming = 0, has_lod = 0, has_lodin = 0;
     const cli_opt_t opts[] = {
         {"input", 'i', CLI_STRING, .dest = &inp},
         {"output", 'o', CLI_STRING, .dest = &outp},
@@ -157,6 +159,7 @@ int bw_cmd_decode(int argc, char **argv)
         {"incoming", 0, CLI_U32, .dest = &incoming, .lo = 0, .hi = UINT32_MAX - 1u,
          .seen = &has_incoming},
         {"level", 0, CLI_U32, .dest = &lod, .lo = 0, .hi = BW_MAX_LEVEL, .seen = &has_lod},
+        {"level-in", 0, CLI_U32, .dest = &lodin, .lo = 0, .hi = BW_MAX_LEVEL, .seen = &has_lodin},
         {"rows", 0, CLI_STRING, .dest = &rowsp},
         {"region", 0, CLI_STRING, .dest = &regionp},
         {NULL}};
@@ -167,12 +170,14 @@ int bw_cmd_decode(int argc, char **argv)
         return cli_usage("needs -i IN.bwv and -o OUT");
     if (fmt < 0)
         fmt = format_of_name(outp);
+    int has_lodout = has_lod;
+    has_lod = has_lod || has_lodin;
     int parts = has_incoming + has_lod + !!rowsp + !!regionp;
     if (parts && maskp)
         return cli_usage("--mask is for a whole decode, not with --incoming, --rows, --region or "
                          "--level");
     if (parts > 1)
-        return cli_usage("give one of --incoming, --rows, --region and --level");
+        return cli_usage("give one of --incoming, --rows, --region and --level (or --level-in)");
     double reg[3];
     size_t nreg = 0;
     if (regionp && (cli_real_list(regionp, -360, 360, reg, 3, &nreg) != 0 || nreg != 3))
@@ -227,7 +232,9 @@ int bw_cmd_decode(int argc, char **argv)
     int got = rows           ? bwh_decode_rows(p, len, rows, &h, &rowd, &s, ints_only ? NULL : &v)
               : has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
                                                    ints_only ? NULL : &v)
-              : has_lod    ? bwh_decode_level(p, len, lod, &h, &rowd, &s, ints_only ? NULL : &v)
+              : has_lod    ? bwh_decode_levels(p, len, has_lodout ? (int)lod : -1,
+                                               has_lodin ? (int)lodin : -1, &h, &rowd, &s,
+                                               ints_only ? NULL : &v)
                            : bwh_decode_salvage(p, len, max_samples, &h, &s,
                                                 ints_only ? NULL : &v, maskp ? &mask : NULL, &sv);
     if (got < 0 || bwh_meta_of_payload(p, len, &h, &meta) != 0 ||

@@ -345,7 +345,8 @@ static int partial_values(const uint8_t *p, const bw_header_t *h, const bw_dims_
 static bw_status_t level_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
                             int32_t *out, size_t cap, int32_t *work, size_t wcap)
 {
-    return bw_decode_level(ctx, p, len, *(const unsigned *)arg, out, cap, work, wcap, NULL);
+    const unsigned *lv = arg; /* outgoing, incoming */
+    return bw_decode_lod(ctx, p, len, lv[0], lv[1], out, cap, work, wcap, NULL);
 }
 
 static bw_status_t incoming_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const void *arg,
@@ -360,23 +361,41 @@ static bw_status_t rows_fn(bw_ctx_t *ctx, const uint8_t *p, size_t len, const vo
     return bw_decode_rows(ctx, p, len, arg, out, cap, work, wcap, NULL);
 }
 
-int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
-                     int32_t **samples, float **values)
+int bwh_decode_levels(const uint8_t *p, size_t len, int level_out, int level_in, bw_header_t *h,
+                      bw_dims_t *lod, int32_t **samples, float **values)
 {
     if (header_partial(p, len, h, samples, values) != 0)
         return -1;
     const bw_dims_t *d = &h->dims;
     if (d->shape == BW_SHAPE_SPECTRA)
         return bwh_fail("a set of spectra has no outgoing hemisphere to coarsen");
-    if (level > d->level_out)
-        return bwh_fail("level %u is finer than the payload's own (%u)", level, d->level_out);
+    if (level_out > (int)d->level_out)
+        return bwh_fail("level %d is finer than the payload's own (%u)", level_out, d->level_out);
+    unsigned level = level_out < 0 ? d->level_out : (unsigned)level_out;
+    if (level_in >= 0 && d->shape != BW_SHAPE_BRDF_FULL)
+        return bwh_fail("only a full BRDF has an incoming hemisphere to coarsen");
+    if (level_in > (int)d->level_in)
+        return bwh_fail("incoming level %d is finer than the payload's own (%u)", level_in,
+                        d->level_in);
+    unsigned lv[2] = {level, level_in < 0 ? BW_LEVEL_OWN : (unsigned)level_in};
     *lod = *d;
     lod->level_out = (uint8_t)level;
     lod->n_out = 4u << (2u * level);
+    if (level_in >= 0) {
+        lod->level_in = (uint8_t)level_in;
+        lod->n_in = 4u << (2u * level_in);
+    }
     int32_t *r;
-    if (run_partial(level_fn, p, len, &level, h, bw_dims_samples(lod), &r) != 0)
+    if (run_partial(level_fn, p, len, lv, h, bw_dims_samples(lod), &r) != 0)
         return -1;
     return partial_values(p, h, lod, r, samples, values);
+}
+
+int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
+                     int32_t **samples, float **values)
+{
+    return bwh_decode_levels(p, len, (int)(level > BW_MAX_LEVEL ? BW_MAX_LEVEL + 1u : level),
+                             -1, h, lod, samples, values);
 }
 
 int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *h, bw_dims_t *row,

@@ -90,6 +90,11 @@ int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, doub
  * step, nor a float payload that keeps bits in a tail. 0, or -1. */
 int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *h, bw_dims_t *lod,
                      int32_t **samples, float **values);
+/* The same at a coarser level of either hemisphere or both
+ * (bw_decode_lod): outgoing level level_out and, for a full BRDF, incoming
+ * level level_in (-1: the payload's own). 0, or -1. */
+int bwh_decode_levels(const uint8_t *p, size_t len, int level_out, int level_in, bw_header_t *h,
+                      bw_dims_t *lod, int32_t **samples, float **values);
 
 /* Checks a payload as a receiver must before it stores and acknowledges it:
  * header, CRC, the sample limit (0: the default) and a full decode. */

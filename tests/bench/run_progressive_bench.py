@@ -303,15 +303,16 @@ def lod_rows():
             free(v)
 
         tw = timed(whole)
-        for lv in (0, 2):
+        for lv, li in ((0, -1), (2, -1)) + (((2, 2), (0, 0)) if key == "ward" else ()):
             def coarse():
                 h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
-                if L.bwh_decode_level(p, len(p), lv, ctypes.byref(h), ctypes.byref(d), None,
-                                      ctypes.byref(v)) != 0:
+                if L.bwh_decode_levels(p, len(p), lv, li, ctypes.byref(h), ctypes.byref(d), None,
+                                       ctypes.byref(v)) != 0:
                     sys.exit("bench-progressive: level %d decode failed" % lv)
                 free(v)
             tl = timed(coarse)
             out.append({"set": key, "payload": " ".join(args), "level": lv,
+                        "level_in": "own" if li < 0 else str(li),
                         "whole_ms": 1e3 * tw, "lod_ms": 1e3 * tl, "ratio": tw / tl})
     return out
 
@@ -611,13 +612,15 @@ def main():
             r["payload"], r["bytes"], r["region"], r["rows"], r["whole_ms"], r["region_ms"],
             r["ratio"], r["one_ms"], r["same"]))
     md += ["", "A coarser outgoing level (`bwh_decode_level`, `decode --level L`, "
-           "`decode(..., level=L)`) against the whole decode, the best of 5 each, in this run "
-           "(level 4 payloads):", "",
-           "| set | payload | level | whole decode | coarser level | ratio |",
-           "|---|---|---|---|---|---|"]
+           "`decode(..., level=L)`), and for the full BRDF a coarser incoming level too "
+           "(`bwh_decode_levels`, `--level-in Li`, `level_in=`), against the whole decode, the "
+           "best of 5 each, in this run (level 4 payloads):", "",
+           "| set | payload | level | incoming level | whole decode | coarser level | ratio |",
+           "|---|---|---|---|---|---|---|"]
     for r in lods:
-        md.append("| %s | `%s` | %d | %.2f ms | %.3f ms | %.1f x |" % (
-            r["set"], r["payload"], r["level"], r["whole_ms"], r["lod_ms"], r["ratio"]))
+        md.append("| %s | `%s` | %d | %s | %.2f ms | %.3f ms | %.1f x |" % (
+            r["set"], r["payload"], r["level"], r["level_in"], r["whole_ms"], r["lod_ms"],
+            r["ratio"]))
     d1 = dev[0]
     md += ["", "## On the device", "",
            "The refl81 set (%s) encoded by the emulated board's streaming encoder: `brdfwave "

@@ -679,6 +679,19 @@ for it in '$rows'.split(','):
     idx += range(int(lo), int(hi or lo) + 1)
 sys.exit(0 if 0 < len(idx) < 64 and np.array_equal(a[idx], r) else 1)" && ok || bad "decode --region: not the rows it names ($rows) of the whole decode"
 expect_error "decode --region with nothing inside" "$BW" decode -i "$T/wr.bwv" --region 0,0,0.5 -o "$T/x.f32"
+# a coarser level of both hemispheres of a full BRDF: 16 x 16 pairs, each
+# near the mean of the 4 x 4 below it; the incoming level alone
+expect_ok "decode --level 1 --level-in 1" "$BW" decode -i "$T/wr.bwv" --level 1 --level-in 1 -o "$T/wl11.f32"
+$PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/wrall.f32', '<f4').reshape(16, 4, 16, 4).mean(axis=(1, 3))
+c = np.fromfile('$T/wl11.f32', '<f4')
+sys.exit(0 if c.size == 256 and np.max(np.abs(c.reshape(16, 16) - a)) < 0.05 * np.max(np.abs(a)) else 1)" && ok || bad "decode --level 1 --level-in 1 is not the coarser levels"
+expect_ok "decode --level-in 0" "$BW" decode -i "$T/wr.bwv" --level-in 0 -o "$T/wl0.f32"
+[ "$(stat -c %s "$T/wl0.f32")" = $((4 * 64 * 4)) ] && ok || bad "decode --level-in 0: $(stat -c %s "$T/wl0.f32") bytes"
+expect_error "decode --level-in finer than the payload" "$BW" decode -i "$T/wr.bwv" --level-in 3 -o "$T/x.f32"
+expect_error "decode --level-in of incidences" "$BW" decode -i "$T/seg.bwv" --level-in 0 -o "$T/x.f32"
+expect_status "decode --level-in with --rows" 2 "$BW" decode -i "$T/wr.bwv" --level-in 0 --rows 1 -o "$T/x.f32"
 # a coarser level: 8 incidences x 64 triangles, each near the mean of its 16
 expect_ok "decode --level 2" "$BW" decode -i "$T/seg.bwv" --level 2 -o "$T/lod2.f32"
 $PY -c "

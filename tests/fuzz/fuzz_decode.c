@@ -167,13 +167,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     "bw_decode_rows refuses a whole payload", st);
         free(marks);
     }
-    /* a coarser level: a known status, and on a whole payload it decodes
+    /* a coarser level (of both hemispheres of a full BRDF): a known
+     * status, and on a whole payload it decodes
      * (or is refused as documented) */
     if (hf.dims.shape != BW_SHAPE_SPECTRA && hf.dims.level_out <= BW_MAX_LEVEL) {
         static bw_ctx_t lctx;
         unsigned lv = (unsigned)(size % (hf.dims.level_out + 1u));
-        int st = bw_decode_level(&lctx, data, size, lv, s2, n, w2, wb, NULL);
-        require(known(st), "bw_decode_level: unknown status", st);
+        unsigned li = hf.dims.shape == BW_SHAPE_BRDF_FULL && hf.dims.level_in <= BW_MAX_LEVEL
+                          ? (unsigned)(size / 7u % (hf.dims.level_in + 1u))
+                          : BW_LEVEL_OWN;
+        int st = bw_decode_lod(&lctx, data, size, lv, li, s2, n, w2, wb, NULL);
+        require(known(st), "bw_decode_lod: unknown status", st);
         if (st1 == BW_OK)
             require(st == BW_OK || (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
                     "bw_decode_level refuses a whole payload", st);

@@ -233,6 +233,27 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
     assert 0 < len(inside) < 64 and list(g.rows) == list(inside), (g.rows, inside)
     assert np.array_equal(np.asarray(g), wall[inside])
     assert np.all(g.incoming @ u >= np.cos(np.radians(25)))
+    # a coarser level of both hemispheres: each value near the mean of the
+    # 4 x 4 pairs below it; the incoming one alone keeps the outgoing level
+    c = brdfwave.decode_bytes(q, level=1, level_in=1)
+    assert c.shape == (16, 16, 1) and c.level == 1 and c.level_in == 1, (c.shape, c.level_in)
+    assert c.incoming.shape == (16, 3)
+    means = wall.reshape(16, 4, 16, 4).mean(axis=(1, 3))
+    assert np.max(np.abs(np.asarray(c)[..., 0] - means)) < 0.05 * np.max(np.abs(means))
+    assert brdfwave.decode_bytes(q, level_in=0).shape == (4, 64, 1)
+    for bad in (dict(level_in=3), dict(level_in=-1), dict(level_in=1, rows=[1])):
+        try:
+            brdfwave.decode_bytes(q, **bad)
+        except brdfwave.BrdfwaveError:
+            pass
+        else:
+            raise AssertionError("%r accepted" % (bad,))
+    try:
+        brdfwave.decode_bytes(p, level_in=0)
+    except brdfwave.BrdfwaveError:
+        pass
+    else:
+        raise AssertionError("level_in= accepted for a BRDF of incidences")
     for bad in (0, -1, 2.5, 1 << 29):
         try:
             brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=bad)

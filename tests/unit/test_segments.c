@@ -532,13 +532,15 @@ static void a_set_of_rows_decodes_as_in_the_whole(void **state)
     }
 }
 
-/* A coarser outgoing level is the whole decode's samples taken up the
- * outgoing Bio-Haar tree to that level (the lifting, on the spectral
- * coefficients of each vector, then back): exactly, as the integer lifting
- * inverts exactly (for a full BRDF too: the incoming steps come first in
- * both); with the mirror step, whose differences are taken at the finest
- * level while the coarse decode adds the partners back at its own, within
- * 4 prequantised units a level, 8 with the 9/7 (the roundings of the
+/* A coarser outgoing level (and, for a full BRDF, a coarser incoming
+ * level) is the whole decode's samples taken up the Bio-Haar trees in the
+ * decoder's order: the spectral and outgoing transforms of every row, the
+ * incoming tree up to its level, each coarse row's coarse outgoing
+ * coefficients back down to the outgoing level, the spectral inverse:
+ * exactly, as the integer lifting inverts exactly; with the mirror step,
+ * whose differences are taken at the finest level while the coarse decode
+ * adds the partners back at its own, within 4 prequantised units a level
+ * of either tree, 8 with the 9/7 (the roundings of the
  * lifting, spectral and directional, on the differences and on the
  * partners: the 9/7's four lifting steps and scaling round more; over
  * twelve seeds of these cases at most 2 a level with Haar, 3 with the 5/3,
@@ -546,36 +548,48 @@ static void a_set_of_rows_decodes_as_in_the_whole(void **state)
 static double worst_mirror = 0;
 
 static void coarse_reference(const bw_dims_t *d, unsigned basis, const int32_t *all,
-                             uint32_t prequant, unsigned l, double *ref)
+                             uint32_t prequant, unsigned l, unsigned li, double *ref)
 {
     uint32_t b = d->bands, no = d->n_out;
-    unsigned L = d->level_out, sl = bw_spec_levels(b);
-    size_t nc = (size_t)4u << (2u * l);
-    int32_t *row = xmalloc((size_t)no * b * 4), *tmp = xmalloc((size_t)b * 4 + 64);
-    for (uint32_t i = 0; i < d->n_in; i++) {
-        for (size_t k = 0; k < (size_t)no * b; k++)
-            row[k] = all[(size_t)i * no * b + k] / (int32_t)prequant;
-        for (uint32_t o = 0; sl && o < no; o++)
-            bw_spec_fwd(row + (size_t)o * b, b, basis, sl, tmp);
-        for (unsigned j = L; j-- > l;) { /* the parents at level j, finest first */
-            size_t h = (size_t)1 << (2u * (L - j - 1u));
-            uint32_t per_base = 1u << (2u * j);
-            for (uint32_t p = 0; p < 4u * per_base; p++) {
-                uint16_t w[3];
-                bw_geo_weights(j, p & (per_base - 1u), w);
-                int32_t *c0 = row + (size_t)p * 4u * h * b;
-                bw_biohaar_lift4(c0, c0 + h * b, c0 + 2u * h * b, c0 + 3u * h * b, w, b);
-            }
-        }
-        for (size_t t = 0; t < nc; t++) {
-            int32_t *v = row + (t << (2u * (L - l))) * b;
-            if (sl)
-                bw_spec_inv(v, b, basis, sl, tmp);
-            for (uint32_t k = 0; k < b; k++)
-                ref[((size_t)i * nc + t) * b + k] = (double)v[k] * prequant;
+    unsigned L = d->level_out, Li = d->level_in, sl = bw_spec_levels(b);
+    bool full = d->shape == BW_SHAPE_BRDF_FULL;
+    size_t nc = (size_t)4u << (2u * l), ni = full ? (size_t)4u << (2u * li) : d->n_in;
+    size_t row = (size_t)no * b, n = (size_t)d->n_in * row;
+    int32_t *z = xmalloc(n * 4), *c = xmalloc(nc * b * 4), *tmp = xmalloc((size_t)b * 4 + 64);
+    /* the spectral and outgoing transforms of every row */
+    for (size_t k = 0; k < n; k++)
+        z[k] = all[k] / (int32_t)prequant;
+    for (size_t v = 0; sl && v < (size_t)d->n_in * no; v++)
+        bw_spec_fwd(z + v * b, b, basis, sl, tmp);
+    for (uint32_t i = 0; i < d->n_in; i++)
+        bw_biohaar_fwd(z + i * row, L, b);
+    /* the incoming tree up to level li, the finest parents first */
+    for (unsigned j = Li; full && j-- > li;) {
+        size_t h = (size_t)1 << (2u * (Li - j - 1u));
+        uint32_t per_base = 1u << (2u * j);
+        for (uint32_t p = 0; p < 4u * per_base; p++) {
+            uint16_t w[3];
+            bw_geo_weights(j, p & (per_base - 1u), w);
+            int32_t *c0 = z + (size_t)p * 4u * h * row;
+            bw_biohaar_lift4(c0, c0 + h * row, c0 + 2u * h * row, c0 + 3u * h * row, w, row);
         }
     }
-    free(row);
+    /* each coarse row's coarse outgoing coefficients back down to level l */
+    unsigned shi = full ? 2u * (Li - li) : 0u;
+    for (size_t i = 0; i < ni; i++) {
+        const int32_t *r = z + (i << shi) * row;
+        for (size_t t = 0; t < nc; t++)
+            memcpy(c + t * b, r + (t << (2u * (L - l))) * b, b * 4);
+        bw_biohaar_inv(c, l, b);
+        for (size_t t = 0; t < nc; t++) {
+            if (sl)
+                bw_spec_inv(c + t * b, b, basis, sl, tmp);
+            for (uint32_t k = 0; k < b; k++)
+                ref[(i * nc + t) * b + k] = (double)c[t * b + k] * prequant;
+        }
+    }
+    free(z);
+    free(c);
     free(tmp);
 }
 
@@ -595,28 +609,38 @@ static void one_case_level(const bw_dims_t *d, const bw_params_t *pa, const int3
     assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
     assert_int_equal(bw_header_read(pl.p, pl.len, &h), BW_OK);
     static bw_ctx_t ctx;
-    for (unsigned l = 0; l <= L; l++) {
-        memset(w, 0x5A, wb * 4);
-        bw_status_t st = bw_decode_level(&ctx, pl.p, pl.len, l, lod, n, w, wb, NULL);
-        if (st != BW_OK)
-            fail_msg("%s: level %u: %s", what, l, bw_strerror(st));
-        if (l == L && memcmp(lod, all, n * 4))
-            fail_msg("%s: its own level differs from the whole decode", what);
-        if (l == L)
-            continue;
-        coarse_reference(d, h.basis, all, h.prequant, l, ref);
-        size_t m = (size_t)d->n_in * ((size_t)4u << (2u * l)) * d->bands;
-        bool mirror = (h.flags & BW_FLAG_MIRROR) != 0u;
-        for (size_t k = 0; k < m; k++) {
-            double e = fabs(lod[k] - ref[k]);
-            if (mirror && e > worst_mirror * h.prequant)
-                worst_mirror = e / h.prequant;
-            if (mirror ? e > (h.basis == BW_BASIS_97 ? 8.0 : 4.0) * (L - l) * h.prequant
-                       : e != 0.0)
-                fail_msg("%s: level %u, value %zu: %d, taken up the tree %g", what, l, k, lod[k],
-                         ref[k]);
+    bool full = d->shape == BW_SHAPE_BRDF_FULL;
+    unsigned Li = full ? d->level_in : 0u;
+    for (unsigned li = full ? 0u : Li; li <= Li; li++)
+        for (unsigned l = 0; l <= L; l++) {
+            memset(w, 0x5A, wb * 4);
+            bw_status_t st = li == Li ? bw_decode_level(&ctx, pl.p, pl.len, l, lod, n, w, wb, NULL)
+                                      : bw_decode_lod(&ctx, pl.p, pl.len, l, li, lod, n, w, wb,
+                                                      NULL);
+            if (st != BW_OK)
+                fail_msg("%s: level %u, incoming %u: %s", what, l, li, bw_strerror(st));
+            if (l == L && li == Li && memcmp(lod, all, n * 4))
+                fail_msg("%s: its own level differs from the whole decode", what);
+            if (l == L && li == Li)
+                continue;
+            coarse_reference(d, h.basis, all, h.prequant, l, li, ref);
+            size_t m = (full ? (size_t)4u << (2u * li) : d->n_in) * ((size_t)4u << (2u * l)) *
+                       d->bands;
+            bool mirror = (h.flags & BW_FLAG_MIRROR) != 0u;
+            for (size_t k = 0; k < m; k++) {
+                double e = fabs(lod[k] - ref[k]);
+                if (mirror && e > worst_mirror * h.prequant)
+                    worst_mirror = e / h.prequant;
+                if (mirror ? e > (h.basis == BW_BASIS_97 ? 8.0 : 4.0) * (L - l + Li - li) *
+                                     h.prequant
+                           : e != 0.0)
+                    fail_msg("%s: level %u, incoming %u, value %zu: %d, taken up the trees %g",
+                             what, l, li, k, lod[k], ref[k]);
+            }
         }
-    }
+    if (full)
+        assert_int_equal(bw_decode_lod(&ctx, pl.p, pl.len, 0, Li + 1u, lod, n, w, wb, NULL),
+                         BW_ERR_ARG);
     assert_int_equal(bw_decode_level(&ctx, pl.p, pl.len, L + 1u, lod, n, w, wb, NULL), BW_ERR_ARG);
     free(all);
     free(lod);

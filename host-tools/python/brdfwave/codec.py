@@ -202,14 +202,15 @@ def _put_missing(values, meta):
 
 
 def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0, salvage=False,
-                 incoming=None, level=None, rows=None, region=None):
+                 incoming=None, level=None, rows=None, region=None, level_in=None):
     """Decodes a payload held in memory; see decode()."""
     return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples,
-                  salvage=salvage, incoming=incoming, level=level, rows=rows, region=region)
+                  salvage=salvage, incoming=incoming, level=level, rows=rows, region=region,
+                  level_in=level_in)
 
 
 def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=False,
-           incoming=None, level=None, rows=None, region=None):
+           incoming=None, level=None, rows=None, region=None, level_in=None):
     """Decodes a payload (bytes, or the path of a payload file) to a
     Measurement: float32 values (integers=True: the codec's int32 samples) in
     the layout of `brdfwave decode`, [incoming][outgoing][band], with the
@@ -230,8 +231,9 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     segments, only the segments that hold it); not for a full BRDF coded
     with the reciprocity step. level=L: a directional measurement at a
     coarser outgoing level L (level of detail), each triangle's value the
-    mean of the samples below it, decoding only the coarser levels.
-    rows=[K, ...] (indices, or a boolean array of n_in): only those incoming
+    mean of the samples below it, decoding only the coarser levels;
+    level_in=Li (alone or with level=): a full BRDF at a coarser incoming
+    level too, decoding only the coarser incoming blocks. rows=[K, ...] (indices, or a boolean array of n_in): only those incoming
     directions of a BRDF, or those spectra, in ascending order, as a BRDF
     of that many incoming directions ((k, n_out, bands)) or that many
     spectra, decoding what they share once; region=(theta, phi, radius), in
@@ -241,15 +243,17 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     their directions, for a full BRDF)."""
     payload, path = _read_bytes(source)
     try:
-        if ((incoming is not None) + (level is not None) + bool(salvage) + (rows is not None) +
+        lod = level is not None or level_in is not None
+        if ((incoming is not None) + lod + bool(salvage) + (rows is not None) +
                 (region is not None) > 1):
-            raise BrdfwaveError("give one of incoming=, rows=, region=, level= and salvage=True")
+            raise BrdfwaveError("give one of incoming=, rows=, region=, level= (level_in=) and "
+                                "salvage=True")
         if rows is not None or region is not None:
             return _decode_rows(payload, rows, region, wavelengths, integers)
         if incoming is not None:
             return _decode_row(payload, incoming, wavelengths, integers)
-        if level is not None:
-            return _decode_lod(payload, level, wavelengths, integers)
+        if lod:
+            return _decode_lod(payload, level, level_in, wavelengths, integers)
         return _decode(payload, wavelengths, integers, max_samples, salvage)
     except BrdfwaveError as e:
         if path is None:
@@ -319,10 +323,15 @@ def _decode_part(call, payload, arg, integers):
     return vals, h, d
 
 
-def _decode_lod(payload, level, wavelengths, integers):
-    if not (isinstance(level, (int, np.integer)) and 0 <= level <= 6):
-        raise BrdfwaveError("level must be a whole number from 0 to 6")
-    vals, h, d = _decode_part(lib().bwh_decode_level, payload, int(level), integers)
+def _decode_lod(payload, level, level_in, wavelengths, integers):
+    for name, v in (("level", level), ("level_in", level_in)):
+        if v is not None and not (isinstance(v, (int, np.integer)) and 0 <= v <= 6):
+            raise BrdfwaveError("%s must be a whole number from 0 to 6" % name)
+    L = lib()
+    vals, h, d = _decode_part(
+        lambda p, n, a, *rest: L.bwh_decode_levels(p, n, a[0], a[1], *rest), payload,
+        (-1 if level is None else int(level), -1 if level_in is None else int(level_in)),
+        integers)
     meta = _meta_of(payload)
     meta.pop("missing", None)  # the source's missing samples are at its own level
     return _measurement(vals, meta, d, h, payload, wavelengths)
