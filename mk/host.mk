@@ -60,7 +60,7 @@ $(PLOT_LIB): $(patsubst %.c,$(BUILD)/%.o,$(PLOT_SRC))
 CLI_SRC := host-tools/cli/main.c host-tools/cli/cmd_encode.c host-tools/cli/cmd_decode.c \
            host-tools/cli/cmd_info.c host-tools/cli/cmd_compare.c host-tools/cli/cmd_grid.c \
            host-tools/cli/cmd_synth.c host-tools/cli/cmd_receive.c host-tools/cli/cmd_render.c \
-           host-tools/cli/cmd_plot.c
+           host-tools/cli/cmd_plot.c host-tools/cli/cmd_eval.c
 CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 $(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli

@@ -14,5 +14,6 @@ int bw_cmd_receive(int argc, char **argv);
 int bw_cmd_acquire(int argc, char **argv);
 int bw_cmd_render(int argc, char **argv);
 int bw_cmd_plot(int argc, char **argv);
+int bw_cmd_eval(int argc, char **argv);
 
 #endif

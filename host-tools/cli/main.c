@@ -15,6 +15,7 @@ static const cli_command_t commands[] = {
     {"encode", bw_cmd_encode, "compress a measurement into a payload"},
     {"decode", bw_cmd_decode, "decode a payload to raw samples"},
     {"info", bw_cmd_info, "print a payload's header"},
+    {"eval", bw_cmd_eval, "f(wi, wo, lambda) of a BRDF payload at direction pairs"},
     {"compare", bw_cmd_compare, "error metrics between two raw sample files"},
     {"grid", bw_cmd_grid, "print the geodesic triangle grid as CSV"},
     {"synth", bw_cmd_synth, "sample an analytic BRDF (Phong, Ward) on the grid"},

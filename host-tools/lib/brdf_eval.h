@@ -20,6 +20,8 @@
 #define BW_BRDF_EVAL_H
 
 #include <stddef.h>
+#include <stdint.h>
+#include <stdint.h>
 
 #include "bw_codec.h"
 #include "bwh_interp.h"
@@ -34,9 +36,12 @@ typedef struct {
     size_t n_in, n_out, bands;
     double lambda_first, lambda_last;
     double *theta_in;          /* ISO: radians, ascending */
-    double *planes;            /* [n_in][bands][n_out] */
-    double *mean;              /* [n_in][n_out]: the mean over the bands */
+    double *planes;            /* [rows][bands][n_out] */
+    double *mean;              /* [rows][n_out]: the mean over the bands */
     bwh_sphere_interp_t s_out;
+    uint32_t *row_of;          /* NULL: rows = n_in; else [n_in], the row of planes
+                                * that holds incoming direction i (UINT32_MAX: not
+                                * decoded: f is NAN there) */
 } bwh_brdf_data_t;
 
 /* values: [n_in][n_out][bands], the codec's layout. theta_in_deg (ISO, may be
@@ -49,6 +54,39 @@ int bwh_brdf_data_init(bwh_brdf_data_t *d, const bw_dims_t *dims, const float *v
  * Metadata; the measured angles of an RGL file, for one), else the
  * defaults above. */
 int bwh_brdf_data_load(bwh_brdf_data_t *d, const char *path);
+/* The same from a payload in memory, decoding only the incoming directions
+ * that f at the incoming directions wi[n] reads (wi NULL: all): a full
+ * BRDF's triangle holding each, an isotropic BRDF's two incidences about
+ * each (bwh_decode_rows: with segments, only the segments that hold them);
+ * a payload whose rows depend on each other (the reciprocity step, a float
+ * tail), or more than half of whose rows are read, is decoded whole. f at
+ * another incoming direction is NAN where its rows were not decoded. */
+int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
+                               const double (*wi)[3], size_t n);
+/* f at n direction pairs (unit vectors wi[3 n], wo[3 n]): at lambda[j]
+ * (bwh_brdf_data_eval), of band `band` >= 0, or the mean over the bands
+ * with neither: out[n]. 0, or -1 (a band past the last). */
+int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi,
+                            const double *wo, const double *lambda, long band, double *out);
+/* f at n direction pairs (unit vectors wi[3 n], wo[3 n]) straight from a
+ * payload: bwh_brdf_data_from_payload for the wi, then
+ * bwh_brdf_data_eval_many. 0, or -1. */
+int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
+                     const double *lambda, long band, double *out);
+/* The same from a payload in memory, decoding only the incoming directions
+ * that f at the incoming directions wi[n] reads (wi NULL: all): a full
+ * BRDF's triangle holding each, an isotropic BRDF's two incidences about
+ * each (bwh_decode_rows: with segments, only the segments that hold them);
+ * a payload whose rows depend on each other (the reciprocity step, a float
+ * tail), or more than half of whose rows are read, is decoded whole. f at
+ * another incoming direction is NAN where its rows were not decoded. */
+int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
+                               const double (*wi)[3], size_t n);
+/* f at n direction pairs straight from a payload (bwh_brdf_data_from_payload
+ * for the wi, then bwh_brdf_data_eval at lambda[j], bwh_brdf_data_band
+ * with band >= 0, or bwh_brdf_data_mean with neither): out[n]. 0, or -1. */
+int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
+                     const double *lambda, long band, double *out);
 void bwh_brdf_data_free(bwh_brdf_data_t *d);
 
 /* Band k at (wi, wo), interpolated over the directions. NAN below the

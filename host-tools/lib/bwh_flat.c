@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 /* Flat calls for bindings (bwh_flat.h). */
+#include "brdf_eval.h"
 #include "bwh_flat.h"
 
 #include <stdlib.h>
@@ -27,6 +28,7 @@ size_t bwh_abi_size(const char *name)
         {"bwh_i2c_payload_t", sizeof(bwh_i2c_payload_t)},
         {"bwh_salvage_t", sizeof(bwh_salvage_t)},
         {"bwh_partial_t", sizeof(bwh_partial_t)},
+        {"bwh_brdf_data_t", sizeof(bwh_brdf_data_t)},
     };
     for (size_t i = 0; name && i < sizeof sizes / sizeof *sizes; i++)
         if (!strcmp(name, sizes[i].name))

@@ -50,6 +50,17 @@ def tmp(name):
     return os.path.join(TMP, name)
 
 
+def best_of(fn, k=5):
+    """The least time of k calls of fn, and what the last call returned."""
+    best, got = None, None
+    for _ in range(k):
+        t0 = time.perf_counter()
+        got = fn()
+        t = time.perf_counter() - t0
+        best = t if best is None else min(best, t)
+    return best, got
+
+
 def sets():
     """(key, description, encode input arguments)"""
     out = []
@@ -217,15 +228,6 @@ def region_rows():
             ["--segments", "1024", "--max-error", "0.001", "-o", pth])
         p = open(pth, "rb").read()
 
-        def timed(fn):
-            best, got = None, None
-            for _ in range(5):
-                t0 = time.perf_counter()
-                got = fn()
-                t = time.perf_counter() - t0
-                best = t if best is None else min(best, t)
-            return best, got
-
         def whole():
             h, v = Header(), ctypes.POINTER(ctypes.c_float)()
             if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
@@ -234,7 +236,7 @@ def region_rows():
             free(v)
             return a.reshape(h.dims.n_in, h.dims.n_out), h
 
-        tw, (ref, hw) = timed(whole)
+        tw, (ref, hw) = best_of(whole)
         for theta, phi, radius in ((30, 0, 5), (30, 0, 10), (30, 0, 20), (45, 60, 45)):
             marks = np.zeros(hw.dims.n_in, dtype=np.uint8)
 
@@ -260,14 +262,73 @@ def region_rows():
                     free(v)
                 return rows
 
-            tr, got = timed(region)
-            to, _ = timed(one_by_one)
+            tr, got = best_of(region)
+            to, _ = best_of(one_by_one)
             idx = np.flatnonzero(marks)
             out.append({"payload": what, "bytes": len(p),
                         "region": "(%g, %g), %g deg" % (theta, phi, radius), "rows": len(idx),
                         "whole_ms": 1e3 * tw, "region_ms": 1e3 * tr, "ratio": tw / tr,
                         "one_ms": 1e3 * to, "same": "yes" if np.array_equal(got, ref[idx])
                         else "NO"})
+    return out
+
+
+def eval_rows():
+    """f(wi, wo) at random direction pairs of the Ward set (mirror, 1024
+    segments) straight from the payload (bwh_payload_eval: the incoming
+    rows the pairs read) against decoding it all and evaluating
+    (bwh_brdf_data_from_payload of every row, bwh_brdf_data_eval_many), the
+    best of 3 each, in this run; *same*: the values equal bit for bit."""
+    import ctypes
+    sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
+    from brdfwave._lib import lib
+    L = lib()
+    L.bwh_abi_size.restype = ctypes.c_size_t
+    L.bwh_abi_size.argtypes = [ctypes.c_char_p]
+    size = L.bwh_abi_size(b"bwh_brdf_data_t")
+    L.bwh_brdf_data_from_payload.restype = ctypes.c_int
+    L.bwh_brdf_data_from_payload.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t,
+                                             ctypes.c_void_p, ctypes.c_size_t]
+    L.bwh_brdf_data_eval_many.restype = ctypes.c_int
+    L.bwh_brdf_data_eval_many.argtypes = [ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p,
+                                          ctypes.c_void_p, ctypes.c_void_p, ctypes.c_long,
+                                          ctypes.c_void_p]
+    L.bwh_brdf_data_free.argtypes = [ctypes.c_void_p]
+    inputs = {k: inp for k, _, inp, _ in sets()}
+    pth = tmp("eval_ward.bwv")
+    run(["encode", "-q"] + inputs["ward"] + ["--symmetry", "mirror", "--max-error", "0.001",
+                                             "--segments", "1024", "-o", pth])
+    p = open(pth, "rb").read()
+    rng = np.random.default_rng(7)
+    out = []
+    for n in (10, 1000, 100000):
+        def hemi():
+            v = rng.normal(size=(n, 3))
+            v[:, 2] = np.abs(v[:, 2])
+            return np.ascontiguousarray(v / np.linalg.norm(v, axis=1)[:, None])
+        wi, wo = hemi(), hemi()
+        a, b = np.empty(n), np.empty(n)
+
+        def from_payload():
+            if L.bwh_payload_eval(p, len(p), n, wi.ctypes.data, wo.ctypes.data, None, -1,
+                                  a.ctypes.data) != 0:
+                sys.exit("bench-progressive: bwh_payload_eval failed")
+
+        def whole():
+            d = ctypes.create_string_buffer(size)
+            if (L.bwh_brdf_data_from_payload(d, p, len(p), None, 0) != 0 or
+                    L.bwh_brdf_data_eval_many(d, n, wi.ctypes.data, wo.ctypes.data, None, -1,
+                                              b.ctypes.data) != 0):
+                sys.exit("bench-progressive: whole decode and evaluation failed")
+            L.bwh_brdf_data_free(d)
+
+        tp, tw = best_of(from_payload, 3)[0], best_of(whole, 3)[0]
+        g = run(["grid", "--level", "4"]).stdout.decode().splitlines()[1:]
+        c = np.array([[float(x) for x in l.split(",")[3:6]] for l in g])
+        rows = len(np.unique(np.argmax(wi @ c.T, axis=1)))
+        out.append({"pairs": n, "rows": rows, "payload_ms": 1e3 * tp, "whole_ms": 1e3 * tw,
+                    "ratio": tw / tp, "same": "yes" if np.array_equal(a, b, equal_nan=True)
+                    else "NO", "bytes": len(p)})
     return out
 
 
@@ -287,22 +348,13 @@ def lod_rows():
         run(["encode", "-q"] + inputs[key] + args + ["-o", pth])
         p = open(pth, "rb").read()
 
-        def timed(fn):
-            best = None
-            for _ in range(5):
-                t0 = time.perf_counter()
-                fn()
-                t = time.perf_counter() - t0
-                best = t if best is None else min(best, t)
-            return best
-
         def whole():
             h, v = Header(), ctypes.POINTER(ctypes.c_float)()
             if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
                 sys.exit("bench-progressive: whole decode failed")
             free(v)
 
-        tw = timed(whole)
+        tw = best_of(whole)[0]
         for lv, li in ((0, -1), (2, -1)) + (((2, 2), (0, 0)) if key == "ward" else ()):
             def coarse():
                 h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
@@ -310,7 +362,7 @@ def lod_rows():
                                        ctypes.byref(v)) != 0:
                     sys.exit("bench-progressive: level %d decode failed" % lv)
                 free(v)
-            tl = timed(coarse)
+            tl = best_of(coarse)[0]
             out.append({"set": key, "payload": " ".join(args), "level": lv,
                         "level_in": "own" if li < 0 else str(li),
                         "whole_ms": 1e3 * tw, "lod_ms": 1e3 * tl, "ratio": tw / tl})
@@ -505,6 +557,7 @@ def main():
     part = partial_rows()
     lods = lod_rows()
     regs = region_rows()
+    evals = eval_rows()
     refl = [x for x in sets() if x[0] == "refl81"][0]
     dev = device_rows(refl[2])
     ram = stream_ram()
@@ -611,6 +664,18 @@ def main():
         md.append("| %s | %d | %s | %d | %.2f ms | %.3f ms | %.1f x | %.3f ms | %s |" % (
             r["payload"], r["bytes"], r["region"], r["rows"], r["whole_ms"], r["region_ms"],
             r["ratio"], r["one_ms"], r["same"]))
+    md += ["", "f(wi, wo) of the Ward set (mirror, 1024 segments, %d bytes) at random direction "
+           "pairs straight from the payload (`bwh_payload_eval`, `brdfwave eval`, "
+           "`brdfwave.evaluate`: the incoming rows the pairs read, decoded together, then the "
+           "renderer's interpolation) against decoding it all and evaluating "
+           "(`bwh_brdf_data_from_payload` of every row, `bwh_brdf_data_eval_many`), the best "
+           "of 3 each, in this run; *rows*: the incoming triangles the pairs fall in (about); "
+           "*same*: the values equal bit for bit." % (evals[0]["bytes"] if evals else 0), "",
+           "| pairs | rows | from the payload | decode all, evaluate | ratio | same |",
+           "|---|---|---|---|---|---|"]
+    for r in evals:
+        md.append("| %d | %d | %.3f ms | %.3f ms | %.2f x | %s |" % (
+            r["pairs"], r["rows"], r["payload_ms"], r["whole_ms"], r["ratio"], r["same"]))
     md += ["", "A coarser outgoing level (`bwh_decode_level`, `decode --level L`, "
            "`decode(..., level=L)`), and for the full BRDF a coarser incoming level too "
            "(`bwh_decode_levels`, `--level-in Li`, `level_in=`), against the whole decode, the "
@@ -667,7 +732,8 @@ def main():
     bad = ([r for r in loss if r["exact_elsewhere"] != "yes"] +
            [r for r in emb_prefix if r.get("monotone", "yes") != "yes"] +
            [r for r in dev if r["same"] != "yes"] + [r for r in part if r["same"] != "yes"] +
-           [r for r in regs if r["same"] != "yes"] + [r for r in demb if r["same"] != "yes"])
+           [r for r in regs if r["same"] != "yes"] + [r for r in demb if r["same"] != "yes"] +
+           [r for r in evals if r["same"] != "yes"])
     md += ["", "Exact outside the lost part in every case: %s." % ("yes" if not bad else
                                                                     "NO (%d rows)" % len(bad))]
     open(os.path.join(OUT, "progressive.md"), "w").write("\n".join(md) + "\n")

@@ -679,6 +679,32 @@ for it in '$rows'.split(','):
     idx += range(int(lo), int(hi or lo) + 1)
 sys.exit(0 if 0 < len(idx) < 64 and np.array_equal(a[idx], r) else 1)" && ok || bad "decode --region: not the rows it names ($rows) of the whole decode"
 expect_error "decode --region with nothing inside" "$BW" decode -i "$T/wr.bwv" --region 0,0,0.5 -o "$T/x.f32"
+# f straight from the payload at direction pairs: at the triangles'
+# centres, the decoded samples; below the horizon nan; bad pairs refused
+"$BW" grid --level 2 >"$T/g2.csv"
+at=$($PY -c "
+import csv
+r = list(csv.DictReader(open('$T/g2.csv')))
+print(' '.join('--at %s,%s,%s,%s' % (r[i]['theta_deg'], r[i]['phi_deg'], r[o]['theta_deg'], r[o]['phi_deg'])
+               for i, o in ((5, 17), (40, 3), (63, 60))))")
+# shellcheck disable=SC2086
+expect_ok "eval --at" "$BW" eval -i "$T/wr.bwv" $at
+$PY - "$T/wrall.f32" "$T/out" <<'PY' && ok || bad "eval at the centres is not the decoded samples: $(cat "$T/out")"
+import numpy as np, sys
+a = np.fromfile(sys.argv[1], '<f4').reshape(64, 64)
+f = np.array([float(l) for l in open(sys.argv[2])])
+w = np.array([a[5, 17], a[40, 3], a[63, 60]])
+sys.exit(0 if f.size == 3 and np.allclose(f, w, rtol=1e-5, atol=1e-7) else 1)
+PY
+printf '# theta_i phi_i theta_o phi_o\n10 20 30 40\n10,20,95,0\n' >"$T/pairs.txt"
+expect_ok "eval --directions" "$BW" eval -i "$T/wr.bwv" --directions "$T/pairs.txt"
+[ "$(sed -n 2p "$T/out")" = nan ] && [ "$(wc -l <"$T/out")" = 2 ] && ok || bad "eval --directions: $(cat "$T/out")"
+expect_status "eval --at with three angles" 2 "$BW" eval -i "$T/wr.bwv" --at 10,20,30
+expect_status "eval without pairs" 2 "$BW" eval -i "$T/wr.bwv"
+expect_error "eval of a band past the last" "$BW" eval -i "$T/wr.bwv" --at 10,20,30,40 --band 1
+printf '10 20 30\n' >"$T/pairs3.txt"
+expect_error "eval --directions with a short line" "$BW" eval -i "$T/wr.bwv" --directions "$T/pairs3.txt"
+expect_error "eval of a set of spectra" "$BW" eval -i "$T/fs.bwv" --at 10,20,30,40
 # a coarser level of both hemispheres of a full BRDF: 16 x 16 pairs, each
 # near the mean of the 4 x 4 below it; the incoming level alone
 expect_ok "decode --level 1 --level-in 1" "$BW" decode -i "$T/wr.bwv" --level 1 --level-in 1 -o "$T/wl11.f32"

@@ -233,6 +233,24 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
     assert 0 < len(inside) < 64 and list(g.rows) == list(inside), (g.rows, inside)
     assert np.array_equal(np.asarray(g), wall[inside])
     assert np.all(g.incoming @ u >= np.cos(np.radians(25)))
+    # f straight from the payload: at the triangles' centres, the samples
+    dec = brdfwave.decode_bytes(q)
+    ii, oo = np.array([0, 5, 40, 63]), np.array([3, 17, 30, 60])
+    f = brdfwave.evaluate(q, dec.incoming[ii], dec.directions[oo])
+    assert f.shape == (4,) and np.allclose(f, wall[ii, oo, 0], rtol=1e-5, atol=1e-7), (
+        f, wall[ii, oo, 0])
+    assert np.isclose(brdfwave.evaluate(q, dec.incoming[5], dec.directions[17], band=0),
+                      wall[5, 17, 0], rtol=1e-5)
+    assert np.isnan(brdfwave.evaluate(q, dec.incoming[5], [0.0, 0.6, -0.8]))
+    for bad in (dict(wi=[[0, 0, 1]] * 2, wo=[[0, 0, 1]] * 3), dict(wi=[0, 1], wo=[0, 1]),
+                dict(wi=[0, 0, 1], wo=[0, 0, 1], band=1),
+                dict(wi=[0, 0, 1], wo=[0, 0, 1], band=0, wavelength=500)):
+        try:
+            brdfwave.evaluate(q, **bad)
+        except brdfwave.BrdfwaveError:
+            pass
+        else:
+            raise AssertionError("evaluate(%r) accepted" % (bad,))
     # a coarser level of both hemispheres: each value near the mean of the
     # 4 x 4 pairs below it; the incoming one alone keeps the outgoing level
     c = brdfwave.decode_bytes(q, level=1, level_in=1)

@@ -257,6 +257,122 @@ static double measured_cb(void *ctx, const double wi[3], const double wo[3])
     return bwh_brdf_data_mean(ctx, wi, wo);
 }
 
+/* f straight from a payload (bwh_payload_eval, bwh_brdf_data_from_payload
+ * decoding only the rows the directions read) is f of the whole decode
+ * (bwh_brdf_data_from_payload of every row) at every direction pair, to
+ * the bit: a full BRDF in segments (the rows alone), the same with the
+ * reciprocity step (decoded whole), and the satin BRDF of 16 incidences
+ * (two rows about each wi); a band past the last and a corrupt payload are
+ * refused; an incoming direction whose rows were not decoded gives NAN. */
+static void eval_against_whole(const uint8_t *p, size_t len, size_t bands, bool rows_alone,
+                               const char *what)
+{
+    enum { N = 200 };
+    static double wi[N][3], wo[N][3], lam[N], got[N], want[N];
+    uint64_t r = 0x243F6A8885A308D3ull;
+    for (int j = 0; j < N; j++) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        dir((double)(r >> 40) / (double)(1u << 24) * 89.0, (double)(r & 0xFFFF) / 65536.0 * 360.0,
+            wi[j]);
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        dir((double)(r >> 40) / (double)(1u << 24) * 89.0, (double)(r & 0xFFFF) / 65536.0 * 360.0,
+            wo[j]);
+        lam[j] = (double)(r % 1000u) / 999.0 * (double)(bands - 1u);
+    }
+    bwh_brdf_data_t all;
+    assert_int_equal(bwh_brdf_data_from_payload(&all, p, len, NULL, 0), 0);
+    double *work = malloc(bands * sizeof *work);
+    assert_non_null(work);
+    /* 6 pairs read a few rows (decoded alone); 200, most (decoded whole) */
+    for (int mode = 0; mode < 6; mode++) {
+        long band = mode % 3 == 1 ? (long)bands - 1 : -1;
+        int cnt = mode < 3 ? 6 : N;
+        if (bwh_payload_eval(p, len, (size_t)cnt, &wi[0][0], &wo[0][0], mode % 3 == 2 ? lam : NULL,
+                             band, got) != 0)
+            fail_msg("%s: %s", what, bwh_last_error());
+        for (int j = 0; j < cnt; j++) {
+            want[j] = mode % 3 == 2   ? bwh_brdf_data_eval(&all, wi[j], wo[j], lam[j], work)
+                      : mode % 3 == 1 ? bwh_brdf_data_band(&all, wi[j], wo[j], (size_t)band)
+                                      : bwh_brdf_data_mean(&all, wi[j], wo[j]);
+            if (isnan(want[j]) || memcmp(&got[j], &want[j], sizeof got[j]))
+                fail_msg("%s: mode %d, pair %d: %.17g, the whole decode's %.17g", what, mode, j,
+                         got[j], want[j]);
+        }
+    }
+    assert_int_equal(bwh_payload_eval(p, len, N, &wi[0][0], &wo[0][0], NULL, (long)bands, got), -1);
+    /* rows decoded for one incoming direction only: another far off is NAN */
+    bwh_brdf_data_t one;
+    assert_int_equal(bwh_brdf_data_from_payload(&one, p, len, (const double(*)[3])wi, 1), 0);
+    assert_true(bwh_brdf_data_mean(&one, wi[0], wo[0]) == bwh_brdf_data_mean(&all, wi[0], wo[0]));
+    double far[3];
+    dir(wi[0][2] > 0.5 ? 80.0 : 5.0, 180.0, far);
+    assert_true((one.row_of != NULL) == rows_alone);
+    if (rows_alone)
+        assert_true(isnan(bwh_brdf_data_mean(&one, far, wo[0])));
+    bwh_brdf_data_free(&one);
+    bwh_brdf_data_free(&all);
+    free(work);
+}
+
+static void f_straight_from_a_payload_is_f_of_the_whole_decode(void **state)
+{
+    (void)state;
+    const unsigned L = 3;
+    size_t n = bwh_grid_count(L);
+    float *x = malloc(n * n * sizeof *x);
+    double(*c)[3] = malloc(n * sizeof *c);
+    assert_non_null(x);
+    assert_non_null(c);
+    bwh_grid_centres(L, c, NULL);
+    for (size_t i = 0; i < n; i++)
+        for (size_t o = 0; o < n; o++)
+            x[i * n + o] = (float)bwh_brdf_ward(&ward, c[i], c[o]);
+    bw_dims_t dims = {.shape = BW_SHAPE_BRDF_FULL, .level_out = L, .level_in = L,
+                      .n_in = (uint32_t)n, .n_out = (uint32_t)n, .bands = 1};
+    bwh_encode_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.mode = BW_MODE_MAX_ERROR;
+    o.basis = BW_BASIS_AUTO;
+    o.max_error = 1000;
+    o.segments = (uint32_t)n;
+    for (int recip = 0; recip < 2; recip++) {
+        o.flags = recip ? BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL : BW_FLAG_MIRROR;
+        uint8_t *p;
+        size_t len;
+        if (bwh_encode_f32(&dims, x, &o, &p, &len) != 0)
+            fail_msg("encode: %s", bwh_last_error());
+        eval_against_whole(p, len, 1, !recip, recip ? "ward, reciprocity" : "ward, in segments");
+        p[len / 2] ^= 1u;
+        double wi[3] = {0, 0, 1}, out;
+        assert_int_equal(bwh_payload_eval(p, len, 1, wi, wi, NULL, -1, &out), -1);
+        free(p);
+    }
+    free(x);
+    free(c);
+    /* the satin BRDF of 16 incidences, 3 bands */
+    bwr_rgl_t rgl;
+    char err[256];
+    assert_int_equal(bwr_rgl_load(&rgl, "tests/data/rgl/satin_rosaline_rgb.bsdf", err, sizeof err),
+                     0);
+    float *y = tabulate(3, 16, 3, rgl_rgb, &rgl);
+    bwr_rgl_free(&rgl);
+    assert_non_null(y);
+    bw_dims_t d2 = {.shape = BW_SHAPE_BRDF_ISO, .level_out = 3, .n_in = 16,
+                    .n_out = (uint32_t)bwh_grid_count(3), .bands = 3};
+    memset(&o, 0, sizeof o);
+    o.mode = BW_MODE_BYTES;
+    o.basis = BW_BASIS_AUTO;
+    o.byte_budget = 4000;
+    o.segments = 16;
+    uint8_t *p;
+    size_t len;
+    if (bwh_encode_f32(&d2, y, &o, &p, &len) != 0)
+        fail_msg("encode: %s", bwh_last_error());
+    eval_against_whole(p, len, 3, true, "satin, 16 incidences");
+    free(p);
+    free(y);
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -947,6 +1063,7 @@ int main(void)
         cmocka_unit_test(sampler_phong_passes_chi_square),
         cmocka_unit_test(sampler_ward_passes_chi_square),
         cmocka_unit_test(sampler_decoded_measured_passes_chi_square),
+        cmocka_unit_test(f_straight_from_a_payload_is_f_of_the_whole_decode),
         cmocka_unit_test(sampler_draws_from_the_tables_of_wi),
         cmocka_unit_test(a_sampler_per_channel_follows_its_band),
         cmocka_unit_test(chi_square_rejects_a_different_brdf),

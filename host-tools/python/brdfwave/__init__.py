@@ -7,6 +7,7 @@ and the acquisition service.
     m.shape, m.header["bands"], m.directions   # directions: unit vectors
     p = brdfwave.encode(m, level=4, max_error=1e-3)
     g = brdfwave.grid(4)                       # the scan order of `brdfwave grid`
+    f = brdfwave.evaluate("brdf.bwv", wi, wo)  # f(wi, wo) straight from a payload
 
 The codec itself is libbrdfwave (the C library), loaded with ctypes from
 build/host/libbrdfwave.so (`make pylib`) or $BRDFWAVE_LIB. The acquisition
@@ -17,7 +18,8 @@ from ._lib import BrdfwaveError, header_of
 from .guarantee import check_guarantee, guarantee
 from ._version import __version__
 
-_ARRAY_API = ("Measurement", "decode", "decode_bytes", "encode", "grid", "read", "read_sed",
+_ARRAY_API = ("Measurement", "decode", "decode_bytes", "encode", "evaluate", "grid", "read",
+              "read_sed",
               "read_sig", "read_asd", "read_usgs", "read_envi", "read_csv", "read_npy",
               "read_bsdf", "read_gonio")
 __all__ = ["BrdfwaveError", "check_guarantee", "guarantee", "header_of", "plot_hemisphere",

@@ -148,6 +148,10 @@ def lib():
     L.bwh_decode_incoming.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
                                       P(Header), P(Dims), P(P(ctypes.c_int32)),
                                       P(P(ctypes.c_float))]
+    L.bwh_payload_eval.restype = ctypes.c_int
+    L.bwh_payload_eval.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_size_t,
+                                   ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
+                                   ctypes.c_long, ctypes.c_void_p]
     L.bwh_decode_levels.restype = ctypes.c_int
     L.bwh_decode_levels.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int, ctypes.c_int,
                                     P(Header), P(Dims), P(P(ctypes.c_int32)),

@@ -261,6 +261,44 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
         raise BrdfwaveError("%s: %s" % (path, e)) from None
 
 
+def evaluate(source, wi, wo, *, wavelength=None, band=None):
+    """f(wi, wo) of a BRDF or reflectance payload (bytes, or a path) straight
+    from the payload: only the incoming directions that the wi read are
+    decoded (a full BRDF's triangle holding each, an isotropic BRDF's two
+    incidences about each; with segments only the segments that hold
+    them; a payload coded with the reciprocity step or keeping float bits
+    in a tail is decoded whole), then f is interpolated as brdfwave's
+    renderer does: barycentric over the outgoing triangle centres, linear
+    in the incidence angle between tables, a B-spline over the bands at
+    `wavelength` (in the payload's wavelength range, nm), or band `band`,
+    else the mean over the bands. wi, wo: unit vectors, (3,) or (n, 3)
+    (z the surface normal). Returns a float, or an (n,) array; NaN below
+    the horizon."""
+    payload, path = _read_bytes(source)
+    wi = np.ascontiguousarray(wi, dtype=np.float64)
+    wo = np.ascontiguousarray(wo, dtype=np.float64)
+    one = wi.ndim == 1
+    wi, wo = np.atleast_2d(wi), np.atleast_2d(wo)
+    if wi.shape != wo.shape or wi.ndim != 2 or wi.shape[1] != 3:
+        raise BrdfwaveError("wi and wo must be unit vectors of the same shape, (3,) or (n, 3)")
+    if wavelength is not None and band is not None:
+        raise BrdfwaveError("give wavelength= or band=, not both")
+    n = wi.shape[0]
+    lam = None
+    if wavelength is not None:
+        lam = np.ascontiguousarray(np.broadcast_to(np.asarray(wavelength, dtype=np.float64),
+                                                   (n,)))
+    if band is not None and not (isinstance(band, (int, np.integer)) and band >= 0):
+        raise BrdfwaveError("band must be a whole number from 0")
+    out = np.empty(n, dtype=np.float64)
+    if lib().bwh_payload_eval(payload, len(payload), n, wi.ctypes.data, wo.ctypes.data,
+                              None if lam is None else lam.ctypes.data,
+                              -1 if band is None else int(band), out.ctypes.data) != 0:
+        e = _error()
+        raise BrdfwaveError("%s: %s" % (path, e)) if path else e
+    return float(out[0]) if one else out
+
+
 def _meta_of(payload, row=None):
     """The payload's metadata as a dict (of one row alone: what decode with
     incoming= keeps)."""
