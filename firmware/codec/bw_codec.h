@@ -393,7 +393,8 @@ bw_status_t bw_header_parse_fields(const uint8_t *payload, size_t len, bw_header
 /* The same for a payload that may be cut (bw_decode_salvage): a tail
  * (record 0x01) longer than what follows the header is cut to what is
  * there (the segment table, whose CRC vouches for the header, says where
- * the body ends). Not in a core built without BW_CFG_SALVAGE. */
+ * the body ends). In a core built without BW_CFG_SALVAGE, the same as
+ * bw_header_parse_fields. */
 bw_status_t bw_header_parse_cut(const uint8_t *payload, size_t len, bw_header_t *hdr);
 
 /* Decodes a payload into samples[n]; work holds bw_work_bound(n, bands) int32.

@@ -282,9 +282,7 @@ bw_status_t bw_header_parse_fields(const uint8_t *p, size_t len, bw_header_t *h)
     return parse_fields(p, len, h, false);
 }
 
-#if BW_CFG_SALVAGE
 bw_status_t bw_header_parse_cut(const uint8_t *p, size_t len, bw_header_t *h)
 {
     return parse_fields(p, len, h, true);
 }
-#endif
