@@ -465,11 +465,10 @@ bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len
  * segments that hold their incoming blocks (a body in one piece up to the
  * last of them) and, for a full BRDF, the inverse steps of the parents
  * above them (with the mirror, above the mirrored rows' partners too); the
- * CRCs checked as bw_decode_incoming's. work: as for bw_decode_ctx.
- * BW_ERR_ARG for a reflectance, for spectra coded by prediction
- * (bw_decode_incoming decodes one such spectrum), or a full BRDF with the
- * reciprocity step; BW_ERR_WORK when samples_cap is less than the marked
- * rows' samples.
+ * CRCs checked as bw_decode_incoming's; spectra coded by prediction from
+ * their segment's first. work: as for bw_decode_ctx. BW_ERR_ARG for a
+ * reflectance, or a full BRDF with the reciprocity step; BW_ERR_WORK when
+ * samples_cap is less than the marked rows' samples.
  */
 bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, const uint8_t *rows,
                            int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,

@@ -524,8 +524,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
         return BW_ERR_ARG;
     const bw_dims_t *d = &h.dims;
     size_t n = bw_dims_samples(d), no = d->n_out, row = no * d->bands, nr = 0;
-    if (d->shape == BW_SHAPE_REFLECTANCE || h.basis == BW_BASIS_PRED ||
-        (h.flags & BW_FLAG_RECIPROCAL))
+    if (d->shape == BW_SHAPE_REFLECTANCE || (h.flags & BW_FLAG_RECIPROCAL))
         return BW_ERR_ARG;
     for (uint32_t t = 0; t < d->n_in; t++)
         nr += rows[t] != 0u;
@@ -537,7 +536,19 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
-    for (uint32_t c = 0; c < d->n_in && pl.step_q8 > BW_STEP_ONE_Q8; c++)
+    bool pred = pl.basis == BW_BASIS_PRED;
+    /* prediction: each segment's spectra from its first to its last marked
+     * one (decoded: a segment decodes from its first vector) */
+    for (uint32_t f = 0, V = pl.seg_vec ? pl.seg_vec : d->n_in; pred && f < d->n_in; f += V) {
+        uint32_t last = 0, e = d->n_in - f < V ? d->n_in : f + V;
+        for (uint32_t t = f; t < e; t++)
+            last = rows[t] ? t + 1u : last;
+        bw_plan_t sub = pl;
+        sub.dims.n_in = last - f;
+        if (last)
+            bw_predict(&sub, work + (size_t)f * row, NULL, false);
+    }
+    for (uint32_t c = 0; c < d->n_in && !pred && pl.step_q8 > BW_STEP_ONE_Q8; c++)
         if (block_needed(&w, c))
             bw_dequant_block(&pl, work, c);
     if (bw_has_in(d)) /* the parents above a needed row, coarse to fine */
@@ -545,7 +556,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
             for (uint32_t p = 0, span = 1u << (2u * (L - j)); p < (4u << (2u * j)); p++)
                 if (rows_within(&w, p * span, (p + 1u) * span))
                     bw_biohaar_inv_node(work, L, row, j, p);
-    for (uint32_t t = 0; t < d->n_in; t++)
+    for (uint32_t t = 0; t < d->n_in && !pred; t++)
         if (row_needed(&w, t))
             rebuild_row(&pl, work + (size_t)t * row);
     int32_t *out = samples;
@@ -558,7 +569,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
                          bw_has_in(d) && t >= d->n_in / 2u
                              ? work + (size_t)bw_mirror_index(t, d->level_in) * row
                              : NULL);
-        put_row(x, row, pl.prequant, out);
+        put_row(x, row, pred ? 1u : pl.prequant, out); /* prediction: none left */
         out += row;
     }
     return BW_OK;

@@ -429,9 +429,6 @@ int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header
     const bw_dims_t *d = &h->dims;
     if (d->shape == BW_SHAPE_REFLECTANCE)
         return bwh_fail("a reflectance has no incoming directions to choose from");
-    if (h->basis == BW_BASIS_PRED)
-        return bwh_fail("spectra coded by prediction decode one at a time (--incoming K) or "
-                        "whole");
     uint32_t k = 0;
     for (uint32_t t = 0; t < d->n_in; t++)
         k += rows[t] != 0u;

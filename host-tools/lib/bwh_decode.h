@@ -70,9 +70,8 @@ int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *
  * (bw_decode_rows: only the segments and blocks they depend on, once):
  * *samples and *values as bwh_decode_limit's for the marked rows in
  * ascending order, *sub their dimensions (a BRDF of that many incoming
- * directions, or that many spectra). Not with the reciprocity step, for
- * spectra coded by prediction, nor a float payload that keeps bits in a
- * tail. 0, or -1. */
+ * directions, or that many spectra). Not with the reciprocity step, nor a
+ * float payload that keeps bits in a tail. 0, or -1. */
 int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header_t *h,
                     bw_dims_t *sub, int32_t **samples, float **values);
 

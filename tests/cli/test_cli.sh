@@ -656,6 +656,14 @@ import numpy as np, sys
 a = np.fromfile('$T/segall.f32', '<f4').reshape(8, 1024)
 r = np.fromfile('$T/rows.f32', '<f4').reshape(-1, 1024)
 sys.exit(0 if np.array_equal(a[[1, 3, 4, 6]], r) else 1)" && ok || bad "decode --rows 6,1,3-4 is not rows 1, 3, 4 and 6 of the whole decode"
+# spectra coded by prediction (the default for the field spectra): each
+# segment (here the one body) decoded from its first spectrum
+expect_ok "decode --rows of predicted spectra" "$BW" decode -i "$T/fs.bwv" --rows 2,5-6 -o "$T/fsrows.f32"
+$PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/fs.f32', '<f4').reshape(-1, 1024)
+r = np.fromfile('$T/fsrows.f32', '<f4').reshape(-1, 1024)
+sys.exit(0 if np.array_equal(a[[2, 5, 6]], r) else 1)" && ok || bad "decode --rows of predicted spectra is not those rows"
 for r in 4-2 8 1,,2 x 3- -1; do
     expect_status "decode --rows $r" 2 "$BW" decode -i "$T/seg.bwv" --rows "$r" -o "$T/x.f32"
 done

@@ -447,8 +447,7 @@ static void one_incoming_direction_decodes_alone_as_in_the_whole(void **state)
 static void one_case_rows(const bw_dims_t *d, const bw_params_t *pa, const int32_t *x,
                           const char *what)
 {
-    if (d->shape == BW_SHAPE_REFLECTANCE || (pa->flags & BW_FLAG_RECIPROCAL) ||
-        pa->basis == BW_BASIS_PRED)
+    if (d->shape == BW_SHAPE_REFLECTANCE || (pa->flags & BW_FLAG_RECIPROCAL))
         return;
     size_t n = bw_dims_samples(d), row = (size_t)d->n_out * d->bands;
     size_t wb = bw_work_bound(n, d->bands);
