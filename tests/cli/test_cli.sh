@@ -707,6 +707,31 @@ PY
 printf '# theta_i phi_i theta_o phi_o\n10 20 30 40\n10,20,95,0\n' >"$T/pairs.txt"
 expect_ok "eval --directions" "$BW" eval -i "$T/wr.bwv" --directions "$T/pairs.txt"
 [ "$(sed -n 2p "$T/out")" = nan ] && [ "$(wc -l <"$T/out")" = 2 ] && ok || bad "eval --directions: $(cat "$T/out")"
+# a damaged payload in segments: pairs whose rows do not depend on the
+# damaged segment evaluate as the whole payload does, the others fail
+$PY -c "
+b = bytearray(open('$T/wr.bwv', 'rb').read()); b[len(b) * 3 // 5] ^= 0x20
+open('$T/wrbad.bwv', 'wb').write(bytes(b))"
+"$BW" decode -i "$T/wrbad.bwv" -o "$T/wrbad.f32" --mask "$T/wrbad.m" 2>/dev/null
+pick=$($PY -c "
+import csv, numpy as np
+m = np.fromfile('$T/wrbad.m', np.uint8).reshape(64, 64)
+r = list(csv.DictReader(open('$T/g2.csv')))
+good, lost = np.flatnonzero(~m.any(axis=1)), np.flatnonzero(m.any(axis=1))
+f = lambda i: '%s,%s,%s,%s' % (r[i]['theta_deg'], r[i]['phi_deg'], r[9]['theta_deg'], r[9]['phi_deg'])
+print(f(good[0]) if len(good) and len(lost) else '', f(lost[0]) if len(lost) else '', good[0] if len(good) else -1)")
+set -- $pick
+if [ $# = 3 ]; then
+    "$BW" eval -i "$T/wrbad.bwv" --at "$1" >"$T/out" 2>"$T/err" &&
+        $PY -c "
+import numpy as np, sys
+a = np.fromfile('$T/wrall.f32', '<f4').reshape(64, 64)
+sys.exit(0 if np.isclose(float(open('$T/out').read()), a[$3, 9], rtol=1e-5) else 1)" && ok ||
+        bad "eval of a damaged payload, a row it holds whole: $(cat "$T/err")"
+    expect_error "eval of a damaged payload, a row it lost" "$BW" eval -i "$T/wrbad.bwv" --at "$2"
+else
+    bad "the damaged payload lost no row, or every row: $pick"
+fi
 expect_status "eval --at with three angles" 2 "$BW" eval -i "$T/wr.bwv" --at 10,20,30
 expect_status "eval without pairs" 2 "$BW" eval -i "$T/wr.bwv"
 expect_error "eval of a band past the last" "$BW" eval -i "$T/wr.bwv" --at 10,20,30,40 --band 1
