@@ -51,8 +51,10 @@ static const char decode_help[] =
     "                     decode only the incoming directions of a full BRDF whose\n"
     "                     triangles' centres lie within RADIUS degrees of the direction\n"
     "                     THETA (from the normal), PHI (from the x axis): a region of\n"
-    "                     the incoming hemisphere; the rows chosen are named on\n"
-    "                     standard error (as --rows takes them)\n"
+    "                     the incoming hemisphere; of an isotropic BRDF, the incidences\n"
+    "                     within RADIUS of THETA (the payload's incidence angles; PHI\n"
+    "                     plays no part); the rows chosen are named on standard error\n"
+    "                     (as --rows takes them)\n"
     "  --level L          decode at a coarser outgoing level L (level of detail):\n"
     "                     each triangle's value is the mean of the samples below it\n"
     "                     (its Bio-Haar scaling value); only the coarser levels'\n"
@@ -211,7 +213,19 @@ int bw_cmd_decode(int argc, char **argv)
         } else if (rowsp) {
             bad = parse_rows(rowsp, f.dims.n_in, rows);
         } else {
-            int k = bwh_region_rows(&f, reg[0], reg[1], reg[2], rows);
+            /* an isotropic BRDF's incidences: the payload's metadata's */
+            bwh_meta_t rm;
+            bwh_meta_init(&rm);
+            double *inc = NULL;
+            if (f.dims.shape == BW_SHAPE_BRDF_ISO && bwh_meta_of_payload(p, len, &f, &rm) == 0 &&
+                rm.incidence.n == f.dims.n_in && (inc = malloc(rm.incidence.n * sizeof *inc)))
+                for (size_t i = 0; i < rm.incidence.n; i++)
+                    inc[i] = rm.inc_unit == BWH_ANGLE_RAD
+                                 ? rm.incidence.v[i] * 180.0 / 3.14159265358979323846
+                                 : rm.incidence.v[i];
+            bwh_meta_free(&rm);
+            int k = bwh_region_rows(&f, inc, reg[0], reg[1], reg[2], rows);
+            free(inc);
             if (k < 0) {
                 bad = cli_fail("%s: %s", inp, bwh_last_error());
             } else if (!k) {

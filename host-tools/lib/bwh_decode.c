@@ -446,17 +446,26 @@ int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header
     return partial_values(p, h, sub, r, samples, values);
 }
 
-int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, double radius_deg,
-                    uint8_t *rows)
+int bwh_region_rows(const bw_header_t *h, const double *incidence_deg, double theta_deg,
+                    double phi_deg, double radius_deg, uint8_t *rows)
 {
     const bw_dims_t *d = &h->dims;
-    if (d->shape != BW_SHAPE_BRDF_FULL)
-        return bwh_fail("a region of the incoming hemisphere needs a full BRDF (a grid of "
-                        "incoming directions)");
+    if (d->shape != BW_SHAPE_BRDF_FULL && d->shape != BW_SHAPE_BRDF_ISO)
+        return bwh_fail("a region of the incoming hemisphere needs a BRDF (incoming "
+                        "directions)");
     if (!(theta_deg >= 0 && theta_deg <= 90) || !(phi_deg >= -360 && phi_deg <= 360) ||
         !(radius_deg >= 0 && radius_deg <= 180))
         return bwh_fail("a region is THETA (0..90), PHI (-360..360) and a RADIUS (0..180), "
                         "in degrees");
+    int k = 0;
+    if (d->shape == BW_SHAPE_BRDF_ISO) { /* the incidences; the azimuth plays no part */
+        for (uint32_t i = 0; i < d->n_in; i++) {
+            double th = incidence_deg ? incidence_deg[i] : (i + 0.5) * 90.0 / (double)d->n_in;
+            rows[i] = fabs(th - theta_deg) <= radius_deg;
+            k += rows[i];
+        }
+        return k;
+    }
     double(*c)[3] = malloc((size_t)d->n_in * sizeof *c);
     if (!c || bwh_grid_centres(d->level_in, c, NULL) != 0) {
         free(c);
@@ -465,7 +474,6 @@ int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, doub
     const double rad = 3.14159265358979323846 / 180;
     double t = theta_deg * rad, f = phi_deg * rad;
     double u[3] = {sin(t) * cos(f), sin(t) * sin(f), cos(t)}, lim = cos(radius_deg * rad);
-    int k = 0;
     for (uint32_t i = 0; i < d->n_in; i++) {
         rows[i] = c[i][0] * u[0] + c[i][1] * u[1] + c[i][2] * u[2] >= lim;
         k += rows[i];

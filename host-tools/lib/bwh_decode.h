@@ -75,13 +75,16 @@ int bwh_decode_incoming(const uint8_t *p, size_t len, uint32_t in, bw_header_t *
 int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header_t *h,
                     bw_dims_t *sub, int32_t **samples, float **values);
 
-/* Marks in rows[n_in] (h from bw_header_read or bwh_decode_*) the incoming
- * directions of a full BRDF whose triangles' centres lie within radius_deg
- * of the direction (theta_deg from the normal, phi_deg from the x axis):
- * a region of the incoming hemisphere. Returns how many, or -1 (not a full
- * BRDF, angles out of range). */
-int bwh_region_rows(const bw_header_t *h, double theta_deg, double phi_deg, double radius_deg,
-                    uint8_t *rows);
+/* Marks in rows[n_in] (h from bw_header_read or bwh_decode_*) a region of
+ * the incoming hemisphere: for a full BRDF the incoming directions whose
+ * triangles' centres lie within radius_deg of the direction (theta_deg from
+ * the normal, phi_deg from the x axis); for an isotropic BRDF the
+ * incidences within radius_deg of theta_deg (incidence_deg[n_in], the
+ * payload's incidence angles in degrees, or NULL: (i + 1/2) 90 / n_in), the
+ * azimuth playing no part. Returns how many, or -1 (not a BRDF, angles out
+ * of range). */
+int bwh_region_rows(const bw_header_t *h, const double *incidence_deg, double theta_deg,
+                    double phi_deg, double radius_deg, uint8_t *rows);
 
 /* A directional measurement at a coarser outgoing level (bw_decode_level):
  * *samples and *values as bwh_decode_limit's for n_in * 4 4^level * bands

@@ -242,7 +242,7 @@ def region_rows():
 
             def region():
                 h, d, v = Header(), Dims(), ctypes.POINTER(ctypes.c_float)()
-                if (L.bwh_region_rows(ctypes.byref(hw), theta, phi, radius,
+                if (L.bwh_region_rows(ctypes.byref(hw), None, theta, phi, radius,
                                       marks.ctypes.data) <= 0 or
                         L.bwh_decode_rows(p, len(p), marks.ctypes.data, ctypes.byref(h),
                                           ctypes.byref(d), None, ctypes.byref(v)) != 0):

@@ -669,8 +669,13 @@ for r in 4-2 8 1,,2 x 3- -1; do
 done
 expect_status "decode --rows with --incoming" 2 "$BW" decode -i "$T/seg.bwv" --rows 1 --incoming 1 -o "$T/x.f32"
 expect_status "decode --region not three numbers" 2 "$BW" decode -i "$T/seg.bwv" --region 10,0 -o "$T/x.f32"
-expect_error "decode --region of incidences" "$BW" decode -i "$T/seg.bwv" --region 10,0,20 -o "$T/x.f32"
-grep -q "full BRDF" "$T/err" && ok || bad "--region on a BRDF of incidences: $(cat "$T/err")"
+# an isotropic BRDF's region: its incidences ((i + 1/2) 90 / 8 degrees
+# here) within RADIUS of THETA
+expect_ok "decode --region of incidences" "$BW" decode -i "$T/seg.bwv" --region 10,0,20 -o "$T/x.f32"
+grep -q "rows 0-2$" "$T/err" && [ "$(stat -c %s "$T/x.f32")" = $((3 * 1024 * 4)) ] && ok ||
+    bad "--region 10,0,20 on 8 incidences: $(cat "$T/err")"
+expect_error "decode --region between incidences" "$BW" decode -i "$T/seg.bwv" --region 89,0,0.5 -o "$T/x.f32"
+expect_error "decode --region of spectra" "$BW" decode -i "$T/fs.bwv" --region 10,0,20 -o "$T/x.f32"
 "$BW" synth --model ward --ax 0.3 --ay 0.1 --kd 0.5 --ks 0.5 --level 2 --level-in 2 -o "$T/wr.f32" 2>/dev/null
 "$BW" encode -q -i "$T/wr.f32" --bands 1 --level 2 --level-in 2 --symmetry mirror --segments 64 --max-error 0.001 -o "$T/wr.bwv"
 "$BW" decode -i "$T/wr.bwv" -o "$T/wrall.f32" 2>/dev/null

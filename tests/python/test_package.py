@@ -212,13 +212,18 @@ def a_payload_in_segments_decodes_in_part_with_its_mask():
     mk[2:5] = True
     assert np.array_equal(np.asarray(brdfwave.decode_bytes(p, rows=mk)), np.asarray(whole)[2:5])
     for bad in (dict(rows=[8]), dict(rows=[]), dict(rows=[[1]]), dict(rows=np.ones(7, bool)),
-                dict(rows=[1], incoming=1), dict(region=(10, 0, 30))):
+                dict(rows=[1], incoming=1), dict(region=(89, 0, 0.5))):
         try:
             brdfwave.decode_bytes(p, **bad)
         except brdfwave.BrdfwaveError:
             pass
         else:
             raise AssertionError("%r accepted" % (bad,))
+    # an isotropic BRDF's region: the incidences within the radius of theta
+    assert list(brdfwave.decode_bytes(p, region=(10, 0, 30)).rows) == [0, 1, 2, 3]
+    pi = brdfwave.encode(x, level=4, incoming=True, max_error=0.001, segments=4,
+                         incidence=np.arange(8) * 10.0)
+    assert list(brdfwave.decode_bytes(pi, region=(30, 0, 6)).rows) == [3]
     # a region of a full BRDF's incoming hemisphere: the rows whose
     # directions lie within the radius, as in the whole decode
     bw("synth", "--model", "ward", "--ax", "0.3", "--ay", "0.1", "--level", "2", "--level-in",

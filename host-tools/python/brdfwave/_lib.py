@@ -163,8 +163,8 @@ def lib():
     L.bwh_decode_rows.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p, P(Header),
                                   P(Dims), P(P(ctypes.c_int32)), P(P(ctypes.c_float))]
     L.bwh_region_rows.restype = ctypes.c_int
-    L.bwh_region_rows.argtypes = [P(Header), ctypes.c_double, ctypes.c_double, ctypes.c_double,
-                                  ctypes.c_void_p]
+    L.bwh_region_rows.argtypes = [P(Header), ctypes.c_void_p, ctypes.c_double, ctypes.c_double,
+                                  ctypes.c_double, ctypes.c_void_p]
     L.bwh_header_salvage.restype = ctypes.c_int
     L.bwh_header_salvage.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
     L.bwh_meta_rows_json.restype = ctypes.c_int

@@ -238,7 +238,8 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     of that many incoming directions ((k, n_out, bands)) or that many
     spectra, decoding what they share once; region=(theta, phi, radius), in
     degrees: the incoming directions of a full BRDF whose triangles'
-    centres lie within radius of the direction (theta, phi). With either,
+    centres lie within radius of the direction (theta, phi), or the
+    incidences of an isotropic BRDF within radius of theta. With either,
     the Measurement's `rows` names the source rows decoded (and `incoming`
     their directions, for a full BRDF)."""
     payload, path = _read_bytes(source)
@@ -396,7 +397,16 @@ def _row_marks(payload, rows, region):
             theta, phi, radius = (float(x) for x in region)
         except (TypeError, ValueError):
             raise BrdfwaveError("region must be (theta, phi, radius) in degrees") from None
-        k = L.bwh_region_rows(ctypes.byref(h), theta, phi, radius, marks.ctypes.data)
+        inc = None
+        if h.dims.shape == 2:  # an isotropic BRDF: the payload's incidence angles
+            meta = _meta_of(payload)
+            if len(meta.get("incidence", [])) == n:
+                inc = np.asarray(meta["incidence"], dtype=np.float64)
+                if meta.get("incidence_unit") == "rad":
+                    inc = np.degrees(inc)
+                inc = np.ascontiguousarray(inc)
+        k = L.bwh_region_rows(ctypes.byref(h), None if inc is None else inc.ctypes.data, theta,
+                              phi, radius, marks.ctypes.data)
         if k < 0:
             raise _error()
         if k == 0:
