@@ -36,11 +36,9 @@ typedef struct {
  * segment): off the stack of a device */
 _Static_assert(sizeof(embed_models_t) <= sizeof(bw_models_t), "embedded models in bw_models_t");
 
-/* The plane offsets of the spectral subbands (Mallat order: subband 0 the
- * approximation, then the details coarse to fine) and where each begins. */
+/* The spectral subbands (bw_spec_bands) and the plane offset of each. */
 typedef struct {
-    unsigned count;
-    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
+    spec_bands_t b;
     uint8_t e[BW_SPEC_MAX_LEVELS + 1u];
 } spec_off_t;
 
@@ -56,17 +54,9 @@ static unsigned gain_planes(uint32_t g_q16)
 
 static void spec_offsets(const bw_plan_t *pl, bool weigh, spec_off_t *so)
 {
-    uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
-    unsigned L = pl->spec_levels;
-    len[0] = pl->dims.bands;
-    for (unsigned l = 1; l <= L; l++)
-        len[l] = (len[l - 1u] + 1u) / 2u;
-    so->count = L + 1u;
-    so->lo[0] = 0;
-    for (unsigned i = 0; i <= L; i++) {
-        so->lo[i + 1u] = len[L - i];
-        so->e[i] = (uint8_t)(weigh && L ? gain_planes((uint32_t)pl->spec_gain[len[L - i] - 1u]) : 0u);
-    }
+    bw_spec_bands(pl, &so->b);
+    for (unsigned i = 0; i < so->b.count; i++)
+        so->e[i] = (uint8_t)(weigh && pl->spec_levels ? gain_planes(so->b.gain_q16[i]) : 0u);
 }
 
 /* The plane offset of the incoming block of the iterator, and of its
@@ -238,7 +228,7 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
 {
     if (w->it.vi != w->vi)
         walk_offsets(w);
-    while (w->it.k >= w->so->lo[w->sb + 1u])
+    while (w->it.k >= w->so->b.lo[w->sb + 1u])
         w->sb++;
     *left = w->last; /* the band before, or the vector before's last */
     *e = w->ed + w->so->e[w->sb];

@@ -171,6 +171,16 @@ void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool forward);
 
 /* ---- quantiser (bw_quant.c) ---------------------------------------------- */
 
+/* The spectral subbands of a vector, Mallat order: subband 0 the
+ * approximation, then the details from coarse to fine; band i holds the
+ * elements [lo[i], lo[i + 1]), its synthesis gain's inverse gain_q16[i]. */
+typedef struct {
+    unsigned count;
+    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
+    uq16_t gain_q16[BW_SPEC_MAX_LEVELS + 1u];
+} spec_bands_t;
+void bw_spec_bands(const bw_plan_t *pl, spec_bands_t *sb);
+
 /* Every coefficient of the plan, forward (thresholds, then the dead-zone
  * quantiser with the plan's rounding offsets) or back. */
 void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward);

@@ -71,16 +71,7 @@ BW_NOINLINE_SMALL static uint64_t div_q8_off(uint32_t a, uq56_8_t st_q8, uq56_8_
 /* floor(256 a / st_q8) */
 static inline uint64_t div_q8(uint32_t a, uq56_8_t st_q8) { return div_q8_off(a, st_q8, 0u); }
 
-/* The spectral subbands of a vector, Mallat order: subband 0 the
- * approximation, then the details from coarse to fine; band i holds the
- * elements [lo[i], lo[i + 1]). */
-typedef struct {
-    unsigned count;
-    uint32_t lo[BW_SPEC_MAX_LEVELS + 2u];
-    uq16_t gain_q16[BW_SPEC_MAX_LEVELS + 1u]; /* inverse gain */
-} spec_bands_t;
-
-static void spec_bands(const bw_plan_t *pl, spec_bands_t *sb)
+void bw_spec_bands(const bw_plan_t *pl, spec_bands_t *sb)
 {
     uint32_t len[BW_SPEC_MAX_LEVELS + 1u];
     unsigned L = pl->spec_levels;
@@ -316,7 +307,7 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
     uint64_t thr = vec_thr(pl);
     quant_cache_t qc;
     qc.gio_q16 = 0;
-    spec_bands(pl, &qc.sb);
+    bw_spec_bands(pl, &qc.sb);
     for (uint32_t i = 0; i < pl->dims.n_in; i++)
         quant_block(pl, &qc, x, i, forward, thr);
 }
@@ -325,7 +316,7 @@ void bw_dequant_block(const bw_plan_t *pl, int32_t *x, uint32_t i)
 {
     quant_cache_t qc;
     qc.gio_q16 = 0;
-    spec_bands(pl, &qc.sb);
+    bw_spec_bands(pl, &qc.sb);
     quant_block(pl, &qc, x, i, false, 0u);
 }
 
@@ -339,7 +330,7 @@ void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j)
     uint64_t thr = vec_thr(pl);
     spec_bands_t sb;
     uq56_8_t steps_q8[BW_SPEC_MAX_LEVELS + 1u];
-    spec_bands(pl, &sb);
+    bw_spec_bands(pl, &sb);
     vec_steps(pl, &sb, gio_q16, steps_q8);
     if (b > 1u && vec_energy(&sb, steps_q8, v, thr) < thr)
         memset(v, 0, (size_t)b * sizeof *v);
@@ -369,7 +360,7 @@ void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
     unsigned lst[BW_SPEC_MAX_LEVELS + 1u];
     uq16_t lst_gio_q16 = 0;
     memset(hist, 0, BW_HIST_BINS * sizeof *hist);
-    spec_bands(pl, &sb);
+    bw_spec_bands(pl, &sb);
     for (uint32_t i = 0; i < d->n_in; i++) {
         uq16_t gi_q16 = bw_in_gain_q16(pl, i);
         const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
