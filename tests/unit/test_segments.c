@@ -370,6 +370,21 @@ static void the_streaming_encoder_writes_the_same_segments(void **state)
     assert_true(cases == (segments_built() ? 36u : 0u));
 }
 
+/* The case's payload in segments (seg) or in one body, and its whole
+ * decode (allocated). */
+static int32_t *payload_and_whole(const bw_dims_t *d, const bw_params_t *pa, const int32_t *x,
+                                  int seg, payload_t *pl, const char *what)
+{
+    bw_params_t p = *pa;
+    if (!seg)
+        p.segment_vectors = 0;
+    if (test_encode(d, &p, x, pl) != BW_OK)
+        fail_msg("%s: encode", what);
+    int32_t *all = xmalloc(bw_dims_samples(d) * 4);
+    assert_int_equal(test_decode(pl->p, pl->len, d, false, all, NULL, 0, NULL), BW_OK);
+    return all;
+}
+
 /* One incoming direction (one spectrum) decoded alone is that row of the
  * whole decode, with segments or without; a full BRDF with reciprocity and
  * a reflectance are refused. */
@@ -381,14 +396,9 @@ static void one_case_incoming(const bw_dims_t *d, const bw_params_t *pa, const i
     size_t n = bw_dims_samples(d), row = (size_t)d->n_out * d->bands;
     size_t wb = bw_work_bound(n, d->bands);
     for (int seg = 0; seg < 2; seg++) {
-        bw_params_t p = *pa;
-        if (!seg)
-            p.segment_vectors = 0;
         payload_t pl;
-        if (test_encode(d, &p, x, &pl) != BW_OK)
-            fail_msg("%s: encode", what);
-        int32_t *all = xmalloc(n * 4), *one = xmalloc(row * 4), *w = xmalloc(wb * 4);
-        assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
+        int32_t *all = payload_and_whole(d, pa, x, seg, &pl, what);
+        int32_t *one = xmalloc(row * 4), *w = xmalloc(wb * 4);
         static bw_ctx_t ctx;
         for (uint32_t i = 0; i < d->n_in; i++) {
             memset(w, 0x5A, wb * 4); /* nothing may come from stale work */
@@ -453,15 +463,10 @@ static void one_case_rows(const bw_dims_t *d, const bw_params_t *pa, const int32
     size_t wb = bw_work_bound(n, d->bands);
     uint32_t ni = d->n_in;
     for (int seg = 0; seg < 2; seg++) {
-        bw_params_t p = *pa;
-        if (!seg)
-            p.segment_vectors = 0;
         payload_t pl;
-        if (test_encode(d, &p, x, &pl) != BW_OK)
-            fail_msg("%s: encode", what);
-        int32_t *all = xmalloc(n * 4), *got = xmalloc(n * 4 + 4), *w = xmalloc(wb * 4);
+        int32_t *all = payload_and_whole(d, pa, x, seg, &pl, what);
+        int32_t *got = xmalloc(n * 4 + 4), *w = xmalloc(wb * 4);
         uint8_t *mark = xmalloc(ni);
-        assert_int_equal(test_decode(pl.p, pl.len, d, false, all, NULL, 0, NULL), BW_OK);
         static bw_ctx_t ctx;
         for (unsigned pat = 0; pat < 5; pat++) {
             size_t nm = 0;
