@@ -107,12 +107,6 @@ void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, ui
     unlift4(c0, c0 + h * vlen, c0 + 2u * h * vlen, c0 + 3u * h * vlen, w, vlen);
 }
 
-void bw_biohaar_inv_path(int32_t *x, unsigned level, size_t vlen, uint32_t t)
-{
-    for (unsigned j = 0; j < level; j++)
-        bw_biohaar_inv_node(x, level, vlen, j, t >> (2u * (level - j)));
-}
-
 int bw_biohaar_coef_level(uint32_t idx)
 {
     if (idx < 4u)

@@ -25,10 +25,6 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen);
 void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
                       size_t vlen);
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
-/* The inverse of only the parents on the path of leaf t (coarse to fine):
- * leaf t and its siblings at every level come out as bw_biohaar_inv gives
- * them, from the blocks on that path alone. */
-void bw_biohaar_inv_path(int32_t *x, unsigned level, size_t vlen, uint32_t t);
 /* The inverse step of one parent p at level j (0 the coarsest) of a tree of
  * depth `level`: its four children from its scaling value and details. */
 void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, uint32_t p);

@@ -239,62 +239,44 @@ bw_status_t bw_decode_unchecked(const uint8_t *payload, size_t len, int32_t *sam
     return decode_checked(&ctx, payload, len, &h, samples, samples_cap, work, work_cap, NULL);
 }
 
-/* ---- one incoming direction ------------------------------------------------ */
+/* ---- incoming directions, coarser levels ----------------------------------- */
 
-#define PATH_BLOCKS (1u + 3u * BW_MAX_LEVEL)
-
-/* The in-place positions of the incoming blocks that row t of a level-L
- * incoming hemisphere is rebuilt from: its base's scaling block, then per
- * level the three detail blocks below its ancestor (the centre child is the
- * parent's own block); 1 + 3 L of them. */
-static unsigned path_blocks(uint32_t t, unsigned L, uint32_t *pos)
-{
-    unsigned n = 0;
-    pos[n++] = (t >> (2u * L)) << (2u * L);
-    for (unsigned j = 0; j < L; j++) {
-        uint32_t p = t >> (2u * (L - j)); /* the ancestor at level j */
-        for (uint32_t m = 1; m <= 3u; m++)
-            pos[n++] = (4u * p + m) << (2u * (L - j - 1u));
-    }
-    return n;
-}
-
-/* a few indices in ascending order (insertion) */
-static void sort_u32(uint32_t *v, unsigned n)
-{
-    for (unsigned i = 1; i < n; i++)
-        for (unsigned j = i; j && v[j - 1u] > v[j]; j--) {
-            uint32_t t = v[j];
-            v[j] = v[j - 1u];
-            v[j - 1u] = t;
-        }
-}
-
-/* What a partial decode wants of the coding order: the vectors
- * [r[k][0], r[k][1]) (sorted); without them (nr 0), the incoming blocks
- * that the rows marked in `rows` need (block_needed), or else the first
- * `coarse` vectors of every incoming block. */
+/* What a partial decode wants of the coding order: with by_rows, the
+ * incoming blocks that the marked rows need (block_needed): those marked
+ * in `rows`, or (rows NULL) row `one`; else the first `coarse` vectors of
+ * every incoming block (of the first `blocks` only, when not 0). */
 typedef struct {
-    size_t (*r)[2];
-    unsigned nr;
-    size_t coarse;
+    bool by_rows;
     const uint8_t *rows;
+    uint32_t one;
     const bw_plan_t *pl;
-    size_t blocks; /* with `coarse`: of the first `blocks` blocks only (0: all) */
+    size_t coarse, blocks;
 } want_t;
+
+static inline bool marked(const want_t *w, uint32_t t)
+{
+    return w->rows ? w->rows[t] != 0u : t == w->one;
+}
 
 /* Whether row t is rebuilt: marked, or the partner that a marked row of a
  * full BRDF's mirrored half was coded against. */
 static bool row_needed(const want_t *w, uint32_t t)
 {
     const bw_dims_t *d = &w->pl->dims;
-    return w->rows[t] || (w->pl->mirror && bw_has_in(d) && t < d->n_in / 2u &&
-                          w->rows[bw_mirror_index(t, d->level_in)]);
+    return marked(w, t) || (w->pl->mirror && bw_has_in(d) && t < d->n_in / 2u &&
+                            marked(w, bw_mirror_index(t, d->level_in)));
 }
 
 /* Whether a needed row lies in [lo, hi). */
 static bool rows_within(const want_t *w, uint32_t lo, uint32_t hi)
 {
+    if (!w->rows) { /* one row, and its partner */
+        const bw_dims_t *d = &w->pl->dims;
+        uint32_t m = w->pl->mirror && bw_has_in(d) && w->one >= d->n_in / 2u
+                         ? bw_mirror_index(w->one, d->level_in)
+                         : w->one;
+        return (w->one >= lo && w->one < hi) || (m >= lo && m < hi);
+    }
     for (uint32_t t = lo; t < hi; t++)
         if (row_needed(w, t))
             return true;
@@ -319,26 +301,18 @@ static bool block_needed(const want_t *w, uint32_t c)
 /* The end of the last wanted vector in [a, b), a when there is none. */
 static size_t wanted_end(const want_t *w, size_t no, size_t a, size_t b)
 {
-    size_t e = a;
-    if (w->rows) {
+    if (w->by_rows) {
         for (size_t c = (b - 1u) / no + 1u; c-- > a / no;)
             if (block_needed(w, (uint32_t)c))
                 return (c + 1u) * no < b ? (c + 1u) * no : b;
         return a;
     }
-    if (!w->nr) { /* the first `coarse` vectors of each block (of the first `blocks`) */
-        if (w->blocks && b > w->blocks * no)
-            b = w->blocks * no;
-        if (b <= a)
-            return a;
-        size_t k = (b - 1u) / no * no;
-        e = k + w->coarse < b ? k + w->coarse : b;
-        return e > a ? e : a;
-    }
-    for (unsigned k = 0; k < w->nr; k++)
-        if (w->r[k][0] < b && a < w->r[k][1] && (w->r[k][1] < b ? w->r[k][1] : b) > e)
-            e = w->r[k][1] < b ? w->r[k][1] : b;
-    return e;
+    if (w->blocks && b > w->blocks * no)
+        b = w->blocks * no;
+    if (b <= a)
+        return a;
+    size_t k = (b - 1u) / no * no, e = k + w->coarse < b ? k + w->coarse : b;
+    return e > a ? e : a;
 }
 
 /* Decodes the wanted vectors: the segments that hold them, or a body in one
@@ -351,7 +325,7 @@ static bw_status_t decode_ranges(const bw_plan_t *pl, int32_t *x, const uint8_t 
     bw_iter_t it;
     size_t no = pl->dims.n_out, nv = (size_t)pl->dims.n_in * no;
     if (!V) { /* whole strips: a strip's presence is of all its 32 values */
-        size_t last = w->nr ? w->r[w->nr - 1u][1] : wanted_end(w, no, 0, nv);
+        size_t last = wanted_end(w, no, 0, nv);
         size_t c = (last * b + BW_STRIP - 1u) / BW_STRIP * BW_STRIP;
         bw_iter_init(&it, pl, x);
         return bw_decode_coefs(&it, c < pl->n ? c : pl->n, p + h->header_len, h->body_len,
@@ -446,93 +420,29 @@ static void put_row(const int32_t *x, size_t row, uint32_t pq, int32_t *out)
     }
 }
 
-bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
-                               int32_t *samples, size_t samples_cap, int32_t *work,
-                               size_t work_cap, bw_header_t *hdr_out)
+/* The rows marked in rows[n_in], or (rows NULL) row `one` (bw_decode_rows,
+ * bw_decode_incoming). */
+static bw_status_t decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len,
+                               const uint8_t *rows, uint32_t one, int32_t *samples,
+                               size_t samples_cap, int32_t *work, size_t work_cap,
+                               bw_header_t *hdr_out)
 {
     bw_header_t h;
     bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
     if (st != BW_OK)
         return st;
     const bw_dims_t *d = &h.dims;
-    size_t n = bw_dims_samples(d), no = d->n_out, b = d->bands, row = no * b;
-    if (d->shape == BW_SHAPE_REFLECTANCE || in >= d->n_in || (h.flags & BW_FLAG_RECIPROCAL))
+    size_t n = bw_dims_samples(d), no = d->n_out, row = no * d->bands, nr = rows ? 0u : 1u;
+    if (d->shape == BW_SHAPE_REFLECTANCE || (h.flags & BW_FLAG_RECIPROCAL) ||
+        (!rows && one >= d->n_in))
         return BW_ERR_ARG;
-    if (samples_cap < row || work_cap < bw_work_bound(n, d->bands))
-        return BW_ERR_WORK;
-    bw_plan_t pl;
-    plan_of(&pl, &h, work, n);
-    bool full = bw_has_in(d);
-    unsigned Li = d->level_in, nb = 0, nrow = 1;
-    /* the rows: this one, and the one a full BRDF's mirrored half was coded
-     * against; the blocks they come from, in coding order */
-    uint32_t rows[2] = {in, in}, ci[2u * PATH_BLOCKS];
-    if (full && pl.mirror && in >= d->n_in / 2u)
-        rows[nrow++] = bw_mirror_index(in, Li);
-    for (unsigned k = 0; k < nrow; k++) {
-        uint32_t pos[PATH_BLOCKS];
-        unsigned np = full ? path_blocks(rows[k], Li, pos) : 1u;
-        for (unsigned j = 0; j < np; j++)
-            ci[nb++] = full ? bw_cf_index(pos[j], Li) : rows[k];
-    }
-    sort_u32(ci, nb);
-    size_t r[2u * PATH_BLOCKS][2];
-    unsigned nr = 0;
-    uint32_t first = in; /* prediction: from its segment's first spectrum */
-    if (pl.basis == BW_BASIS_PRED)
-        first = pl.seg_vec ? in / pl.seg_vec * pl.seg_vec : 0u;
-    for (unsigned k = 0; k < nb; k++)
-        if (!nr || ci[k] != ci[k - 1u]) {
-            r[nr][0] = (size_t)(k || pl.basis != BW_BASIS_PRED ? ci[k] : first) * no;
-            r[nr++][1] = ((size_t)ci[k] + 1u) * no;
-        }
-    want_t w = {r, nr, 0, NULL, NULL, 0};
-    st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
-    if (st != BW_OK)
-        return st;
-    int32_t *x = work + (size_t)in * row;
-    if (pl.basis == BW_BASIS_PRED) {
-        bw_plan_t sub = pl;
-        sub.dims.n_in = in - first + 1u;
-        bw_predict(&sub, work + (size_t)first * row, NULL, false);
-    } else {
-        for (unsigned k = 0; k < nr && pl.step_q8 > BW_STEP_ONE_Q8; k++)
-            bw_dequant_block(&pl, work, (uint32_t)(r[k][0] / no));
-        for (unsigned k = 0; k < nrow; k++) {
-            if (full)
-                bw_biohaar_inv_path(work, Li, row, rows[k]);
-            rebuild_row(&pl, work + (size_t)rows[k] * row);
-        }
-        if (pl.mirror)
-            unmirror_row(&pl, x, nrow == 2u ? work + (size_t)rows[1] * row : NULL);
-    }
-    put_row(x, row, pl.basis == BW_BASIS_PRED ? 1u : pl.prequant, samples); /* prediction: none left */
-    return BW_OK;
-}
-
-/* ---- a set of incoming rows (a region) -------------------------------------- */
-
-bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, const uint8_t *rows,
-                           int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
-                           bw_header_t *hdr_out)
-{
-    bw_header_t h;
-    bw_status_t st = partial_header(ctx, payload, len, samples, work, &h, hdr_out);
-    if (st != BW_OK)
-        return st;
-    if (!rows)
-        return BW_ERR_ARG;
-    const bw_dims_t *d = &h.dims;
-    size_t n = bw_dims_samples(d), no = d->n_out, row = no * d->bands, nr = 0;
-    if (d->shape == BW_SHAPE_REFLECTANCE || (h.flags & BW_FLAG_RECIPROCAL))
-        return BW_ERR_ARG;
-    for (uint32_t t = 0; t < d->n_in; t++)
+    for (uint32_t t = 0; rows && t < d->n_in; t++)
         nr += rows[t] != 0u;
     if (samples_cap < nr * row || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
     plan_of(&pl, &h, work, n);
-    want_t w = {NULL, 0, 0, rows, &pl, 0};
+    want_t w = {.by_rows = true, .rows = rows, .one = one, .pl = &pl};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
@@ -542,7 +452,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
     for (uint32_t f = 0, V = pl.seg_vec ? pl.seg_vec : d->n_in; pred && f < d->n_in; f += V) {
         uint32_t last = 0, e = d->n_in - f < V ? d->n_in : f + V;
         for (uint32_t t = f; t < e; t++)
-            last = rows[t] ? t + 1u : last;
+            last = marked(&w, t) ? t + 1u : last;
         bw_plan_t sub = pl;
         sub.dims.n_in = last - f;
         if (last)
@@ -561,7 +471,7 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
             rebuild_row(&pl, work + (size_t)t * row);
     int32_t *out = samples;
     for (uint32_t t = 0; t < d->n_in; t++) {
-        if (!rows[t])
+        if (!marked(&w, t))
             continue;
         int32_t *x = work + (size_t)t * row;
         if (pl.mirror)
@@ -573,6 +483,24 @@ bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, co
         out += row;
     }
     return BW_OK;
+}
+
+bw_status_t bw_decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len, const uint8_t *rows,
+                           int32_t *samples, size_t samples_cap, int32_t *work, size_t work_cap,
+                           bw_header_t *hdr_out)
+{
+    if (!rows)
+        return BW_ERR_ARG;
+    return decode_rows(ctx, payload, len, rows, 0u, samples, samples_cap, work, work_cap,
+                       hdr_out);
+}
+
+bw_status_t bw_decode_incoming(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uint32_t in,
+                               int32_t *samples, size_t samples_cap, int32_t *work,
+                               size_t work_cap, bw_header_t *hdr_out)
+{
+    return decode_rows(ctx, payload, len, NULL, in, samples, samples_cap, work, work_cap,
+                       hdr_out);
 }
 
 /* ---- a coarser outgoing level ---------------------------------------------- */
@@ -605,7 +533,7 @@ bw_status_t bw_decode_lod(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uns
     /* the first 4 4^level vectors of each block in coarse-to-fine order are
      * the coefficients of the outgoing levels above (streamed order: all),
      * the first 4 4^level_in blocks those of the incoming levels above */
-    want_t w = {NULL, 0, pl.stream ? d->n_out : nc, NULL, NULL, full ? ni : 0u};
+    want_t w = {.coarse = pl.stream ? d->n_out : nc, .blocks = full ? ni : 0u};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
         return st;
