@@ -36,9 +36,13 @@ int bwh_header_salvage(const uint8_t *p, size_t len, bw_header_t *h)
 }
 
 static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
-                         bool salvage)
+                         bool salvage, bool *whole)
 {
-    int st = salvage ? bwh_header_salvage(p, len, h) : bw_header_read(p, len, h);
+    int st = bw_header_read(p, len, h);
+    if (whole)
+        *whole = st == BW_OK;
+    if (salvage && st != BW_OK)
+        st = bwh_header_salvage(p, len, h);
     if (st == BW_ERR_CRC && !salvage) {
         bw_header_t f;
         if (bwh_header_salvage(p, len, &f) == BW_OK)
@@ -59,16 +63,17 @@ static int header_within(const uint8_t *p, size_t len, size_t max_samples, bw_he
 }
 
 /* The integer samples of p[len] in *w (allocated, the decoder's work
- * bound: the samples first), its header in *h. With sv (salvage): what a
- * damaged or cut segmented payload holds, the lost samples in *mask (may
- * be NULL); returns 1 when segments were lost. */
+ * bound: the samples first), its header in *h, in *whole (may be NULL)
+ * whether the payload is whole. With sv (salvage): what a damaged or cut
+ * segmented payload holds, the lost samples in *mask (may be NULL);
+ * returns 1 when segments were lost. */
 static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h,
-                       int32_t **w, uint8_t **mask, bwh_salvage_t *sv)
+                       int32_t **w, uint8_t **mask, bwh_salvage_t *sv, bool *whole)
 {
     *w = NULL;
     if (mask)
         *mask = NULL;
-    if (header_within(p, len, max_samples, h, sv != NULL) != 0)
+    if (header_within(p, len, max_samples, h, sv != NULL, whole) != 0)
         return -1;
     size_t wb = bw_work_bound(bw_dims_samples(&h->dims), h->dims.bands);
     int32_t *b = malloc(wb * sizeof *b);
@@ -142,7 +147,7 @@ static int decode_ints(const uint8_t *p, size_t len, size_t max_samples, bw_head
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h)
 {
     int32_t *w;
-    if (decode_ints(p, len, max_samples, h, &w, NULL, NULL) != 0)
+    if (decode_ints(p, len, max_samples, h, &w, NULL, NULL, NULL) != 0)
         return -1;
     free(w);
     return 0;
@@ -179,13 +184,13 @@ static int decode_any(const uint8_t *p, size_t len, size_t max_samples,
     if (values)
         *values = NULL;
     int32_t *w;
-    int got = decode_ints(p, len, max_samples, h, &w, mask, sv);
+    bool whole;
+    int got = decode_ints(p, len, max_samples, h, &w, mask, sv, &whole);
     if (got < 0)
         return -1;
     /* a payload that is not whole: its float tail, which no CRC of its own
      * covers, is not used */
-    bw_header_t hw;
-    int lost = 0, *tl = sv && bw_header_read(p, len, &hw) != BW_OK ? &lost : NULL;
+    int lost = 0, *tl = sv && !whole ? &lost : NULL;
     if (values_of(p, h, w, samples, values, tl) != 0) {
         if (mask) {
             free(*mask);
@@ -294,7 +299,7 @@ static int header_partial(const uint8_t *p, size_t len, bw_header_t *h, int32_t 
         if (bw_dims_samples(&f.dims) > BWH_MAX_SAMPLES_DEFAULT)
             return bwh_fail("the payload decodes to %zu samples, more than the limit of %zu",
                             bw_dims_samples(&f.dims), BWH_MAX_SAMPLES_DEFAULT);
-    } else if (header_within(p, len, 0, h, false) != 0) {
+    } else if (header_within(p, len, 0, h, false, NULL) != 0) {
         return -1;
     }
     const uint8_t *xd;
