@@ -17,7 +17,7 @@ LIB_SRC := $(CORE_SRC) firmware/link/bw_frame.c $(wildcard host-tools/lib/*.c)
 # files (bwh_rgl.c, bwh_project.c): the same objects as libbwref's
 LIB_REF_SRC := host-tools/ref/bwr_rgl.c host-tools/ref/bwr_project.c host-tools/ref/bwr_geodesic.c
 LIB_SRC += $(LIB_REF_SRC)
-LIB_REF_USERS := host-tools/lib/bwh_project.c host-tools/lib/bwh_rgl.c
+LIB_REF_USERS := host-tools/lib/bwh_project.c host-tools/lib/bwh_rgl.c host-tools/lib/bwh_decode.c
 $(patsubst %.c,$(BUILD)/%.o,$(LIB_REF_USERS)) $(patsubst %.c,$(BUILD)/pic/%.o,$(LIB_REF_USERS)): \
     CFLAGS += -Ihost-tools/ref
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(LIB_SRC))
@@ -65,6 +65,7 @@ CLI_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(CLI_SRC))
 include mk/hw.mk
 $(CLI_OBJ) $(patsubst %.c,$(BUILD)/%.o,$(CLIKIT_SRC)): CFLAGS += -Ihost-tools/cli -Ihost-tools/ref/cli
 $(CLI_OBJ): CFLAGS += -Ihost-tools/render -Ihost-tools/plot
+$(BUILD)/host-tools/cli/cmd_eval.o: CFLAGS += -Ihost-tools/ref
 
 BW_CLI := $(BUILD)/brdfwave
 

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "brdf_eval.h"
+#include "bwr_project.h"
 #include "bwhost.h"
 #include "cli_args.h"
 #include "cli_errors.h"
@@ -36,14 +37,6 @@ static const char eval_help[] =
     "  --wavelength NM    f at that wavelength (the payload's wavelength range)\n"
     "  --band K           f of band K; without either, the mean over the bands\n";
 
-static void unit(double theta_deg, double phi_deg, double *v)
-{
-    double t = theta_deg * 3.14159265358979323846 / 180, f = phi_deg * 3.14159265358979323846 / 180;
-    v[0] = sin(t) * cos(f);
-    v[1] = sin(t) * sin(f);
-    v[2] = cos(t);
-}
-
 /* Appends a pair (four angles) to the growing arrays. 0, or -1. */
 static int add_pair(const double a[4], double **wi, double **wo, size_t *n, size_t *cap)
 {
@@ -59,8 +52,8 @@ static int add_pair(const double a[4], double **wi, double **wo, size_t *n, size
         *wo = o2;
         *cap = c;
     }
-    unit(a[0], a[1], *wi + 3 * *n);
-    unit(a[2], a[3], *wo + 3 * *n);
+    bwr_dir_from_degrees(a[0], a[1], *wi + 3 * *n);
+    bwr_dir_from_degrees(a[2], a[3], *wo + 3 * *n);
     (*n)++;
     return 0;
 }

@@ -12,8 +12,9 @@
 #include "bwh_exact.h"
 #include "bwh_ext.h"
 #include "bwh_logmap.h"
-#include "geodesic.h"
 #include "bwh_values.h"
+#include "bwr_project.h"
+#include "geodesic.h"
 
 /* The header of p[len], checked (with salvage, the fields alone when the
  * payload is not whole: the segment table's CRC vouches for them), and its
@@ -476,9 +477,8 @@ int bwh_region_rows(const bw_header_t *h, const double *incidence_deg, double th
         free(c);
         return bwh_fail("out of memory");
     }
-    const double rad = 3.14159265358979323846 / 180;
-    double t = theta_deg * rad, f = phi_deg * rad;
-    double u[3] = {sin(t) * cos(f), sin(t) * sin(f), cos(t)}, lim = cos(radius_deg * rad);
+    double u[3], lim = cos(radius_deg * 3.14159265358979323846 / 180);
+    bwr_dir_from_degrees(theta_deg, phi_deg, u);
     for (uint32_t i = 0; i < d->n_in; i++) {
         rows[i] = c[i][0] * u[0] + c[i][1] * u[1] + c[i][2] * u[2] >= lim;
         k += rows[i];
