@@ -19,6 +19,7 @@ static const char decode_help[] =
     "usage: brdfwave decode -i IN.bwv -o OUT [--output-format F] [--max-samples N]\n"
     "                       [--mask MASK.u8] [--incoming K | --rows LIST |\n"
     "                       --region THETA,PHI,RADIUS | [--level L] [--level-in Li]]\n"
+    "                       [--bands LIST | --wavelengths LO,HI]\n"
     "\n"
     "Decodes a payload in the encoder's layout, [incoming][outgoing][band], with\n"
     "its metadata (wavelengths, units, incidence angles, ...: 'brdfwave info').\n"
@@ -62,6 +63,14 @@ static const char decode_help[] =
     "                     segments that hold them)\n"    "  --level-in Li      a full BRDF at a coarser incoming level Li (with --level,\n"
     "                     both): each value the mean over the incoming triangle too;\n"
     "                     only the coarser incoming blocks are decoded\n"
+    "  --bands LIST       keep only the bands listed (K or A-B, from 0, both\n"
+    "                     included, comma-separated), in order, with their\n"
+    "                     wavelengths, bandwidths and names; with any of the above\n"
+    "                     and with --mask (the payload is decoded as without it,\n"
+    "                     then the bands are kept)\n"
+    "  --wavelengths LO,HI\n"
+    "                     keep only the bands whose wavelength lies in [LO, HI], in\n"
+    "                     the payload's wavelength unit ('brdfwave info'), as --bands\n"
     "--incoming, --rows and --region decode what the rows need alone, with\n"
     "segments only the segments that hold it.\n"
     "A payload coded in segments (encode --segments) that arrives damaged or cut\n"
@@ -96,11 +105,13 @@ static int format_of_name(const char *path)
     return BWH_OUT_F32;
 }
 
-/* "K" or "A-B" items, comma-separated, into rows[n] (marked 1). 0, or a
- * usage error. */
-static int parse_rows(const char *list, uint32_t n, uint8_t *rows)
+/* "K" or "A-B" items, comma-separated, into marks[n] (marked 1), for the
+ * option opt ("rows", "bands") of items called what. 0, or a usage
+ * error. */
+static int parse_marks(const char *opt, const char *what, const char *list, uint32_t n,
+                       uint8_t *marks)
 {
-    memset(rows, 0, n);
+    memset(marks, 0, n);
     const char *q = list;
     for (;;) {
         const char *end = strchr(q, ','), *dash;
@@ -108,7 +119,7 @@ static int parse_rows(const char *list, uint32_t n, uint8_t *rows)
         char item[32];
         uint32_t a, b;
         if (!l || l >= sizeof item)
-            return cli_usage("--rows %s: K or A-B items, comma-separated", list);
+            return cli_usage("--%s %s: K or A-B items, comma-separated", opt, list);
         memcpy(item, q, l);
         item[l] = 0;
         dash = strchr(item, '-');
@@ -116,10 +127,10 @@ static int parse_rows(const char *list, uint32_t n, uint8_t *rows)
             item[dash - item] = 0;
         if (cli_u32(item, 0, UINT32_MAX - 1u, 0, &a) != 0 ||
             (dash ? cli_u32(dash + 1, a, UINT32_MAX - 1u, 0, &b) : (b = a, 0)) != 0)
-            return cli_usage("--rows %s: K or A-B items (A <= B), comma-separated", list);
+            return cli_usage("--%s %s: K or A-B items (A <= B), comma-separated", opt, list);
         if (b >= n)
-            return cli_usage("--rows %s: row %u is past the last (%u)", list, b, n - 1u);
-        memset(rows + a, 1, (size_t)b - a + 1u);
+            return cli_usage("--%s %s: %s %u is past the last (%u)", opt, list, what, b, n - 1u);
+        memset(marks + a, 1, (size_t)b - a + 1u);
         if (!end)
             return 0;
         q = end + 1;
@@ -145,9 +156,36 @@ static void print_rows(FILE *f, const uint8_t *rows, uint32_t n)
     }
 }
 
+/* Keeps the bands --bands lists (list) or whose wavelengths lie in wl[2]
+ * of the decoded samples s, values v and mask (any NULL) of dimensions *d,
+ * and of the metadata. 0, or an exit status. */
+static int keep_bands(const char *inp, const char *list, const double *wl, bw_dims_t *d,
+                      bwh_meta_t *meta, int32_t *s, float *v, uint8_t *mask)
+{
+    uint8_t *marks = malloc(d->bands);
+    if (!marks)
+        return cli_fail("out of memory");
+    int bad = 0;
+    if (list) {
+        bad = parse_marks("bands", "band", list, d->bands, marks);
+    } else {
+        int k = bwh_bands_of_wavelengths(meta, d->bands, wl[0], wl[1], marks);
+        if (k < 0)
+            bad = cli_fail("%s: %s", inp, bwh_last_error());
+        else if (!k)
+            bad = cli_fail("%s: no band's wavelength lies in [%g, %g] %s", inp, wl[0], wl[1],
+                           bwh_wl_unit_name(meta->wl_unit));
+    }
+    if (!bad && (bwh_meta_bands(meta, d, marks) != 0 || bwh_keep_bands(d, marks, s, v, mask) != 0))
+        bad = cli_fail("%s: %s", inp, bwh_last_error());
+    free(marks);
+    return bad;
+}
+
 int bw_cmd_decode(int argc, char **argv)
 {
     const char *inp = NULL, *outp = NULL, *maskp = NULL, *rowsp = NULL, *regionp = NULL;
+    const char *bandsp = NULL, *wlp = NULL;
     int fmt = -1;
     uint32_t max_samples = 0, incoming = 0, lod = 0, lodin = 0;
     int has_incoming = 0, has_lod = 0, has_lodin = 0;
@@ -164,6 +202,8 @@ int bw_cmd_decode(int argc, char **argv)
         {"level-in", 0, CLI_U32, .dest = &lodin, .lo = 0, .hi = BW_MAX_LEVEL, .seen = &has_lodin},
         {"rows", 0, CLI_STRING, .dest = &rowsp},
         {"region", 0, CLI_STRING, .dest = &regionp},
+        {"bands", 0, CLI_STRING, .dest = &bandsp},
+        {"wavelengths", 0, CLI_STRING, .dest = &wlp},
         {NULL}};
     int st;
     if (!cli_parse(argc, argv, opts, decode_help, NULL, &st))
@@ -184,6 +224,12 @@ int bw_cmd_decode(int argc, char **argv)
     size_t nreg = 0;
     if (regionp && (cli_real_list(regionp, -360, 360, reg, 3, &nreg) != 0 || nreg != 3))
         return cli_usage("--region THETA,PHI,RADIUS: three numbers, in degrees");
+    double wl[2];
+    size_t nwl = 0;
+    if (bandsp && wlp)
+        return cli_usage("give --bands or --wavelengths, not both");
+    if (wlp && (cli_real_list(wlp, -1e12, 1e12, wl, 2, &nwl) != 0 || nwl != 2 || wl[0] > wl[1]))
+        return cli_usage("--wavelengths LO,HI: two numbers, LO <= HI");
     if (fmt == BWH_OUT_ENVI && !strcmp(outp, "-"))
         return cli_usage("--output-format envi writes a header beside its data: not to '-'");
     uint8_t *p;
@@ -211,7 +257,7 @@ int bw_cmd_decode(int argc, char **argv)
         } else if (!(rows = malloc(f.dims.n_in))) {
             bad = cli_fail("out of memory");
         } else if (rowsp) {
-            bad = parse_rows(rowsp, f.dims.n_in, rows);
+            bad = parse_marks("rows", "row", rowsp, f.dims.n_in, rows);
         } else {
             /* an isotropic BRDF's incidences: the payload's metadata's */
             bwh_meta_t rm;
@@ -266,6 +312,16 @@ int bw_cmd_decode(int argc, char **argv)
     free(rows);
     if (parts)
         h.dims = rowd;
+    int kb = bandsp || wlp ? keep_bands(inp, bandsp, wlp ? wl : NULL, &h.dims, &meta, s, v, mask)
+                           : 0;
+    if (kb) {
+        free(s);
+        free(v);
+        free(mask);
+        bwh_meta_free(&meta);
+        cli_progress_end();
+        return kb;
+    }
     if (has_lod) { /* the source's missing samples are at its own level */
         free(meta.missing);
         meta.missing = NULL;

@@ -486,3 +486,30 @@ int bwh_region_rows(const bw_header_t *h, const double *incidence_deg, double th
     free(c);
     return k;
 }
+
+int bwh_keep_bands(bw_dims_t *d, const uint8_t *bands, int32_t *s, float *v, uint8_t *mask)
+{
+    uint32_t nb = d->bands, kept = 0;
+    for (uint32_t k = 0; k < nb; k++)
+        kept += bands[k] != 0;
+    if (!kept)
+        return bwh_fail("no band chosen");
+    /* forwards: every sample moves to an index at most its own */
+    size_t vecs = (size_t)d->n_in * d->n_out, to = 0;
+    for (size_t i = 0; i < vecs; i++) {
+        size_t from = i * nb;
+        for (uint32_t k = 0; k < nb; k++) {
+            if (!bands[k])
+                continue;
+            if (s)
+                s[to] = s[from + k];
+            if (v)
+                v[to] = v[from + k];
+            if (mask)
+                mask[to] = mask[from + k];
+            to++;
+        }
+    }
+    d->bands = kept;
+    return 0;
+}

@@ -98,6 +98,14 @@ int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *
 int bwh_decode_levels(const uint8_t *p, size_t len, int level_out, int level_in, bw_header_t *h,
                       bw_dims_t *lod, int32_t **samples, float **values);
 
+/* Keeps the bands marked non-zero in bands[d->bands] of decoded samples,
+ * in order, in place: each of s, v and mask (any may be NULL; a sample's
+ * int32, float value, mask byte) in the layout [incoming][outgoing][band]
+ * of d, whose bands become the number marked. The decode before it is
+ * whole (a band range costs the payload's decode, then the copy). 0, or -1
+ * (no band marked). */
+int bwh_keep_bands(bw_dims_t *d, const uint8_t *bands, int32_t *s, float *v, uint8_t *mask);
+
 /* Checks a payload as a receiver must before it stores and acknowledges it:
  * header, CRC, the sample limit (0: the default) and a full decode. */
 int bwh_payload_check(const uint8_t *p, size_t len, size_t max_samples, bw_header_t *h);

@@ -343,6 +343,75 @@ int bwh_meta_rows(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *rows)
     return 0;
 }
 
+/* A sample run [a, e) of a source of nb bands, where band k of it lands at
+ * rank[k] of nk (UINT32_MAX: not kept), added to the runs out[*n] (merged
+ * with the last where they touch). */
+static void keep_run(uint64_t a, uint64_t e, uint32_t nb, const uint32_t *rank, uint32_t nk,
+                     uint64_t (*out)[2], size_t *n)
+{
+    for (uint64_t t = a; t < e; t++) {
+        uint32_t r = rank[t % nb];
+        if (r == UINT32_MAX)
+            continue;
+        uint64_t to = t / nb * nk + r;
+        if (*n && out[*n - 1][0] + out[*n - 1][1] == to) {
+            out[*n - 1][1]++;
+        } else {
+            out[*n][0] = to;
+            out[*n][1] = 1;
+            ++*n;
+        }
+    }
+}
+
+int bwh_meta_bands(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *bands)
+{
+    uint32_t nb = d->bands, nk = 0;
+    uint32_t *rank = malloc((size_t)nb * sizeof *rank);
+    if (!rank)
+        return bwh_fail("out of memory");
+    for (uint32_t k = 0; k < nb; k++)
+        rank[k] = bands[k] ? nk++ : UINT32_MAX;
+    keep_numbers(&m->wavelengths, nb, bands, 0);
+    keep_numbers(&m->fwhm, nb, bands, 0);
+    keep_strings(&m->band_names, nb, bands, 0);
+    if (m->n_missing) {
+        /* a run keeps at most one run per spectrum it touches */
+        size_t cap = 0, n = 0;
+        for (size_t i = 0; i < m->n_missing; i++)
+            cap += (size_t)(m->missing[i][1] / nb) + 2u;
+        uint64_t(*out)[2] = cap <= SIZE_MAX / sizeof *out ? malloc(cap * sizeof *out) : NULL;
+        if (!out) {
+            free(rank);
+            return bwh_fail("out of memory");
+        }
+        for (size_t i = 0; i < m->n_missing; i++) {
+            uint64_t a = m->missing[i][0];
+            keep_run(a, a + m->missing[i][1], nb, rank, nk, out, &n);
+        }
+        free(m->missing);
+        m->missing = out;
+        m->n_missing = n;
+        if (!n)
+            m->present &= ~BWH_M_MISSING;
+    }
+    free(rank);
+    return 0;
+}
+
+int bwh_bands_of_wavelengths(const bwh_meta_t *m, size_t n, double lo, double hi, uint8_t *bands)
+{
+    if (m->wavelengths.n != n || !n)
+        return bwh_fail("the payload has no wavelength per band: choose bands by number");
+    int k = 0;
+    for (size_t i = 0; i < n; i++) {
+        double w = m->wavelengths.v[i];
+        bands[i] = w >= lo && w <= hi;
+        k += bands[i];
+    }
+    return k;
+}
+
 /* ---- names -------------------------------------------------------------- */
 
 static const char *const quantity_names[BWH_Q_COUNT] = {

@@ -156,6 +156,16 @@ int bwh_meta_row(bwh_meta_t *m, const bw_dims_t *d, uint32_t in);
  * isotropic BRDF the marked incidences, in order. 0, or -1. */
 int bwh_meta_rows(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *rows);
 
+/* The metadata of the bands marked in bands[d->bands] (bwh_keep_bands):
+ * their wavelengths, bandwidths and names, in order; the missing runs moved
+ * to the samples kept. 0, or -1. */
+int bwh_meta_bands(bwh_meta_t *m, const bw_dims_t *d, const uint8_t *bands);
+/* Marks in bands[n] the bands whose wavelength lies in [lo, hi] (in the
+ * metadata's wavelength unit). Returns how many, or -1 when the metadata
+ * has no wavelength per band. */
+int bwh_bands_of_wavelengths(const bwh_meta_t *m, size_t n, double lo, double hi,
+                             uint8_t *bands);
+
 /* The metadata fits a measurement of these dimensions: one wavelength,
  * bandwidth and band name per band, one incidence angle per incoming
  * direction of an isotropic BRDF, one name, time and location per spectrum

@@ -667,6 +667,31 @@ sys.exit(0 if np.array_equal(a[[2, 5, 6]], r) else 1)" && ok || bad "decode --ro
 for r in 4-2 8 1,,2 x 3- -1; do
     expect_status "decode --rows $r" 2 "$BW" decode -i "$T/seg.bwv" --rows "$r" -o "$T/x.f32"
 done
+# a band range: those bands of the whole decode, in order, with their
+# wavelengths; chosen by wavelength too; with --rows; refusals
+expect_ok "decode --bands" "$BW" decode -i "$T/fs.bwv" --bands 1023,0-2,512 -o "$T/fsb.f32"
+expect_ok "decode --wavelengths" "$BW" decode -i "$T/fs.bwv" --wavelengths 500,520 -o "$T/fsw.f32"
+expect_ok "decode --rows --bands" "$BW" decode -i "$T/fs.bwv" --rows 1-2 --bands 7 -o "$T/fsrb.f32"
+$PY -c "
+import json, numpy as np, sys
+a = np.fromfile('$T/fs.f32', '<f4').reshape(-1, 1024)
+wl = np.array(json.load(open('$T/fs.f32.json'))['wavelengths'])
+k = [0, 1, 2, 512, 1023]
+b = np.fromfile('$T/fsb.f32', '<f4').reshape(-1, 5)
+ok = np.array_equal(a[:, k], b) and json.load(open('$T/fsb.f32.json'))['wavelengths'] == list(wl[k])
+sel = (wl >= 500) & (wl <= 520)
+w = np.fromfile('$T/fsw.f32', '<f4').reshape(a.shape[0], -1)
+ok = ok and 0 < sel.sum() < 1024 and np.array_equal(a[:, sel], w)
+ok = ok and json.load(open('$T/fsw.f32.json'))['wavelengths'] == list(wl[sel])
+ok = ok and np.array_equal(a[1:3, 7], np.fromfile('$T/fsrb.f32', '<f4'))
+sys.exit(0 if ok else 1)" && ok || bad "decode --bands / --wavelengths: not those bands of the whole decode"
+for r in 1024 3-1 x 2,; do
+    expect_status "decode --bands $r" 2 "$BW" decode -i "$T/fs.bwv" --bands "$r" -o "$T/x.f32"
+done
+expect_status "decode --bands with --wavelengths" 2 "$BW" decode -i "$T/fs.bwv" --bands 1 --wavelengths 400,500 -o "$T/x.f32"
+expect_status "decode --wavelengths HI below LO" 2 "$BW" decode -i "$T/fs.bwv" --wavelengths 500,400 -o "$T/x.f32"
+expect_error "decode --wavelengths outside the bands" "$BW" decode -i "$T/fs.bwv" --wavelengths 10,20 -o "$T/x.f32"
+expect_error "decode --wavelengths without wavelengths" "$BW" decode -i "$T/seg.bwv" --wavelengths 400,500 -o "$T/x.f32"
 expect_status "decode --rows with --incoming" 2 "$BW" decode -i "$T/seg.bwv" --rows 1 --incoming 1 -o "$T/x.f32"
 expect_status "decode --region not three numbers" 2 "$BW" decode -i "$T/seg.bwv" --region 10,0 -o "$T/x.f32"
 # an isotropic BRDF's region: its incidences ((i + 1/2) 90 / 8 degrees

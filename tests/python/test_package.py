@@ -586,6 +586,49 @@ def metadata_travels_with_the_array():
 
 
 @case
+def a_band_range_keeps_those_bands_and_their_metadata():
+    wl = np.array([400.5, 401.7, 403.1, 410.0, 500.25])
+    x = np.linspace(0.1, 0.9, 15, dtype=np.float32).reshape(3, 5)
+    p = brdfwave.encode(x, wavelengths=wl, max_error=1e-4)
+    whole = np.asarray(brdfwave.decode(p))
+    b = brdfwave.decode(p, bands=[4, 0])
+    assert b.shape == (3, 2) and list(b.bands) == [0, 4], (b.shape, b.bands)
+    assert np.array_equal(np.asarray(b), whole[:, [0, 4]])
+    assert np.array_equal(b.wavelengths, wl[[0, 4]]) and b.layout == "spectra"
+    r = brdfwave.decode(p, wavelength_range=(401, 405))
+    assert list(r.bands) == [1, 2] and np.array_equal(r.wavelengths, wl[1:3]), r.bands
+    assert np.array_equal(np.asarray(brdfwave.decode(p, bands=np.arange(5) > 2)), whole[:, 3:])
+    # the CLI keeps the same
+    with open(tmp("bands.bwv"), "wb") as f:
+        f.write(p)
+    bw("decode", "-i", tmp("bands.bwv"), "--bands", "0,4", "-o", tmp("bands.f32"))
+    assert np.array_equal(np.fromfile(tmp("bands.f32"), dtype="<f4").reshape(3, 2),
+                          np.asarray(b))
+    # with rows, and with the mask of a salvage decode
+    rb = brdfwave.decode(p, rows=[1, 2], bands=[3])
+    assert np.array_equal(np.asarray(rb), whole[1:3, 3:4])
+    sv = brdfwave.decode(p, salvage=True, bands=[2])
+    assert sv.mask.shape == (3, 1) and (sv.mask == 0).all()
+    # missing samples: their runs follow the bands kept
+    with open(tmp("miss.csv"), "w") as f:
+        f.write("wavelength_nm,a,b,c\n400,0.1,-1,0.3\n410,-1,0.2,-1\n"
+                "420,0.1,-1,0.3\n430,-1,0.2,-1\n")
+    bw("encode", "-i", tmp("miss.csv"), "--ignore-value", "-1", "--max-error", "0.001", "-o",
+       tmp("miss.bwv"))
+    mm = brdfwave.decode(tmp("miss.bwv"), bands=[1, 3])
+    assert np.array_equal(np.asarray(mm) == -1, [[True, True], [False, False], [True, True]])
+    assert mm.metadata["missing"]["runs"] == [[0, 2], [4, 2]], mm.metadata["missing"]
+    for bad in (dict(bands=[5]), dict(bands=[]), dict(bands=[-1]), dict(bands=[[1]]),
+                dict(bands=np.ones(4, bool)), dict(bands=[1.5]),
+                dict(bands=[1], wavelength_range=(400, 500)),
+                dict(wavelength_range=(600, 700)), dict(wavelength_range=(500, 400)),
+                dict(wavelength_range=(1, 2, 3))):
+        assert refused(brdfwave.decode_bytes, p, **bad), bad
+    assert refused(brdfwave.decode_bytes, brdfwave.encode(x, max_error=1e-4),
+                   wavelength_range=(400, 500)), "wavelength_range= without wavelengths"
+
+
+@case
 def incidence_angles_in_the_callers_units():
     x = np.fromfile(tmp("phong.f32"), dtype="<f4").reshape(5, 256, 1)
     for unit, a in (("deg", [0.0, 27.67, 39.86, 49.94, 59.27]),

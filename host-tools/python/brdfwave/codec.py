@@ -86,10 +86,13 @@ class Measurement(np.ndarray):
                        used: the values from the samples alone, approximate
       rows             decode(..., rows=) or region=: the source's rows decoded
                        (indices, ascending), else None
+      bands            decode(..., bands=) or wavelength_range=: the source's bands
+                       kept (indices, ascending), else None
     """
 
     _ATTRS = ("metadata", "header", "layout", "level", "level_in", "directions", "incoming",
-              "guarantee", "mask", "segments", "lost_segments", "tail_lost", "rows")
+              "guarantee", "mask", "segments", "lost_segments", "tail_lost", "rows",
+              "bands")
 
     def __new__(cls, values, metadata=None, layout=None, level=None, level_in=None,
                 header=None, wavelengths=None):
@@ -105,6 +108,7 @@ class Measurement(np.ndarray):
         obj.incoming = _directions(level_in) if layout == "brdf-full" else None
         obj.guarantee = None
         obj.mask = obj.segments = obj.lost_segments = obj.tail_lost = obj.rows = None
+        obj.bands = None
         return obj
 
     def __array_finalize__(self, obj):
@@ -202,15 +206,17 @@ def _put_missing(values, meta):
 
 
 def decode_bytes(payload, wavelengths=None, integers=False, max_samples=0, salvage=False,
-                 incoming=None, level=None, rows=None, region=None, level_in=None):
+                 incoming=None, level=None, rows=None, region=None, level_in=None, bands=None,
+                 wavelength_range=None):
     """Decodes a payload held in memory; see decode()."""
     return decode(payload, wavelengths=wavelengths, integers=integers, max_samples=max_samples,
                   salvage=salvage, incoming=incoming, level=level, rows=rows, region=region,
-                  level_in=level_in)
+                  level_in=level_in, bands=bands, wavelength_range=wavelength_range)
 
 
 def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=False,
-           incoming=None, level=None, rows=None, region=None, level_in=None):
+           incoming=None, level=None, rows=None, region=None, level_in=None, bands=None,
+           wavelength_range=None):
     """Decodes a payload (bytes, or the path of a payload file) to a
     Measurement: float32 values (integers=True: the codec's int32 samples) in
     the layout of `brdfwave decode`, [incoming][outgoing][band], with the
@@ -241,9 +247,21 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     centres lie within radius of the direction (theta, phi), or the
     incidences of an isotropic BRDF within radius of theta. With either,
     the Measurement's `rows` names the source rows decoded (and `incoming`
-    their directions, for a full BRDF)."""
+    their directions, for a full BRDF). bands=[K, ...] (indices, or a
+    boolean array of bands), or wavelength_range=(lo, hi) (the bands whose
+    wavelength lies in [lo, hi], in the payload's wavelength unit), with any
+    of the above: only those bands, in order, with their wavelengths,
+    bandwidths and names (`bands` names the source bands kept); the payload
+    is decoded as without them."""
     payload, path = _read_bytes(source)
     try:
+        if bands is not None and wavelength_range is not None:
+            raise BrdfwaveError("give bands= or wavelength_range=, not both")
+        if bands is not None or wavelength_range is not None:
+            return _keep_bands(decode(payload, wavelengths=wavelengths, integers=integers,
+                                      max_samples=max_samples, salvage=salvage,
+                                      incoming=incoming, level=level, rows=rows, region=region,
+                                      level_in=level_in), bands, wavelength_range)
         lod = level is not None or level_in is not None
         if ((incoming is not None) + lod + bool(salvage) + (rows is not None) +
                 (region is not None) > 1):
@@ -260,6 +278,68 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
         if path is None:
             raise
         raise BrdfwaveError("%s: %s" % (path, e)) from None
+
+
+def _keep_bands(m, bands, wavelength_range):
+    """The bands of Measurement m chosen by decode()'s bands= or
+    wavelength_range=, with their metadata; the missing samples' runs moved
+    to the values kept."""
+    nb = m.shape[-1]
+    if wavelength_range is not None:
+        try:
+            lo, hi = (float(x) for x in wavelength_range)
+        except (TypeError, ValueError):
+            raise BrdfwaveError("wavelength_range must be two numbers, (lo, hi)") from None
+        if not lo <= hi:
+            raise BrdfwaveError("wavelength_range: lo must not exceed hi")
+        wl = m.wavelengths
+        if wl is None or wl.shape != (nb,):
+            raise BrdfwaveError("the payload has no wavelength per band: choose bands by "
+                                "number (bands=)")
+        sel = (wl >= lo) & (wl <= hi)
+        if not sel.any():
+            raise BrdfwaveError("no band's wavelength lies in [%g, %g] %s"
+                                % (lo, hi, m.wavelength_unit))
+    else:
+        b = np.asarray(bands)
+        if b.dtype == bool:
+            if b.shape != (nb,):
+                raise BrdfwaveError("bands= as booleans needs one per band (%d)" % nb)
+            sel = b
+        else:
+            if b.ndim > 1 or b.size == 0 or b.dtype.kind not in "iu":
+                raise BrdfwaveError("bands= must be band indices, or a boolean per band")
+            if b.min() < 0 or b.max() >= nb:
+                raise BrdfwaveError("bands= past the last band (%d)" % (nb - 1))
+            sel = np.zeros(nb, dtype=bool)
+            sel[b] = True
+        if not sel.any():
+            raise BrdfwaveError("no band chosen")
+    idx = np.flatnonzero(sel)
+    out = Measurement(np.ascontiguousarray(np.asarray(m)[..., idx]), m.metadata, m.layout,
+                      m.level, m.level_in, m.header)
+    for a in Measurement._ATTRS:
+        if a not in ("metadata", "mask"):
+            setattr(out, a, getattr(m, a))
+    meta = dict(m.metadata)
+    for key in ("wavelengths", "fwhm", "band_names"):
+        v = meta.get(key)
+        if isinstance(v, list) and len(v) == nb:
+            meta[key] = [v[i] for i in idx]
+    miss = meta.get("missing")
+    if miss and miss.get("runs"):
+        flag = np.zeros(np.asarray(m).size, dtype=bool)
+        for start, n in miss["runs"]:
+            flag[start:start + n] = True
+        kept = flag.reshape(-1, nb)[:, idx].ravel()
+        edges = np.flatnonzero(np.diff(np.concatenate(([0], kept.view(np.int8), [0]))))
+        miss = dict(miss)
+        miss["runs"] = [[int(a), int(e - a)] for a, e in zip(edges[::2], edges[1::2])]
+        meta["missing"] = miss
+    out.metadata = meta
+    out.mask = None if m.mask is None else np.ascontiguousarray(m.mask[..., idx])
+    out.bands = idx
+    return out
 
 
 def evaluate(source, wi, wo, *, wavelength=None, band=None):
