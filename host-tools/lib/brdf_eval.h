@@ -21,7 +21,6 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdint.h>
 
 #include "bw_codec.h"
 #include "bwh_interp.h"
@@ -71,20 +70,6 @@ int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi
 /* f at n direction pairs (unit vectors wi[3 n], wo[3 n]) straight from a
  * payload: bwh_brdf_data_from_payload for the wi, then
  * bwh_brdf_data_eval_many. 0, or -1. */
-int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
-                     const double *lambda, long band, double *out);
-/* The same from a payload in memory, decoding only the incoming directions
- * that f at the incoming directions wi[n] reads (wi NULL: all): a full
- * BRDF's triangle holding each, an isotropic BRDF's two incidences about
- * each (bwh_decode_rows: with segments, only the segments that hold them);
- * a payload whose rows depend on each other (the reciprocity step, a float
- * tail), or more than half of whose rows are read, is decoded whole. f at
- * another incoming direction is NAN where its rows were not decoded. */
-int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
-                               const double (*wi)[3], size_t n);
-/* f at n direction pairs straight from a payload (bwh_brdf_data_from_payload
- * for the wi, then bwh_brdf_data_eval at lambda[j], bwh_brdf_data_band
- * with band >= 0, or bwh_brdf_data_mean with neither): out[n]. 0, or -1. */
 int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
                      const double *lambda, long band, double *out);
 void bwh_brdf_data_free(bwh_brdf_data_t *d);
