@@ -3,6 +3,7 @@
 #include "geodesic.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -165,6 +166,48 @@ void bwh_tri_cut_normals(const bwh_tri_t *t, double n[3][3])
     bwg_cross3(mca, mbc, n[2]);
 }
 
+/* The cutting normals of every triangle of levels 0 .. BWH_GRID_MAX_LEVEL
+ * - 1, the descent's, each level's built once on its first use (from any
+ * thread) and kept: the same normals the descent forms, so the same
+ * triangles. NULL where memory ran out: the descent forms them then. */
+static double (*cut_tab[BWH_GRID_MAX_LEVEL])[3][3];
+static pthread_once_t cut_once[BWH_GRID_MAX_LEVEL] = {
+    PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT,
+    PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT};
+
+static void cut_build(unsigned level)
+{
+    size_t n = bwh_grid_count(level);
+    bwh_tri_t *t = malloc(n * sizeof *t);
+    double(*c)[3][3] = malloc(n * sizeof *c);
+    if (t && c && bwh_grid_triangles(level, t) == 0) {
+        for (size_t i = 0; i < n; i++)
+            bwh_tri_cut_normals(&t[i], c[i]);
+        cut_tab[level] = c;
+    } else {
+        free(c);
+    }
+    free(t);
+}
+
+#define CUT_BUILDER(l) \
+    static void cut_build_##l(void) { cut_build(l); }
+CUT_BUILDER(0)
+CUT_BUILDER(1)
+CUT_BUILDER(2)
+CUT_BUILDER(3)
+CUT_BUILDER(4)
+CUT_BUILDER(5)
+_Static_assert(BWH_GRID_MAX_LEVEL == 6u, "one builder per level below the finest");
+static void (*const cut_builders[BWH_GRID_MAX_LEVEL])(void) = {
+    cut_build_0, cut_build_1, cut_build_2, cut_build_3, cut_build_4, cut_build_5};
+
+static const double (*cut_level(unsigned level))[3][3]
+{
+    pthread_once(&cut_once[level], cut_builders[level]);
+    return (const double(*)[3][3])cut_tab[level];
+}
+
 long bwh_grid_locate(unsigned level, const double dir[3])
 {
     if (level > BWH_GRID_MAX_LEVEL || dir == NULL)
@@ -175,10 +218,21 @@ long bwh_grid_locate(unsigned level, const double dir[3])
         return -1;
 
     unsigned b = bwh_grid_base(dir);
+    long idx = (long)b;
+    unsigned l = 0;
+    for (; l < level; l++) {
+        const double(*c)[3][3] = cut_level(l);
+        if (!c)
+            break;
+        idx = idx * 4 + (long)bwh_cut_child(c[idx], dir);
+    }
+    if (l == level)
+        return idx;
+    /* no table: the descent from the base, forming the normals */
     bwh_tri_t t;
     base_triangle(b, &t);
-    long idx = (long)b;
-    for (unsigned l = 0; l < level; l++) {
+    idx = (long)b;
+    for (l = 0; l < level; l++) {
         double n[3][3];
         bwh_tri_cut_normals(&t, n);
         unsigned m = bwh_cut_child((const double(*)[3])n, dir);

@@ -228,6 +228,54 @@ static void locate_rejects_the_lower_hemisphere_and_handles_edges_deterministica
     assert_int_equal(bwh_grid_locate(0, pts[4]), 3);
 }
 
+/* The triangle found by descending from the base, forming each level's
+ * cutting normals (what bwh_grid_locate's stored normals stand for). */
+static long descend(unsigned level, const double d[3])
+{
+    long idx = (long)bwh_grid_base(d);
+    bwh_tri_t t = grids[0][idx];
+    for (unsigned l = 0; l < level; l++) {
+        double n[3][3];
+        bwh_tri_cut_normals(&t, n);
+        unsigned m = bwh_cut_child((const double(*)[3])n, d);
+        bwh_tri_child(&t, m, &t);
+        idx = idx * 4 + (long)m;
+    }
+    return idx;
+}
+
+static void locate_finds_the_triangle_of_the_descent_on_edges_and_anywhere(void **state)
+{
+    (void)state;
+    /* random directions, and the vertices and edge midpoints of level-5
+     * triangles (on the cutting circles of every level above) */
+    uint64_t r = 0x9E3779B97F4A7C15u;
+    for (unsigned k = 0; k < 20000; k++) {
+        double d[3];
+        for (int i = 0; i < 3; i++) {
+            r = r * 6364136223846793005u + 1442695040888963407u;
+            d[i] = (double)(r >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+        }
+        d[2] = fabs(d[2]);
+        bwg_normalize3(d);
+        for (unsigned l = 0; l <= BWH_GRID_MAX_LEVEL; l++)
+            assert_int_equal(bwh_grid_locate(l, d), descend(l, d));
+    }
+    for (size_t i = 0; i < bwh_grid_count(5); i++) {
+        const bwh_tri_t *t = &grids[5][i];
+        for (unsigned v = 0; v < 3; v++) {
+            double m[3];
+            for (int c = 0; c < 3; c++)
+                m[c] = t->v[v][c] + t->v[(v + 1) % 3][c];
+            bwg_normalize3(m);
+            for (unsigned l = 0; l <= BWH_GRID_MAX_LEVEL; l++) {
+                assert_int_equal(bwh_grid_locate(l, t->v[v]), descend(l, t->v[v]));
+                assert_int_equal(bwh_grid_locate(l, m), descend(l, m));
+            }
+        }
+    }
+}
+
 static void the_four_base_triangles_are_congruent(void **state)
 {
     (void)state;
@@ -321,6 +369,7 @@ int main(void)
         cmocka_unit_test(grid_centres_match_the_normalized_vertex_sums_and_solid_angles),
         cmocka_unit_test(every_subtree_is_a_contiguous_index_range_inside_its_parent),
         cmocka_unit_test(locating_each_triangle_centre_returns_its_own_index),
+        cmocka_unit_test(locate_finds_the_triangle_of_the_descent_on_edges_and_anywhere),
         cmocka_unit_test(
             locate_rejects_the_lower_hemisphere_and_handles_edges_deterministically),
         cmocka_unit_test(the_four_base_triangles_are_congruent),
