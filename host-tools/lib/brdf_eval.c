@@ -20,8 +20,9 @@
 void bwh_brdf_data_free(bwh_brdf_data_t *d)
 {
     free(d->theta_in);
+    if (d->mean != d->planes) /* one band: the same table */
+        free(d->mean);
     free(d->planes);
-    free(d->mean);
     free(d->row_of);
     if (d->s_out.n)
         bwh_sphere_interp_free(&d->s_out);
@@ -74,8 +75,16 @@ static int data_tables(bwh_brdf_data_t *d, const float *values, size_t rows)
 {
     size_t n = rows * d->n_out;
     d->planes = malloc((n ? n : 1) * d->bands * sizeof *d->planes);
+    if (!d->planes || bwh_sphere_interp_init(&d->s_out, d->level_out) != 0)
+        return bwh_fail("out of memory");
+    if (d->bands == 1) { /* the mean over one band is the band */
+        for (size_t t = 0; t < n; t++)
+            d->planes[t] = values[t];
+        d->mean = d->planes;
+        return 0;
+    }
     d->mean = malloc((n ? n : 1) * sizeof *d->mean);
-    if (!d->planes || !d->mean || bwh_sphere_interp_init(&d->s_out, d->level_out) != 0)
+    if (!d->mean)
         return bwh_fail("out of memory");
     for (size_t i = 0; i < rows; i++)
         for (size_t o = 0; o < d->n_out; o++) {

@@ -36,7 +36,8 @@ typedef struct {
     double lambda_first, lambda_last;
     double *theta_in;          /* ISO: radians, ascending */
     double *planes;            /* [rows][bands][n_out] */
-    double *mean;              /* [rows][n_out]: the mean over the bands */
+    double *mean;              /* [rows][n_out]: the mean over the bands (one band:
+                                * planes itself) */
     bwh_sphere_interp_t s_out;
     uint32_t *row_of;          /* NULL: rows = n_in; else [n_in], the row of planes
                                 * that holds incoming direction i (UINT32_MAX: not
