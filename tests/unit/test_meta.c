@@ -18,6 +18,7 @@
 
 #include "brdf_eval.h"
 #include "bw_codec.h"
+#include "bwh_decode.h"
 #include "bwh_encode.h"
 #include "bwh_error.h"
 #include "bwh_file.h"
@@ -421,6 +422,93 @@ static double value_at_30_degrees(int with_angles)
     return v;
 }
 
+/* Every choice of bands of a set of spectra: the kept bands' wavelengths,
+ * bandwidths and names in order; the missing samples where they fall
+ * (against each sample taken one by one), runs maximal; the samples,
+ * values and mask cut alike (bwh_keep_bands). */
+static void keeping_bands_keeps_their_metadata_and_moves_the_missing_samples(void **state)
+{
+    (void)state;
+    enum { N = N_SPECTRA * BANDS };
+    bwh_meta_t src;
+    full_meta(&src);
+    /* full_meta's runs and one across two spectra */
+    free(src.missing);
+    src.missing = NULL;
+    src.n_missing = 0;
+    assert_int_equal(bwh_meta_add_missing_run(&src, 3, 2), 0);
+    assert_int_equal(bwh_meta_add_missing_run(&src, 9, 6), 0);
+    assert_int_equal(bwh_meta_add_missing_run(&src, 20, 1), 0);
+    uint8_t miss[N] = {0};
+    for (size_t r = 0; r < src.n_missing; r++)
+        for (uint64_t t = src.missing[r][0]; t < src.missing[r][0] + src.missing[r][1]; t++)
+            miss[t] = 1;
+    bw_dims_t d = spectra_dims();
+    for (unsigned set = 1; set < 1u << BANDS; set++) {
+        uint8_t bands[BANDS];
+        unsigned nk = 0;
+        for (unsigned k = 0; k < BANDS; k++)
+            nk += bands[k] = (uint8_t)(set >> k & 1u);
+        bwh_meta_t m;
+        assert_int_equal(bwh_meta_copy(&m, &src), 0);
+        assert_int_equal(bwh_meta_bands(&m, &d, bands), 0);
+        assert_int_equal(m.wavelengths.n, nk);
+        assert_int_equal(m.fwhm.n, nk);
+        assert_int_equal(m.band_names.n, nk);
+        uint8_t want[N] = {0}, got[N] = {0};
+        for (unsigned i = 0, j = 0; i < N; i++) {
+            if (!bands[i % BANDS])
+                continue;
+            if (i < BANDS) {
+                assert_true(same(m.wavelengths.v[j], src.wavelengths.v[i]));
+                assert_true(same(m.fwhm.v[j], src.fwhm.v[i]));
+                assert_string_equal(m.band_names.s[j], src.band_names.s[i]);
+            }
+            want[j++] = miss[i];
+        }
+        for (size_t r = 0; r < m.n_missing; r++) {
+            assert_true(m.missing[r][1] > 0 && m.missing[r][0] + m.missing[r][1] <= N_SPECTRA * nk);
+            if (r)
+                assert_true(m.missing[r][0] > m.missing[r - 1][0] + m.missing[r - 1][1]);
+            for (uint64_t t = m.missing[r][0]; t < m.missing[r][0] + m.missing[r][1]; t++)
+                got[t] = 1;
+        }
+        assert_memory_equal(got, want, N);
+        assert_int_equal((m.present & BWH_M_MISSING) != 0, m.n_missing != 0);
+        bwh_meta_free(&m);
+        /* the samples: sample i holds i, its value i / 2, its mask i % 3 */
+        int32_t sm[N];
+        float v[N];
+        uint8_t mk[N];
+        for (unsigned i = 0; i < N; i++) {
+            sm[i] = (int32_t)i;
+            v[i] = (float)i / 2.0f;
+            mk[i] = (uint8_t)(i % 3u);
+        }
+        bw_dims_t dk = d;
+        assert_int_equal(bwh_keep_bands(&dk, bands, sm, v, mk), 0);
+        assert_int_equal(dk.bands, nk);
+        for (unsigned i = 0, j = 0; i < N; i++) {
+            if (!bands[i % BANDS])
+                continue;
+            assert_int_equal(sm[j], (int32_t)i);
+            assert_true(v[j] == (float)i / 2.0f);
+            assert_int_equal(mk[j], i % 3u);
+            j++;
+        }
+    }
+    /* none chosen: refused; by wavelength: those in the range, none without */
+    uint8_t none[BANDS] = {0}, by_wl[BANDS];
+    assert_int_equal(bwh_keep_bands(&d, none, NULL, NULL, NULL), -1);
+    assert_int_equal(bwh_bands_of_wavelengths(&src, BANDS, 340.0, 344.0, by_wl), 3);
+    assert_memory_equal(by_wl, ((uint8_t[BANDS]){0, 1, 1, 1, 0, 0, 0}), BANDS);
+    assert_int_equal(bwh_bands_of_wavelengths(&src, BANDS, 0.0, 1.0, by_wl), 0);
+    bwh_meta_t bare;
+    bwh_meta_init(&bare);
+    assert_int_equal(bwh_bands_of_wavelengths(&bare, BANDS, 0.0, 1e9, by_wl), -1);
+    bwh_meta_free(&src);
+}
+
 static void evaluation_should_use_the_measured_incidence_angles(void **state)
 {
     (void)state;
@@ -440,6 +528,7 @@ int main(void)
         cmocka_unit_test(metadata_that_does_not_fit_should_be_refused),
         cmocka_unit_test(payload_should_carry_the_metadata),
         cmocka_unit_test(times_should_read_back_as_iso_8601),
+        cmocka_unit_test(keeping_bands_keeps_their_metadata_and_moves_the_missing_samples),
         cmocka_unit_test(evaluation_should_use_the_measured_incidence_angles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
