@@ -86,6 +86,20 @@ int bwh_meta_rows_json(const uint8_t *p, size_t len, const uint8_t *rows, char *
     return meta_json(p, len, -1, rows, json);
 }
 
+int bwh_meta_json_bands(const char *json, uint32_t bands, const uint8_t *marks, char **out)
+{
+    *out = NULL;
+    bwh_meta_t m;
+    if (bwh_meta_from_json(json ? json : "{}", &m) != 0)
+        return -1;
+    bw_dims_t d;
+    memset(&d, 0, sizeof d);
+    d.bands = bands;
+    int rc = bwh_meta_bands(&m, &d, marks) || bwh_meta_to_json(&m, out) ? -1 : 0;
+    bwh_meta_free(&m);
+    return rc;
+}
+
 int bwh_read_flat(const char *const *paths, int n, const char *format, int level, int channel,
                   int column, const char *wavelengths, int has_ignore, double ignore,
                   float **values, size_t *count, bw_dims_t *dims, char **json)

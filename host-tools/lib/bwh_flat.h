@@ -35,6 +35,10 @@ int bwh_meta_row_json(const uint8_t *p, size_t len, uint32_t in, char **json);
 /* The same for the rows marked in rows[n_in] (bwh_meta_rows): what
  * `decode --rows` keeps. */
 int bwh_meta_rows_json(const uint8_t *p, size_t len, const uint8_t *rows, char **json);
+/* Metadata JSON json of a measurement of `bands` bands cut to the bands
+ * marked in marks[bands] (bwh_meta_bands): what `decode --bands` keeps, as
+ * JSON in *out (allocated). 0, or -1. */
+int bwh_meta_json_bands(const char *json, uint32_t bands, const uint8_t *marks, char **out);
 
 /* Reads the files paths[n] (bwh_measure_read; format a name of
  * bwh_input.h, NULL or "auto": detected; level -1: the default; channel,

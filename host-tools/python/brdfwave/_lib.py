@@ -170,6 +170,9 @@ def lib():
     L.bwh_meta_rows_json.restype = ctypes.c_int
     L.bwh_meta_rows_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_void_p,
                                      P(ctypes.c_char_p)]
+    L.bwh_meta_json_bands.restype = ctypes.c_int
+    L.bwh_meta_json_bands.argtypes = [ctypes.c_char_p, ctypes.c_uint32, ctypes.c_void_p,
+                                      P(ctypes.c_char_p)]
     L.bwh_meta_row_json.restype = ctypes.c_int
     L.bwh_meta_row_json.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
                                     P(ctypes.c_char_p)]

@@ -282,8 +282,9 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
 
 def _keep_bands(m, bands, wavelength_range):
     """The bands of Measurement m chosen by decode()'s bands= or
-    wavelength_range=, with their metadata; the missing samples' runs moved
-    to the values kept."""
+    wavelength_range=, with their metadata as the library cuts it
+    (bwh_meta_json_bands: the missing samples' runs moved to the values
+    kept)."""
     nb = m.shape[-1]
     if wavelength_range is not None:
         try:
@@ -321,21 +322,15 @@ def _keep_bands(m, bands, wavelength_range):
     for a in Measurement._ATTRS:
         if a not in ("metadata", "mask"):
             setattr(out, a, getattr(m, a))
-    meta = dict(m.metadata)
-    for key in ("wavelengths", "fwhm", "band_names"):
-        v = meta.get(key)
-        if isinstance(v, list) and len(v) == nb:
-            meta[key] = [v[i] for i in idx]
-    miss = meta.get("missing")
-    if miss and miss.get("runs"):
-        flag = np.zeros(np.asarray(m).size, dtype=bool)
-        for start, n in miss["runs"]:
-            flag[start:start + n] = True
-        kept = flag.reshape(-1, nb)[:, idx].ravel()
-        edges = np.flatnonzero(np.diff(np.concatenate(([0], kept.view(np.int8), [0]))))
-        miss = dict(miss)
-        miss["runs"] = [[int(a), int(e - a)] for a, e in zip(edges[::2], edges[1::2])]
-        meta["missing"] = miss
+    marks = np.ascontiguousarray(sel, dtype=np.uint8)
+    j = ctypes.c_char_p()
+    if lib().bwh_meta_json_bands(json.dumps(m.metadata).encode("utf-8"), nb, marks.ctypes.data,
+                                 ctypes.byref(j)) != 0:
+        raise _error()
+    try:
+        meta = json.loads(j.value.decode("utf-8"))
+    finally:
+        free(j)
     out.metadata = meta
     out.mask = None if m.mask is None else np.ascontiguousarray(m.mask[..., idx])
     out.bands = idx
