@@ -312,6 +312,12 @@ int bw_cmd_decode(int argc, char **argv)
     free(rows);
     if (parts)
         h.dims = rowd;
+    if (has_lod) { /* the source's missing samples are at its own level */
+        free(meta.missing);
+        meta.missing = NULL;
+        meta.n_missing = 0;
+        meta.present &= ~BWH_M_MISSING;
+    }
     int kb = bandsp || wlp ? keep_bands(inp, bandsp, wlp ? wl : NULL, &h.dims, &meta, s, v, mask)
                            : 0;
     if (kb) {
@@ -321,12 +327,6 @@ int bw_cmd_decode(int argc, char **argv)
         bwh_meta_free(&meta);
         cli_progress_end();
         return kb;
-    }
-    if (has_lod) { /* the source's missing samples are at its own level */
-        free(meta.missing);
-        meta.missing = NULL;
-        meta.n_missing = 0;
-        meta.present &= ~BWH_M_MISSING;
     }
     size_t n = bw_dims_samples(&h.dims);
     if (v)
