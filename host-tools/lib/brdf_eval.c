@@ -70,32 +70,47 @@ static int data_dims(bwh_brdf_data_t *d, const bw_dims_t *dims, double lambda_fi
     return 0;
 }
 
+/* The mean over the bands of `rows` rows of values [rows][n_out][bands]
+ * (more than one band), and the outgoing grid's interpolation. */
+static int mean_table(bwh_brdf_data_t *d, const float *values, size_t rows)
+{
+    size_t n = rows * d->n_out;
+    if (bwh_sphere_interp_init(&d->s_out, d->level_out) != 0)
+        return -1;
+    if (d->bands == 1)
+        return 0;
+    d->mean = malloc((n ? n : 1) * sizeof *d->mean);
+    if (!d->mean)
+        return bwh_fail("out of memory");
+    for (size_t t = 0; t < n; t++) {
+        double m = 0.0;
+        for (size_t k = 0; k < d->bands; k++)
+            m += values[t * d->bands + k];
+        d->mean[t] = m / (double)d->bands;
+    }
+    return 0;
+}
+
 /* The tables of `rows` rows of values [rows][n_out][bands]. */
 static int data_tables(bwh_brdf_data_t *d, const float *values, size_t rows)
 {
     size_t n = rows * d->n_out;
     d->planes = malloc((n ? n : 1) * d->bands * sizeof *d->planes);
-    if (!d->planes || bwh_sphere_interp_init(&d->s_out, d->level_out) != 0)
+    if (!d->planes)
         return bwh_fail("out of memory");
+    if (mean_table(d, values, rows) != 0)
+        return -1;
     if (d->bands == 1) { /* the mean over one band is the band */
         for (size_t t = 0; t < n; t++)
             d->planes[t] = values[t];
         d->mean = d->planes;
         return 0;
     }
-    d->mean = malloc((n ? n : 1) * sizeof *d->mean);
-    if (!d->mean)
-        return bwh_fail("out of memory");
     for (size_t i = 0; i < rows; i++)
-        for (size_t o = 0; o < d->n_out; o++) {
-            double m = 0.0;
-            for (size_t k = 0; k < d->bands; k++) {
-                double v = values[(i * d->n_out + o) * d->bands + k];
-                d->planes[(i * d->bands + k) * d->n_out + o] = v;
-                m += v;
-            }
-            d->mean[i * d->n_out + o] = m / (double)d->bands;
-        }
+        for (size_t o = 0; o < d->n_out; o++)
+            for (size_t k = 0; k < d->bands; k++)
+                d->planes[(i * d->bands + k) * d->n_out + o] =
+                    values[(i * d->n_out + o) * d->bands + k];
     return 0;
 }
 
@@ -192,10 +207,15 @@ static size_t rows_for(const bwh_brdf_data_t *d, const double (*wi)[3], size_t n
     return count;
 }
 
-int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
-                               const double (*wi)[3], size_t n)
+/* d's dimensions, angles and rows, and the values of the rows f at wi[n]
+ * reads (wi NULL: all), [*rows][n_out][bands] in *values (to free; NULL
+ * when no row is read); no tables yet. */
+static int load_rows(bwh_brdf_data_t *d, const uint8_t *p, size_t len, const double (*wi)[3],
+                     size_t n, float **values, size_t *nrows)
 {
     memset(d, 0, sizeof *d);
+    *values = NULL;
+    *nrows = 0;
     /* in segments, the table's CRC vouches for the header: the rows read
      * check their own segments' */
     bw_header_t h;
@@ -209,7 +229,6 @@ int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
     /* the measured incidence angles and wavelength range the payload
      * carries (docs/FORMAT.md, Metadata), else the defaults */
     double *theta_deg = NULL, lf = 0.0, ll = 0.0;
-    float *values = NULL;
     int rc = -1;
     if (h.dims.shape == BW_SHAPE_BRDF_ISO && meta.incidence.n == h.dims.n_in) {
         theta_deg = malloc(meta.incidence.n * sizeof *theta_deg);
@@ -248,10 +267,11 @@ int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
     if (whole) {
         free(rows);
         int32_t *samples = NULL;
-        if (bwh_decode(p, len, &hd, &samples, &values) != 0)
+        if (bwh_decode(p, len, &hd, &samples, values) != 0)
             goto out;
         free(samples);
-        rc = data_tables(d, values, d->n_in);
+        *nrows = d->n_in;
+        rc = 0;
         goto out;
     }
     d->row_of = malloc(d->n_in * sizeof *d->row_of);
@@ -264,21 +284,118 @@ int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
     for (size_t i = 0; i < d->n_in; i++)
         d->row_of[i] = rows[i] ? k++ : UINT32_MAX;
     bw_dims_t sub;
-    rc = k ? bwh_decode_rows(p, len, rows, &hd, &sub, NULL, &values) : 0;
+    rc = k ? bwh_decode_rows(p, len, rows, &hd, &sub, NULL, values) : 0;
     free(rows);
-    if (rc == 0)
-        rc = data_tables(d, values, k);
+    *nrows = k;
 out:
-    free(values);
     free(theta_deg);
     bwh_meta_free(&meta);
+    if (rc != 0) {
+        free(*values);
+        *values = NULL;
+        bwh_brdf_data_free(d);
+    }
+    return rc;
+}
+
+int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
+                               const double (*wi)[3], size_t n)
+{
+    float *values;
+    size_t rows;
+    if (load_rows(d, p, len, wi, n, &values, &rows) != 0)
+        return -1;
+    int rc = data_tables(d, values, rows);
+    free(values);
     if (rc != 0)
         bwh_brdf_data_free(d);
     return rc;
 }
 
-int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi,
-                            const double *wo, const double *lambda, long band, double *out)
+/* Where f at (wi, wo) reads: up to two rows r with weights w, and the
+ * point of the outgoing grid; 0 where f is NAN (a direction below the
+ * horizon, a row not decoded). */
+static int where(const bwh_brdf_data_t *d, const double wi[3], const double wo[3], size_t r[2],
+                 double w[2], bwh_sphere_at_t *at)
+{
+    if (!(wi[2] >= 0.0) || !(wo[2] >= 0.0))
+        return 0;
+    size_t pl[2];
+    double wo_r[3];
+    int n = locate_in(d, wi, wo, pl, w, wo_r);
+    for (int i = 0; i < n; i++) {
+        r[i] = d->row_of ? d->row_of[pl[i]] : pl[i];
+        if (r[i] == UINT32_MAX)
+            return 0;
+    }
+    return bwh_sphere_locate(&d->s_out, wo_r, at) != 0 ? 0 : n;
+}
+
+/* The value there of band k, or of the band mean (k = bands): from d's
+ * tables, or (fv not NULL) from the decoded values fv [rows][n_out][bands]
+ * of d's rows with, for more than one band, d->mean (bwh_payload_eval). */
+static double value(const bwh_brdf_data_t *d, const float *fv, int n, const size_t r[2],
+                    const double w[2], const bwh_sphere_at_t *at, size_t k)
+{
+    const bwh_sphere_interp_t *s = &d->s_out;
+    double v = 0.0;
+    for (int i = 0; i < n; i++) {
+        double x;
+        if (k == d->bands)
+            x = d->mean ? bwh_sphere_value(s, at, d->mean + r[i] * d->n_out)
+                        : bwh_sphere_value_f32(s, at, fv + r[i] * d->n_out, 1); /* one band */
+        else
+            x = fv ? bwh_sphere_value_f32(s, at, fv + r[i] * d->n_out * d->bands + k, d->bands)
+                   : bwh_sphere_value(s, at, d->planes + (r[i] * d->bands + k) * d->n_out);
+        v += w[i] * x;
+    }
+    return v;
+}
+
+static double band_of(const bwh_brdf_data_t *d, const float *fv, const double wi[3],
+                      const double wo[3], size_t k)
+{
+    size_t r[2];
+    double w[2];
+    bwh_sphere_at_t at;
+    int n = k < d->bands ? where(d, wi, wo, r, w, &at) : 0;
+    return n ? value(d, fv, n, r, w, &at, k) : NAN;
+}
+
+static double mean_of(const bwh_brdf_data_t *d, const float *fv, const double wi[3],
+                      const double wo[3])
+{
+    size_t r[2];
+    double w[2];
+    bwh_sphere_at_t at;
+    int n = where(d, wi, wo, r, w, &at);
+    return n ? value(d, fv, n, r, w, &at, d->bands) : NAN;
+}
+
+/* f at lambda: every band's value (located once), then their B-spline */
+static double eval_of(const bwh_brdf_data_t *d, const float *fv, const double wi[3],
+                      const double wo[3], double lambda, double *work)
+{
+    size_t r[2];
+    double w[2];
+    bwh_sphere_at_t at;
+    int n = where(d, wi, wo, r, w, &at);
+    if (!n)
+        return NAN;
+    if (d->bands == 1)
+        return value(d, fv, n, r, w, &at, 0);
+    for (size_t k = 0; k < d->bands; k++)
+        work[k] = value(d, fv, n, r, w, &at, k);
+    if (isnan(work[0]))
+        return NAN;
+    bwh_bspline_coefficients(work, d->bands, work);
+    double span = d->lambda_last - d->lambda_first;
+    double x = span != 0.0 ? (lambda - d->lambda_first) / span * (double)(d->bands - 1) : 0.0;
+    return bwh_bspline_eval(work, d->bands, x);
+}
+
+static int eval_many(const bwh_brdf_data_t *d, const float *fv, size_t n, const double *wi,
+                     const double *wo, const double *lambda, long band, double *out)
 {
     if (band >= 0 && (size_t)band >= d->bands)
         return bwh_fail("band %ld is past the last (%zu)", band, d->bands - 1);
@@ -286,53 +403,46 @@ int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi
     if (lambda && !work)
         return bwh_fail("out of memory");
     for (size_t j = 0; j < n; j++)
-        out[j] = lambda      ? bwh_brdf_data_eval(d, wi + 3 * j, wo + 3 * j, lambda[j], work)
-                 : band >= 0 ? bwh_brdf_data_band(d, wi + 3 * j, wo + 3 * j, (size_t)band)
-                             : bwh_brdf_data_mean(d, wi + 3 * j, wo + 3 * j);
+        out[j] = lambda      ? eval_of(d, fv, wi + 3 * j, wo + 3 * j, lambda[j], work)
+                 : band >= 0 ? band_of(d, fv, wi + 3 * j, wo + 3 * j, (size_t)band)
+                             : mean_of(d, fv, wi + 3 * j, wo + 3 * j);
     free(work);
     return 0;
 }
 
+int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi,
+                            const double *wo, const double *lambda, long band, double *out)
+{
+    return eval_many(d, NULL, n, wi, wo, lambda, band, out);
+}
+
+/* Straight from the decoded values of the rows the pairs read: no tables
+ * but the band mean's (more than one band), the same values to the bit. */
 int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
                      const double *lambda, long band, double *out)
 {
     bwh_brdf_data_t d;
-    if (bwh_brdf_data_from_payload(&d, p, len, (const double(*)[3])wi, n) != 0)
+    float *values;
+    size_t rows;
+    if (load_rows(&d, p, len, (const double(*)[3])wi, n, &values, &rows) != 0)
         return -1;
-    int rc = bwh_brdf_data_eval_many(&d, n, wi, wo, lambda, band, out);
+    int rc = mean_table(&d, values, rows);
+    if (rc == 0)
+        rc = eval_many(&d, values, n, wi, wo, lambda, band, out);
+    free(values);
     bwh_brdf_data_free(&d);
     return rc;
-}
-
-static double interp(const bwh_brdf_data_t *d, const double *plane_of_in0, size_t stride,
-                     const double wi[3], const double wo[3])
-{
-    if (!(wi[2] >= 0.0) || !(wo[2] >= 0.0))
-        return NAN;
-    size_t pl[2];
-    double w[2], wo_r[3];
-    int n = locate_in(d, wi, wo, pl, w, wo_r);
-    double v = 0.0;
-    for (int i = 0; i < n; i++) {
-        size_t r = d->row_of ? d->row_of[pl[i]] : pl[i];
-        if (r == UINT32_MAX)
-            return NAN;
-        v += w[i] * bwh_sphere_interp(&d->s_out, plane_of_in0 + r * stride, wo_r);
-    }
-    return v;
 }
 
 double bwh_brdf_data_band(const bwh_brdf_data_t *d, const double wi[3], const double wo[3],
                           size_t k)
 {
-    if (k >= d->bands)
-        return NAN;
-    return interp(d, d->planes + k * d->n_out, d->bands * d->n_out, wi, wo);
+    return band_of(d, NULL, wi, wo, k);
 }
 
 double bwh_brdf_data_mean(const bwh_brdf_data_t *d, const double wi[3], const double wo[3])
 {
-    return interp(d, d->mean, d->n_out, wi, wo);
+    return mean_of(d, NULL, wi, wo);
 }
 
 double bwh_brdf_data_mean_cb(void *ctx, const double wi[3], const double wo[3])
@@ -349,14 +459,5 @@ double bwh_brdf_data_band_cb(void *ctx, const double wi[3], const double wo[3])
 double bwh_brdf_data_eval(const bwh_brdf_data_t *d, const double wi[3], const double wo[3],
                           double lambda, double *work)
 {
-    if (d->bands == 1)
-        return bwh_brdf_data_band(d, wi, wo, 0);
-    for (size_t k = 0; k < d->bands; k++)
-        work[k] = bwh_brdf_data_band(d, wi, wo, k);
-    if (isnan(work[0]))
-        return NAN;
-    bwh_bspline_coefficients(work, d->bands, work);
-    double span = d->lambda_last - d->lambda_first;
-    double x = span != 0.0 ? (lambda - d->lambda_first) / span * (double)(d->bands - 1) : 0.0;
-    return bwh_bspline_eval(work, d->bands, x);
+    return eval_of(d, NULL, wi, wo, lambda, work);
 }

@@ -69,8 +69,10 @@ int bwh_brdf_data_from_payload(bwh_brdf_data_t *d, const uint8_t *p, size_t len,
 int bwh_brdf_data_eval_many(const bwh_brdf_data_t *d, size_t n, const double *wi,
                             const double *wo, const double *lambda, long band, double *out);
 /* f at n direction pairs (unit vectors wi[3 n], wo[3 n]) straight from a
- * payload: bwh_brdf_data_from_payload for the wi, then
- * bwh_brdf_data_eval_many. 0, or -1. */
+ * payload: the rows bwh_brdf_data_from_payload decodes for the wi, then
+ * the values of bwh_brdf_data_eval_many, to the bit, read from the decoded
+ * float values themselves (no tables of doubles but the band mean's with
+ * more than one band). 0, or -1. */
 int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, const double *wo,
                      const double *lambda, long band, double *out);
 void bwh_brdf_data_free(bwh_brdf_data_t *d);

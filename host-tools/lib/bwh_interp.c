@@ -160,23 +160,31 @@ int bwh_sphere_interp_init(bwh_sphere_interp_t *s, unsigned level)
     return 0;
 }
 
+/* The value of triangle t: values[t] or fvalues[t * stride]. */
+static inline double value_at(const double *values, const float *fvalues, size_t stride,
+                              uint32_t t)
+{
+    return values ? values[t] : (double)fvalues[(size_t)t * stride];
+}
+
 /* the solid-angle-weighted mean of the centre values around vertex v */
-static double vertex_value(const bwh_sphere_interp_t *s, const double *values, size_t v)
+static double vertex_value(const bwh_sphere_interp_t *s, const double *values,
+                           const float *fvalues, size_t stride, size_t v)
 {
     double num = 0.0, den = 0.0;
     for (uint32_t q = s->vt_start[v]; q < s->vt_start[v + 1]; q++) {
         uint32_t t = s->vt[q];
-        num += s->area[t] * values[t];
+        num += s->area[t] * value_at(values, fvalues, stride, t);
         den += s->area[t];
     }
     return num / den;
 }
 
-double bwh_sphere_interp(const bwh_sphere_interp_t *s, const double *values, const double d[3])
+int bwh_sphere_locate(const bwh_sphere_interp_t *s, const double d[3], bwh_sphere_at_t *at)
 {
     long t = bwh_grid_locate(s->level, d);
     if (t < 0)
-        return NAN;
+        return -1;
     const double *c = s->centre[t];
     /* the part (c, v_k, v_k+1) that holds d: both of its sides through c
      * leave d on the inner side (the best of the three, against rounding) */
@@ -197,8 +205,45 @@ double bwh_sphere_interp(const bwh_sphere_interp_t *s, const double *values, con
     double D = det3(c, va, vb);
     double a = det3(d, va, vb) / D, b = det3(c, d, vb) / D, g = det3(c, va, d) / D;
     double sum = a + b + g;
-    a /= sum;
-    b /= sum;
-    g /= sum;
-    return a * values[t] + b * vertex_value(s, values, ia) + g * vertex_value(s, values, ib);
+    at->t = (uint32_t)t;
+    at->ia = ia;
+    at->ib = ib;
+    at->w[0] = a / sum;
+    at->w[1] = b / sum;
+    at->w[2] = g / sum;
+    return 0;
+}
+
+/* the value at `at` of values, or (values NULL) of fvalues[t * stride] */
+static double value_of_at(const bwh_sphere_interp_t *s, const bwh_sphere_at_t *at,
+                          const double *values, const float *fvalues, size_t stride)
+{
+    return at->w[0] * value_at(values, fvalues, stride, at->t) +
+           at->w[1] * vertex_value(s, values, fvalues, stride, at->ia) +
+           at->w[2] * vertex_value(s, values, fvalues, stride, at->ib);
+}
+
+double bwh_sphere_value(const bwh_sphere_interp_t *s, const bwh_sphere_at_t *at,
+                        const double *values)
+{
+    return value_of_at(s, at, values, NULL, 1);
+}
+
+double bwh_sphere_value_f32(const bwh_sphere_interp_t *s, const bwh_sphere_at_t *at,
+                            const float *values, size_t stride)
+{
+    return value_of_at(s, at, NULL, values, stride);
+}
+
+double bwh_sphere_interp(const bwh_sphere_interp_t *s, const double *values, const double d[3])
+{
+    bwh_sphere_at_t at;
+    return bwh_sphere_locate(s, d, &at) != 0 ? NAN : bwh_sphere_value(s, &at, values);
+}
+
+double bwh_sphere_interp_f32(const bwh_sphere_interp_t *s, const float *values, size_t stride,
+                             const double d[3])
+{
+    bwh_sphere_at_t at;
+    return bwh_sphere_locate(s, d, &at) != 0 ? NAN : bwh_sphere_value_f32(s, &at, values, stride);
 }

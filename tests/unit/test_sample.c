@@ -301,6 +301,25 @@ static void eval_against_whole(const uint8_t *p, size_t len, size_t bands, bool 
         }
     }
     assert_int_equal(bwh_payload_eval(p, len, N, &wi[0][0], &wo[0][0], NULL, (long)bands, got), -1);
+    /* f at a wavelength (every band located once) is the B-spline through
+     * the bands' values, each located on its own */
+    double *spl = malloc(bands * sizeof *spl);
+    assert_non_null(spl);
+    for (int j = 0; j < N; j++) {
+        for (size_t k = 0; k < bands; k++)
+            spl[k] = bwh_brdf_data_band(&all, wi[j], wo[j], k);
+        double x = all.lambda_last != all.lambda_first
+                       ? (lam[j] - all.lambda_first) / (all.lambda_last - all.lambda_first) *
+                             (double)(bands - 1)
+                       : 0.0;
+        if (bands > 1)
+            bwh_bspline_coefficients(spl, bands, spl);
+        double f = bands > 1 ? bwh_bspline_eval(spl, bands, x) : spl[0];
+        double g = bwh_brdf_data_eval(&all, wi[j], wo[j], lam[j], work);
+        if (isnan(f) || memcmp(&f, &g, sizeof f))
+            fail_msg("%s: pair %d at %g: %.17g, the bands' B-spline %.17g", what, j, lam[j], g, f);
+    }
+    free(spl);
     /* rows decoded for one incoming direction only: another far off is NAN */
     bwh_brdf_data_t one;
     assert_int_equal(bwh_brdf_data_from_payload(&one, p, len, (const double(*)[3])wi, 1), 0);
