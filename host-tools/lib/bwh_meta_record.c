@@ -838,7 +838,8 @@ int bwh_meta_decode(const uint8_t *data, size_t len, bwh_meta_t *m)
 int bwh_meta_decode_limit(const uint8_t *data, size_t len, uint64_t max_count, bwh_meta_t *m)
 {
     bwh_meta_init(m);
-    rbuf_t r = {data, data + len, "field", 0, 0, max_count};
+    /* (no arithmetic on a NULL pointer: an empty record may come as one) */
+    rbuf_t r = {data, len ? data + len : data, "field", 0, 0, max_count};
     unsigned last = 0;
     while (r.p < r.end) {
         unsigned tag = 0;

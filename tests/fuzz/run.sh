@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-2-Clause
 # Fuzzing of the codec core: tests/fuzz/fuzz_decode.c (the decoder on arbitrary
-# bytes) and tests/fuzz/fuzz_roundtrip.c (encode, decode, check the guarantee).
+# bytes) and tests/fuzz/fuzz_roundtrip.c (encode, decode, check the guarantee),
+# and of the host library's readers of a payload: tests/fuzz/fuzz_host.c.
 #
 #   tests/fuzz/run.sh            libFuzzer builds (clang -fsanitize=fuzzer,address,
 #                                undefined), each target fuzzed for $FUZZ_SECONDS
@@ -29,8 +30,15 @@ esac
 
 OUT=${FUZZ_BUILD:-build/fuzz}
 FUZZ_SECONDS=${FUZZ_SECONDS:-30}
-TARGETS="decode roundtrip"
+TARGETS="decode roundtrip host"
 CORE_SRC=$(ls firmware/codec/*.c)
+# the host target links libbrdfwave's sources (mk/host.mk, LIB_SRC)
+HOST_SRC="$CORE_SRC firmware/link/bw_frame.c $(ls host-tools/lib/*.c) host-tools/ref/bwr_rgl.c
+    host-tools/ref/bwr_project.c host-tools/ref/bwr_geodesic.c"
+HOST_INC="-Ifirmware/link -Ihost-tools/lib -Ihost-tools/ref -Iinclude"
+# the sources and include directories of target $1
+srcs() { if [ "$1" = host ]; then echo "$HOST_SRC"; else echo "$CORE_SRC"; fi; }
+incs() { if [ "$1" = host ]; then echo "-Ifirmware/codec $HOST_INC"; else echo "-Ifirmware/codec"; fi; }
 WARN="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
@@ -51,11 +59,12 @@ if [ "$mode" = replay ]; then
     for t in $TARGETS; do
         echo "== replay build: $OUT/replay_$t ($CC -DBW_FUZZ_REPLAY, ASan + UBSan)"
         # shellcheck disable=SC2086
-        $CC $WARN -O1 -g $SAN -DBW_FUZZ_REPLAY -Ifirmware/codec "tests/fuzz/fuzz_$t.c" $CORE_SRC \
-            -o "$OUT/replay_$t"
+        $CC $WARN -O1 -g $SAN -DBW_FUZZ_REPLAY $(incs $t) "tests/fuzz/fuzz_$t.c" $(srcs $t) \
+            -lm -o "$OUT/replay_$t"
     done
     for t in $TARGETS; do
         dirs="$OUT/seeds/$t"
+        [ "$t" = host ] && dirs="$OUT/seeds/decode"
         [ -d "tests/fuzz/corpus/$t" ] && dirs="tests/fuzz/corpus/$t $dirs"
         # shellcheck disable=SC2086
         count=$(find $dirs -type f | wc -l)
@@ -79,12 +88,13 @@ for t in $TARGETS; do
     echo "== fuzz build: $OUT/fuzz_$t ($CC -fsanitize=fuzzer,address,undefined)"
     # shellcheck disable=SC2086
     $CC $WARN -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-        -Ifirmware/codec "tests/fuzz/fuzz_$t.c" $CORE_SRC -o "$OUT/fuzz_$t"
+        $(incs $t) "tests/fuzz/fuzz_$t.c" $(srcs $t) -lm -o "$OUT/fuzz_$t"
 done
 mkdir -p "$OUT/artifacts"
 for t in $TARGETS; do
     mkdir -p "$OUT/corpus/$t"
     dirs="$OUT/corpus/$t $OUT/seeds/$t"
+    [ "$t" = host ] && dirs="$OUT/corpus/$t $OUT/seeds/decode"
     [ -d "tests/fuzz/corpus/$t" ] && dirs="$dirs tests/fuzz/corpus/$t"
     log="$OUT/fuzz_$t.log"
     echo "== fuzzing $t for ${FUZZ_SECONDS}s (log $log)"
