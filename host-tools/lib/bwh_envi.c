@@ -98,12 +98,14 @@ static int hdr_parse(const char *path, envi_hdr_t *h)
             while (!strchr(val, '}')) {
                 char *more = bwh_text_line(&t);
                 if (!more) {
+                    /* (k is in the text's buffer: the message before it goes) */
+                    bwh_fail("%s: the value of '%s' has no closing brace (the header is cut "
+                             "short)",
+                             path, k);
                     free(val);
                     bwh_text_close(&t);
                     hdr_free(h);
-                    return bwh_fail("%s: the value of '%s' has no closing brace (the header is "
-                                    "cut short)",
-                                    path, k);
+                    return -1;
                 }
                 size_t m = strlen(more);
                 char *nv = realloc(val, n + m + 2);

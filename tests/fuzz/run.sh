@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 # Fuzzing of the codec core: tests/fuzz/fuzz_decode.c (the decoder on arbitrary
 # bytes) and tests/fuzz/fuzz_roundtrip.c (encode, decode, check the guarantee),
-# and of the host library's readers of a payload: tests/fuzz/fuzz_host.c.
+# and of the host library's readers of a payload (tests/fuzz/fuzz_host.c) and of
+# measurement files (tests/fuzz/fuzz_inputs.c).
 #
 #   tests/fuzz/run.sh            libFuzzer builds (clang -fsanitize=fuzzer,address,
 #                                undefined), each target fuzzed for $FUZZ_SECONDS
@@ -30,15 +31,21 @@ esac
 
 OUT=${FUZZ_BUILD:-build/fuzz}
 FUZZ_SECONDS=${FUZZ_SECONDS:-30}
-TARGETS="decode roundtrip host"
+TARGETS="decode roundtrip host inputs"
 CORE_SRC=$(ls firmware/codec/*.c)
 # the host target links libbrdfwave's sources (mk/host.mk, LIB_SRC)
 HOST_SRC="$CORE_SRC firmware/link/bw_frame.c $(ls host-tools/lib/*.c) host-tools/ref/bwr_rgl.c
     host-tools/ref/bwr_project.c host-tools/ref/bwr_geodesic.c"
 HOST_INC="-Ifirmware/link -Ihost-tools/lib -Ihost-tools/ref -Iinclude"
 # the sources and include directories of target $1
-srcs() { if [ "$1" = host ]; then echo "$HOST_SRC"; else echo "$CORE_SRC"; fi; }
-incs() { if [ "$1" = host ]; then echo "-Ifirmware/codec $HOST_INC"; else echo "-Ifirmware/codec"; fi; }
+# (host, inputs: the library's)
+srcs() { case $1 in host | inputs) echo "$HOST_SRC" ;; *) echo "$CORE_SRC" ;; esac; }
+incs() { case $1 in host | inputs) echo "-Ifirmware/codec $HOST_INC" ;; *) echo "-Ifirmware/codec" ;; esac; }
+# the inputs target's seeds ($OUT/seeds/inputs): files of tests/data
+INPUT_SEEDS="tests/data/instruments/asd tests/data/instruments/svc_sig
+    tests/data/instruments/usgs_splib07_ascii tests/data/field_psr3500/1116037_00041.sed
+    tests/data/instruments/envi/ang20150420t182808_corr_v1e_img_4200-4210_70-80.hdr
+    tests/data/goniometer/spectralon.csv tests/data/rgl/satin_rosaline_rgb.bsdf"
 WARN="-std=c11 -Wall -Wextra -Wshadow -Wstrict-prototypes -Werror"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
@@ -50,6 +57,9 @@ echo "== seeds from the current core: $OUT/seeds"
 gcc $WARN -O2 -Ifirmware/codec tests/fuzz/gen_corpus.c $CORE_SRC -o "$OUT/gen_corpus"
 rm -rf "$OUT/seeds"
 "$OUT/gen_corpus" "$OUT/seeds"
+# shellcheck disable=SC2086
+mkdir -p "$OUT/seeds/inputs" && cp $(find $INPUT_SEEDS -type f ! -name 'LICENSE*' ! -name 'GPL*' \
+    ! -name 'SOURCE*' ! -name 'PUBLIC*' ! -name 'NOTE*') "$OUT/seeds/inputs/"
 
 passed=0
 failed=0
