@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: BSD-2-Clause
 # Fuzzing of the codec core: tests/fuzz/fuzz_decode.c (the decoder on arbitrary
 # bytes) and tests/fuzz/fuzz_roundtrip.c (encode, decode, check the guarantee),
-# and of the host library's readers of a payload (tests/fuzz/fuzz_host.c) and of
-# measurement files (tests/fuzz/fuzz_inputs.c).
+# of the host library's readers of a payload (tests/fuzz/fuzz_host.c) and of
+# measurement files (tests/fuzz/fuzz_inputs.c), and of the link's frame receiver
+# (tests/fuzz/fuzz_link.c).
 #
 #   tests/fuzz/run.sh            libFuzzer builds (clang -fsanitize=fuzzer,address,
 #                                undefined), each target fuzzed for $FUZZ_SECONDS
@@ -31,7 +32,7 @@ esac
 
 OUT=${FUZZ_BUILD:-build/fuzz}
 FUZZ_SECONDS=${FUZZ_SECONDS:-30}
-TARGETS="decode roundtrip host inputs"
+TARGETS="decode roundtrip host inputs link"
 CORE_SRC=$(ls firmware/codec/*.c)
 # the host target links libbrdfwave's sources (mk/host.mk, LIB_SRC)
 HOST_SRC="$CORE_SRC firmware/link/bw_frame.c $(ls host-tools/lib/*.c) host-tools/ref/bwr_rgl.c
@@ -39,8 +40,20 @@ HOST_SRC="$CORE_SRC firmware/link/bw_frame.c $(ls host-tools/lib/*.c) host-tools
 HOST_INC="-Ifirmware/link -Ihost-tools/lib -Ihost-tools/ref -Iinclude"
 # the sources and include directories of target $1
 # (host, inputs: the library's)
-srcs() { case $1 in host | inputs) echo "$HOST_SRC" ;; *) echo "$CORE_SRC" ;; esac; }
-incs() { case $1 in host | inputs) echo "-Ifirmware/codec $HOST_INC" ;; *) echo "-Ifirmware/codec" ;; esac; }
+srcs() {
+    case $1 in
+    host | inputs) echo "$HOST_SRC" ;;
+    link) echo "$CORE_SRC $(ls firmware/link/*.c)" ;;
+    *) echo "$CORE_SRC" ;;
+    esac
+}
+incs() {
+    case $1 in
+    host | inputs) echo "-Ifirmware/codec $HOST_INC" ;;
+    link) echo "-Ifirmware/codec -Ifirmware/link" ;;
+    *) echo "-Ifirmware/codec" ;;
+    esac
+}
 # the inputs target's seeds ($OUT/seeds/inputs): files of tests/data
 INPUT_SEEDS="tests/data/instruments/asd tests/data/instruments/svc_sig
     tests/data/instruments/usgs_splib07_ascii tests/data/field_psr3500/1116037_00041.sed
@@ -75,6 +88,7 @@ if [ "$mode" = replay ]; then
     for t in $TARGETS; do
         dirs="$OUT/seeds/$t"
         [ "$t" = host ] && dirs="$OUT/seeds/decode"
+        [ "$t" = link ] && dirs=""
         [ -d "tests/fuzz/corpus/$t" ] && dirs="tests/fuzz/corpus/$t $dirs"
         # shellcheck disable=SC2086
         count=$(find $dirs -type f | wc -l)
@@ -105,6 +119,7 @@ for t in $TARGETS; do
     mkdir -p "$OUT/corpus/$t"
     dirs="$OUT/corpus/$t $OUT/seeds/$t"
     [ "$t" = host ] && dirs="$OUT/corpus/$t $OUT/seeds/decode"
+    [ "$t" = link ] && dirs="$OUT/corpus/$t"
     [ -d "tests/fuzz/corpus/$t" ] && dirs="$dirs tests/fuzz/corpus/$t"
     log="$OUT/fuzz_$t.log"
     echo "== fuzzing $t for ${FUZZ_SECONDS}s (log $log)"
