@@ -11,8 +11,8 @@
  * stream as it arrived. Then a frame of our own follows the stream, and
  * enough bytes to end any frame the stream left begun: it must arrive
  * (a damaged frame costs only itself). Every frame's data is read as a
- * JOB, HELLO and ERROR; a JOB read packs again to the same bytes, and its
- * parameters go through the admission rule.
+ * JOB, HELLO and ERROR; a JOB read, packed and read again is the same job,
+ * and its parameters go through the admission rule.
  */
 #include <stdbool.h>
 #include <stdint.h>
@@ -49,8 +49,20 @@ static void contents(const bw_frame_t *f)
         static uint8_t again[BW_FRAME_MAX_DATA];
         require(job.ext_len <= BW_JOB_EXT_MAX, "a JOB with more records than its frame holds");
         size_t n = bw_job_pack(&job, again);
-        require(n == BW_JOB_SIZE + job.ext_len && n <= f->len && !memcmp(again, f->data, n),
-                "a JOB read does not pack to its bytes");
+        bw_job_t back;
+        require(n == BW_JOB_SIZE + job.ext_len && n == f->len && bw_job_unpack(again, n, &back),
+                "a JOB read does not pack to a JOB");
+        /* the same job (the bytes after the source's NUL are not the job's) */
+        require(back.shape == job.shape && back.level_out == job.level_out &&
+                    back.level_in == job.level_in && back.mode == job.mode &&
+                    back.basis == job.basis && back.flags == job.flags &&
+                    back.effort == job.effort && back.coder == job.coder &&
+                    back.n_in == job.n_in && back.bands == job.bands &&
+                    back.max_error == job.max_error && back.byte_budget == job.byte_budget &&
+                    back.scale_bits == job.scale_bits && back.offset_bits == job.offset_bits &&
+                    !strcmp(back.source, job.source) && back.ext_len == job.ext_len &&
+                    (!job.ext_len || !memcmp(back.ext, job.ext, job.ext_len)),
+                "a JOB packed and read again differs");
         bw_params_t p;
         bw_dims_t d;
         bw_job_params(&job, &p);
