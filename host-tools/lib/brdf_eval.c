@@ -70,9 +70,10 @@ static int data_dims(bwh_brdf_data_t *d, const bw_dims_t *dims, double lambda_fi
     return 0;
 }
 
-/* The mean over the bands of `rows` rows of values [rows][n_out][bands]
- * (more than one band), and the outgoing grid's interpolation. */
-static int mean_table(bwh_brdf_data_t *d, const float *values, size_t rows)
+/* What f reads besides the values [rows][n_out][bands] of `rows` rows: the
+ * outgoing grid's interpolation and, with more than one band, the mean over
+ * the bands. */
+static int interp_tables(bwh_brdf_data_t *d, const float *values, size_t rows)
 {
     size_t n = rows * d->n_out;
     if (bwh_sphere_interp_init(&d->s_out, d->level_out) != 0)
@@ -98,7 +99,7 @@ static int data_tables(bwh_brdf_data_t *d, const float *values, size_t rows)
     d->planes = malloc((n ? n : 1) * d->bands * sizeof *d->planes);
     if (!d->planes)
         return bwh_fail("out of memory");
-    if (mean_table(d, values, rows) != 0)
+    if (interp_tables(d, values, rows) != 0)
         return -1;
     if (d->bands == 1) { /* the mean over one band is the band */
         for (size_t t = 0; t < n; t++)
@@ -426,7 +427,7 @@ int bwh_payload_eval(const uint8_t *p, size_t len, size_t n, const double *wi, c
     size_t rows;
     if (load_rows(&d, p, len, (const double(*)[3])wi, n, &values, &rows) != 0)
         return -1;
-    int rc = mean_table(&d, values, rows);
+    int rc = interp_tables(&d, values, rows);
     if (rc == 0)
         rc = eval_many(&d, values, n, wi, wo, lambda, band, out);
     free(values);

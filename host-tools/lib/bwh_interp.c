@@ -240,10 +240,3 @@ double bwh_sphere_interp(const bwh_sphere_interp_t *s, const double *values, con
     bwh_sphere_at_t at;
     return bwh_sphere_locate(s, d, &at) != 0 ? NAN : bwh_sphere_value(s, &at, values);
 }
-
-double bwh_sphere_interp_f32(const bwh_sphere_interp_t *s, const float *values, size_t stride,
-                             const double d[3])
-{
-    bwh_sphere_at_t at;
-    return bwh_sphere_locate(s, d, &at) != 0 ? NAN : bwh_sphere_value_f32(s, &at, values, stride);
-}

@@ -65,17 +65,14 @@ typedef struct {
 /* 0, or -1 when d is not on the hemisphere. */
 int bwh_sphere_locate(const bwh_sphere_interp_t *s, const double d[3], bwh_sphere_at_t *at);
 /* The interpolated value there of values (grid order), or of float values
- * at values[t * stride]: bwh_sphere_interp's, to the bit, located once for
- * any number of value tables (the bands of a spectrum). */
+ * with triangle t's at values[t * stride] (the decoder's [n_out][bands]
+ * layout: stride = bands): bwh_sphere_interp's of the same values as
+ * doubles, to the bit, located once for any number of value tables (the
+ * bands of a spectrum). */
 double bwh_sphere_value(const bwh_sphere_interp_t *s, const bwh_sphere_at_t *at,
                         const double *values);
 double bwh_sphere_value_f32(const bwh_sphere_interp_t *s, const bwh_sphere_at_t *at,
                             const float *values, size_t stride);
-/* The same of float values, triangle t's at values[t * stride] (the
- * decoder's [n_out][bands] layout: stride = bands), to the bit the value of
- * bwh_sphere_interp of the same values as doubles. */
-double bwh_sphere_interp_f32(const bwh_sphere_interp_t *s, const float *values, size_t stride,
-                             const double d[3]);
 
 #ifdef __cplusplus
 }
