@@ -54,6 +54,15 @@ incs() {
     *) echo "-Ifirmware/codec" ;;
     esac
 }
+# the seed directories of target $1 made here (host: the decoder's payloads;
+# link: none, its corpus only)
+seeds() {
+    case $1 in
+    host) echo "$OUT/seeds/decode" ;;
+    link) ;;
+    *) echo "$OUT/seeds/$1" ;;
+    esac
+}
 # the inputs target's seeds ($OUT/seeds/inputs): files of tests/data
 INPUT_SEEDS="tests/data/instruments/asd tests/data/instruments/svc_sig
     tests/data/instruments/usgs_splib07_ascii tests/data/field_psr3500/1116037_00041.sed
@@ -86,9 +95,7 @@ if [ "$mode" = replay ]; then
             -lm -o "$OUT/replay_$t"
     done
     for t in $TARGETS; do
-        dirs="$OUT/seeds/$t"
-        [ "$t" = host ] && dirs="$OUT/seeds/decode"
-        [ "$t" = link ] && dirs=""
+        dirs=$(seeds $t)
         [ -d "tests/fuzz/corpus/$t" ] && dirs="tests/fuzz/corpus/$t $dirs"
         # shellcheck disable=SC2086
         count=$(find $dirs -type f | wc -l)
@@ -117,9 +124,7 @@ done
 mkdir -p "$OUT/artifacts"
 for t in $TARGETS; do
     mkdir -p "$OUT/corpus/$t"
-    dirs="$OUT/corpus/$t $OUT/seeds/$t"
-    [ "$t" = host ] && dirs="$OUT/corpus/$t $OUT/seeds/decode"
-    [ "$t" = link ] && dirs="$OUT/corpus/$t"
+    dirs="$OUT/corpus/$t $(seeds $t)"
     [ -d "tests/fuzz/corpus/$t" ] && dirs="$dirs tests/fuzz/corpus/$t"
     log="$OUT/fuzz_$t.log"
     echo "== fuzzing $t for ${FUZZ_SECONDS}s (log $log)"
