@@ -11,6 +11,8 @@
  * (bisect); the payload grows with the offset and shrinks with the step
  * and the threshold.
  */
+#include <string.h>
+
 #include "bw_internal.h"
 
 #define STEP_FRAC 32u        /* 32 steps per octave                            */
@@ -24,12 +26,7 @@
 /* 256 * 2^(t / 32), t = 0..768: the step of index t, Q24.8 */
 static uint32_t step_of(unsigned t)
 {
-    static const uint16_t frac_q15[STEP_FRAC] = {
-        32768, 33486, 34219, 34968, 35734, 36516, 37316, 38133, 38968, 39821, 40693,
-        41584, 42495, 43425, 44376, 45348, 46341, 47356, 48393, 49452, 50535, 51642,
-        52773, 53928, 55109, 56316, 57549, 58809, 60097, 61413, 62757, 64132,
-    };
-    uint64_t s = ((uint64_t)BW_STEP_ONE_Q8 << (t / STEP_FRAC)) * frac_q15[t % STEP_FRAC] >> 15;
+    uint64_t s = bw_oct32(BW_STEP_ONE_Q8, t);
     return s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
 }
 
@@ -336,6 +333,201 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
     return s0 + (uint32_t)((uint64_t)(s1 - s0) * f / 256u);
 }
 
+#if BW_RATE
+/* ---- one encode that meets the budget as it codes ----------------------------
+ *
+ * The quantiser runs ahead of the coder a chunk of vectors at a time
+ * (struct bw_rate), each chunk at a step of its own that the payload
+ * records (BW_EXT_CHUNK_STEPS): the header's step (the estimate's for the
+ * budget) changed by d/32 of an octave. The estimate gives each chunk's
+ * bits at the header's step (bw_quant_est, the zeros at the entropy of the
+ * chunk's own share of non-zero coefficients) and how the bits follow the
+ * step (gamma, octaves of bits per octave of step, from the histogram's
+ * estimate an octave apart). Before each chunk, the bits coded so far and
+ * the ratio of coded to estimated bits of the chunks before (each estimate
+ * at its chunk's step; the estimate's own ratio weighing a quarter of the
+ * whole at first; the first chunk left out, as it also pays for the models'
+ * learning) say what the chunks left will cost, and the chunk takes the d
+ * that brings the whole to the bits aimed at (the middle of the landing),
+ * within RATE_D_SLEW of the chunk before: a step that varies costs
+ * quality. Where the payload does not land, the encodes below take over. */
+
+#define RATE_A2_Q8 256u       /* the zeros: the whole entropy of the share        */
+#define RATE_D_MAX 64         /* chunk steps within 2 octaves of the header's     */
+#define RATE_D_SLEW 8         /* and within 1/4 octave of the chunk before        */
+#define RATE_GAMMA_MIN 26     /* gamma, Q8: 0.1 to 4 octaves of bits per octave   */
+#define RATE_GAMMA_MAX 1024
+#define RATE_PRIOR_SHIFT 2    /* the estimate's ratio weighs 1/4 of its bits      */
+#define RATE_CHUNK_BYTES 256u /* a chunk (a byte of the record) per 256 bytes of  */
+#define RATE_CHUNKS_MIN 8u    /* budget, 8 to BW_RATE_CHUNKS chunks               */
+#define RATE_BUDGET_MIN 512u  /* bytes                                            */
+
+/* The quarter octave nearest step s (Q8), 2^(t4 / 4) */
+static int quarter_of(uint32_t s)
+{
+    int t4 = 0;
+    while (t4 < (int)(STEP_T_MAX / 8u) && step_of(8u * (unsigned)(t4 + 1)) <= s)
+        t4++;
+    if (t4 < (int)(STEP_T_MAX / 8u) &&
+        step_of(8u * (unsigned)(t4 + 1)) - s < s - step_of(8u * (unsigned)t4))
+        t4++;
+    return t4;
+}
+
+/* bits scaled as a step change of d 1/32 octaves moves them: 2^(-gamma d / 32) */
+static uint64_t at_step(uint64_t bits, int32_t gamma_q8, int d)
+{
+    /* gamma_q8 <= RATE_GAMMA_MAX, |d| <= RATE_D_MAX: the exponent within +-256 */
+    unsigned t = (unsigned)(256 - gamma_q8 * d / 256); /* 2^(t / 32) / 2^8 */
+    return bits * bw_oct32(1u << 12, t) >> 20;
+}
+
+void bw_rate_chunk(struct bw_rate *r, uint64_t bits, uint32_t v)
+{
+    bw_plan_t *pl = r->pl;
+    while (r->ahead < v && r->chunk < r->chunks) {
+        uint32_t g = r->chunk;
+        int d0 = g ? r->d[g - 1u] : 0, d = d0;
+        if (g > 0u) {
+            /* the ratio of the chunks before (the first left out) */
+            if (g > 1u) {
+                r->b_sum += bits - r->bits_seen;
+                r->e_sum += r->est_done - r->est_seen;
+            }
+            r->bits_seen = bits;
+            r->est_seen = r->est_done;
+            /* the chunks left at that ratio, and the d that makes them
+             * aim - bits: 2^(-gamma d / 32) = (aim - bits) / need */
+            uint64_t need = r->b_sum * r->est_left / (r->e_sum ? r->e_sum : 1u);
+            if (bits >= r->aim) {
+                d = RATE_D_MAX;
+            } else if (need > 0u) {
+                uint32_t left = (uint32_t)(r->aim - bits > UINT32_MAX ? UINT32_MAX : r->aim - bits);
+                uint32_t nd = (uint32_t)(need > UINT32_MAX ? UINT32_MAX : need);
+                int64_t l_q16 = (int64_t)bw_log2_q16(nd) - (int64_t)bw_log2_q16(left);
+                d = (int)((l_q16 * 32 * 256 / r->gamma_q8 + (l_q16 < 0 ? -32768 : 32768)) / 65536);
+            }
+            d = d > d0 + RATE_D_SLEW ? d0 + RATE_D_SLEW : d < d0 - RATE_D_SLEW ? d0 - RATE_D_SLEW : d;
+            d = d > RATE_D_MAX ? RATE_D_MAX : d < -RATE_D_MAX ? -RATE_D_MAX : d;
+        }
+        r->d[g] = (int8_t)d;
+        pl->step_q8 = bw_chunk_step(r->step_q8, d);
+        bw_quant_ahead(pl, &r->qw, r->x, pl->chunk_vec);
+        pl->step_q8 = r->step_q8;
+        r->ahead += pl->chunk_vec;
+        r->est_left -= r->est[g] < r->est_left ? r->est[g] : r->est_left;
+        r->est_done += at_step(r->est[g], r->gamma_q8, d);
+        r->chunk++;
+    }
+    if (r->ahead < v)
+        r->ahead = v; /* past the last chunk: nothing is left to quantise */
+}
+
+/* Whether the body of this plan is coded by bw_code_body's loops, which
+ * ask for each vector before they read it (coarse-to-fine order, one body,
+ * not Rice strips), in at least RATE_CHUNKS_MIN chunks, for a budget of at
+ * least RATE_BUDGET_MIN bytes (below, the record's bytes and the few
+ * chunks leave too little to steer by). */
+static bool rate_applies(const bw_plan_t *pl, const bw_params_t *pa, size_t budget)
+{
+    return BW_CFG_FAST_STRIPS && !pl->stream && !pl->seg_vec && !(pa->flags & BW_FLAG_RICE) &&
+           pl->basis != BW_BASIS_PRED && budget >= RATE_BUDGET_MIN &&
+           (uint64_t)pl->dims.n_in * pl->dims.n_out >= RATE_CHUNKS_MIN;
+}
+
+/* The encode at step s with the rate r (in the context) into a
+ * payload of at most budget bytes, from the coefficients in work
+ * (transformed, not quantised) and their histogram hist (which r
+ * overwrites). BW_ERR_BUDGET: the body did not ask for every vector. */
+static bw_status_t rate_encode(bw_plan_t *pl, const bw_params_t *pa, int32_t *work, bw_ctx_t *ctx,
+                               uint8_t *out, size_t budget, size_t *len, struct bw_rate *r,
+                               const uint32_t *hist, uint32_t s, uint32_t *s_eff)
+{
+    const bw_dims_t *dm = &pl->dims;
+    int t4 = quarter_of(s);
+    /* gamma: the estimate's bits at the step and an octave above */
+    uint64_t e0 = est_bits(hist, t4), e1 = est_bits(hist, t4 + 4);
+    int32_t gamma_q8 = e1 && e0 > e1
+                           ? (int32_t)((bw_log2_q16(e0 > UINT32_MAX ? UINT32_MAX : (uint32_t)e0) -
+                                        bw_log2_q16(e1 > UINT32_MAX ? UINT32_MAX : (uint32_t)e1)) >>
+                                       8)
+                           : 256;
+    r->gamma_q8 = gamma_q8 < RATE_GAMMA_MIN   ? RATE_GAMMA_MIN
+                  : gamma_q8 > RATE_GAMMA_MAX ? RATE_GAMMA_MAX
+                                              : gamma_q8;
+    /* chunks: one per RATE_CHUNK_BYTES of the budget, whole incoming blocks
+     * of one band (their steps then one per block) */
+    uint32_t vecs = dm->n_in * dm->n_out, cmax = (uint32_t)(budget / RATE_CHUNK_BYTES), K;
+    cmax = cmax < RATE_CHUNKS_MIN ? RATE_CHUNKS_MIN : cmax > BW_RATE_CHUNKS ? BW_RATE_CHUNKS : cmax;
+    if (dm->bands == 1u && dm->n_in >= cmax)
+        K = dm->n_out * ((dm->n_in - 1u) / cmax + 1u);
+    else
+        K = (vecs - 1u) / cmax + 1u;
+    r->chunks = (vecs - 1u) / K + 1u;
+    memset(r->d, 0, sizeof r->d);
+    pl->chunk_vec = K;
+    pl->chunk_d = r->d;
+    pl->step_q8 = s;
+    size_t over = bw_header_write(NULL, pl, pa, BW_MODE_BYTES) + BW_TRAILER_SIZE;
+    if (budget <= over + 8u)
+        return BW_ERR_BUDGET;
+    r->aim = (uint64_t)(budget - budget / 200u - over) * 8u;
+    r->pl = pl;
+    r->x = work;
+    r->step_q8 = s;
+    bw_qwalk_init(&r->qw);
+    r->ahead = 0;
+    r->chunk = 0;
+    memset(r->est, 0, sizeof r->est);
+    bw_quant_est(pl, work, K, t4, EST_A0_Q6, EST_A1_Q6, RATE_A2_Q8, h64, r->est);
+    r->est_left = 0;
+    for (unsigned g = 0; g < r->chunks; g++)
+        r->est_left += r->est[g];
+    r->est_done = 0;
+    r->bits_seen = 0;
+    r->est_seen = 0;
+    /* the estimate's own ratio (the header's step was its choice), as if
+     * of chunks of a quarter of its bits */
+    r->e_sum = (r->est_left >> RATE_PRIOR_SHIFT) + 1u;
+    r->b_sum = r->aim >> RATE_PRIOR_SHIFT;
+    pl->rate = r;
+    bw_status_t st = bw_encode_code(pl, pa, BW_MODE_BYTES, work, ctx, out, budget, len);
+    pl->rate = NULL;
+    /* the chunks' steps' mean, each weighing its estimate */
+    uint64_t ew = 0;
+    int64_t dw = 0;
+    for (unsigned g = 0; g < r->chunks; g++) {
+        ew += r->est[g];
+        dw += (int64_t)r->est[g] * r->d[g];
+    }
+    *s_eff = bw_chunk_step(s, ew ? (int)(dw / (int64_t)ew) : 0);
+    /* every vector quantised before it was coded, or the body is not one */
+    if (st == BW_OK && r->qw.i < dm->n_in)
+        return BW_ERR_BUDGET;
+    return st;
+}
+#endif
+
+#if BW_RATE
+/* The estimate (its factor 1) at the step index nearest step s */
+static uint64_t est_near(const uint32_t *hist, uint32_t s)
+{
+    unsigned t = 0;
+    while (t < STEP_T_MAX && step_of(t + 1u) <= s)
+        t++;
+    return est_at(hist, t, 4096u);
+}
+#endif
+
+/* What bw_ctx_t.budget holds: the histogram, then the rate. */
+typedef union {
+    uint32_t hist[BW_HIST_BINS];
+#if BW_RATE
+    struct bw_rate rate;
+#endif
+} budget_mem_t;
+_Static_assert(sizeof(budget_mem_t) <= sizeof(((bw_ctx_t *)0)->budget), "bw_ctx_t.budget");
+
 /* The encodes of BW_EFFORT_FAST: BW_OK with the payload in out, or
  * BW_ERR_BUDGET where none landed (the search's turn), or an error. */
 static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
@@ -344,7 +536,10 @@ static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32
 {
     bracket[0] = BW_STEP_ONE_Q8; /* the largest step that left too much */
     bracket[1] = UINT32_MAX;     /* the smallest that fit */
-    uint32_t hist[BW_HIST_BINS];
+    /* the histogram, and the one encode's rate in its place, in the
+     * context (off the stack, which the rate's quantiser deepens) */
+    budget_mem_t *u = (budget_mem_t *)(void *)ctx->budget;
+    uint32_t *hist = u->hist;
     pl->step_q8 = step_of(STEP_T_MAX / 2u);
     size_t over = bw_header_write(NULL, pl, pa, BW_MODE_BYTES) + BW_TRAILER_SIZE;
     if (budget <= over + 8u)
@@ -358,6 +553,13 @@ static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32
      * coding is the roughest); later, where the encodes ask for the finest
      * step */
     bool exact_tried = est_bits(hist, EST_T_LOSSLESS) * EST_PRIOR_Q12 / 4096u <= aim * 5u / 4u;
+#if BW_RATE
+    /* with the rate, only where the step it would take is within a quarter
+     * of the exact coding's (else later, where the encodes ask for it) */
+    uint32_t s_rate = rate_applies(pl, pa, budget) ? est_step(hist, ratio, aim) : 0u;
+    if (s_rate > BW_STEP_ONE_Q8 + BW_STEP_ONE_Q8 / 4u)
+        exact_tried = false;
+#endif
     if (exact_tried) {
         pl->step_q8 = BW_STEP_ONE_Q8;
         st = bw_encode_code(pl, pa, BW_MODE_LOSSLESS, work, ctx, out, budget, len);
@@ -366,6 +568,34 @@ static bw_status_t fast_passes(bw_plan_t *pl, const bw_params_t *pa, const int32
     }
     /* the last two encodes: step and body bits */
     int64_t s1 = 0, l1 = 0, s2 = 0, l2 = 0;
+#if BW_RATE
+    if (s_rate > BW_STEP_ONE_Q8 + 1u) {
+        /* one encode that steers its chunks' steps as it codes */
+        uint32_t s_eff;
+        st = rate_encode(pl, pa, work, ctx, out, budget, len, &u->rate, hist, s_rate, &s_eff);
+        pl->chunk_vec = 0; /* the payload, if any, is written */
+        pl->chunk_d = NULL;
+        if (st == BW_OK && *len >= landing(budget))
+            return BW_OK;
+        if (st != BW_OK && st != BW_ERR_OUTPUT_FULL && st != BW_ERR_BUDGET)
+            return st;
+        /* short of it or over: the encodes below, from the start, the
+         * estimate scaled by what this one measured at its chunks' mean
+         * step */
+        bool measured = st != BW_ERR_BUDGET && *len > over;
+        st = bw_encode_prepare(pl, samples, work);
+        if (st != BW_OK)
+            return st;
+        bw_quant_hist(pl, work, hist);
+        if (measured) {
+            uint64_t body = (*len - over) * 8u, e = est_near(hist, s_eff);
+            if (e) {
+                ratio = body * 4096u / e;
+                ratio = ratio ? ratio : 1u;
+            }
+        }
+    }
+#endif
     for (unsigned pass = 0; pass < FAST_PASSES; pass++) {
         uint32_t s = est_step(hist, ratio, aim);
         if (s == 0u)

@@ -131,11 +131,13 @@ typedef enum {
     /* for a device, where every try costs an encode: BW_BASIS_AUTO codes
      * parts of the measurement (an eighth of it) with every basis, then the
      * whole once with the basis that coded them smallest (for a byte budget,
-     * the smallest exact coding of the parts); a byte budget estimates its
-     * step from the coefficients and corrects it by the size of each encode
-     * until one lands within 1 % under the budget (one to four encodes; then
-     * the search from the steps they tried, to the first payload within 1 %
-     * under) */
+     * the smallest exact coding of the parts, on half as much); a byte
+     * budget is met in one encode that steers a step per chunk of vectors
+     * as it codes (BW_EXT_CHUNK_STEPS) where the body allows it; else, or
+     * where that one does not land within 1 % under the budget, the step is
+     * estimated from the coefficients and corrected by the size of each
+     * encode until one lands (one to four encodes; then the search from the
+     * steps they tried, to the first payload within 1 % under) */
     BW_EFFORT_FAST = 1
 } bw_effort_t;
 
@@ -294,6 +296,9 @@ typedef struct {
         bw_strip_enc_t enc; /* bw_encode_ctx */
         bw_models_t models; /* bw_decode_ctx: the range decoder's models */
     };
+    /* bw_encode_ctx's byte budget with BW_EFFORT_FAST: the coefficients'
+     * histogram, then the state of its one encode (bw_budget.c) */
+    uint64_t budget[64];
 } bw_ctx_t;
 
 /* The most stack, in bytes, that bw_encode_ctx (its deepest chain: the
@@ -373,6 +378,7 @@ typedef struct {
 #define BW_EXT_LOG_MAP 0x02u     /* samples to values through a signed log-linear map */
 #define BW_EXT_SEGMENTS 0x03u    /* the body is split into segments (the core's) */
 #define BW_EXT_EMBEDDED 0x04u    /* the segments are coded bit plane by bit plane */
+#define BW_EXT_CHUNK_STEPS 0x05u /* a quantiser step per chunk of vectors (the core's) */
 #define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
 #define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
 #define BW_EXT_MAX (1u << 20)  /* bytes of records at most */

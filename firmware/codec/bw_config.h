@@ -39,6 +39,15 @@
  *                                      cut; needs BW_CFG_SEGMENTS; 0: both
  *                                      sides refuse them (BW_ERR_NOT_BUILT)
  *
+ *   BW_CFG_CHUNK_STEPS        1        a step per chunk of vectors
+ *                                      (BW_EXT_CHUNK_STEPS): with
+ *                                      BW_CFG_FAST_BUDGET, BW_EFFORT_FAST meets
+ *                                      a byte budget in one encode, steering
+ *                                      the step chunk by chunk as it codes; the
+ *                                      decoder decodes them; 0: the byte budget
+ *                                      corrects its step encode by encode, and
+ *                                      the decoder refuses them (BW_ERR_NOT_BUILT)
+ *
  * Decoder features:
  *
  *   BW_CFG_SALVAGE            1        bw_decode_salvage decodes what a damaged
@@ -134,6 +143,9 @@
 #endif
 #ifndef BW_CFG_SALVAGE
 #define BW_CFG_SALVAGE 1
+#endif
+#ifndef BW_CFG_CHUNK_STEPS
+#define BW_CFG_CHUNK_STEPS 1
 #endif
 #ifndef BW_CFG_EMBED
 #define BW_CFG_EMBED BW_CFG_SEGMENTS

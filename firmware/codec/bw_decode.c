@@ -12,9 +12,16 @@
 #include "bw_le.h"
 #include "bw_strip_coder.h"
 
-/* The plan of a payload's header, its tables after the n coefficients of
- * work. */
+/* The plan of payload p's header h, its tables after the n coefficients of
+ * work (p only for its chunks' steps). */
+#if BW_CFG_CHUNK_STEPS
+#define PLAN_OF(pl, h, p, work, n) plan_of(pl, h, p, work, n)
+static void plan_of(bw_plan_t *pl, const bw_header_t *h, const uint8_t *p, int32_t *work,
+                    size_t n)
+#else
+#define PLAN_OF(pl, h, p, work, n) plan_of(pl, h, work, n)
 static void plan_of(bw_plan_t *pl, const bw_header_t *h, int32_t *work, size_t n)
+#endif
 {
     bw_plan_make(pl, &h->dims, h->basis, h->mode,
                  h->mode == BW_MODE_MAX_ERROR ? h->max_error : h->step_q8, h->flags, 0u, work + n,
@@ -23,6 +30,9 @@ static void plan_of(bw_plan_t *pl, const bw_header_t *h, int32_t *work, size_t n
         pl->seg_vec = h->segment_vectors;
     if (BW_CFG_EMBED)
         pl->embed = (uint8_t)h->embedded;
+#if BW_CFG_CHUNK_STEPS
+    pl->chunk_vec = bw_chunk_steps(p, h, &pl->chunk_d);
+#endif
     bw_plan_tables(pl);
 }
 
@@ -143,7 +153,7 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, size_t len,
     if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    plan_of(&pl, h, work, n);
+    PLAN_OF(&pl, h, p, work, n);
     seg_out_t strict = {false, NULL, 0, NULL, 0};
     if (!so)
         so = &strict;
@@ -441,7 +451,7 @@ static bw_status_t decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len
     if (samples_cap < nr * row || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    plan_of(&pl, &h, work, n);
+    PLAN_OF(&pl, &h, payload, work, n);
     want_t w = {.by_rows = true, .rows = rows, .one = one, .pl = &pl};
     st = decode_ranges(&pl, work, payload, &h, &ctx->models, &w);
     if (st != BW_OK)
@@ -525,7 +535,7 @@ bw_status_t bw_decode_lod(bw_ctx_t *ctx, const uint8_t *payload, size_t len, uns
     if (samples_cap < ni * nc * b || work_cap < bw_work_bound(n, b))
         return BW_ERR_WORK;
     bw_plan_t pl;
-    plan_of(&pl, &h, work, n);
+    PLAN_OF(&pl, &h, payload, work, n);
     /* the decoder writes every value of the strips it decodes, which hold
      * all the vectors read below; dequantisation walks every vector */
     if (pl.step_q8 > BW_STEP_ONE_Q8)

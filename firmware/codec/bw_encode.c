@@ -46,18 +46,6 @@ bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *wo
  * and on uniform noise, where they are 4 % and more above it */
 #define BW_AUTO_RICE_Q8 248u
 
-/* log2(v) in Q16, v >= 1: the leading bit's place, and log2(1 + f) for the
- * fraction f below it from 17 points (Q16) interpolated, within 2^-10 */
-static uint32_t log2_q16(uint32_t v)
-{
-    static const uint16_t t[17] = {0,     5732,  11136, 16248, 21098, 25711, 30109, 34312, 38336,
-                                   42196, 45904, 49472, 52911, 56229, 59434, 62534, 65535};
-    unsigned e = bw_bitlen(v) - 1u;
-    uint32_t m = v << (31u - e); /* 1.f in Q31 */
-    uint32_t i = (m >> 27) & 15u, f = (m >> 11) & 0xFFFFu;
-    return (e << 16) + t[i] + (((t[i + 1u] - t[i]) * f) >> 16);
-}
-
 /* The bit lengths of the prediction errors x (each below 2^26, n <= 2^32 -
  * 1), of every one, or of every fourth from 4096 on: how many of each into
  * hist[33] (their count *m), and their sum. */
@@ -84,10 +72,10 @@ static uint64_t bitlen_hist(const bw_plan_t *pl, const int32_t *x, uint32_t hist
 static uint64_t order0_bits(const uint32_t hist[33], size_t n, uint64_t sum)
 {
     uint64_t bits = sum << 16;
-    uint32_t ln = log2_q16((uint32_t)n);
+    uint32_t ln = bw_log2_q16((uint32_t)n);
     for (unsigned e = 0; e < 33u; e++)
         if (hist[e])
-            bits += (uint64_t)hist[e] * (ln - log2_q16(hist[e]));
+            bits += (uint64_t)hist[e] * (ln - bw_log2_q16(hist[e]));
     return bits;
 }
 
@@ -393,8 +381,15 @@ static bool quick_choice(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t
     pq.flags &= (uint8_t) ~(BW_FLAG_MIRROR | BW_FLAG_RECIPROCAL);
     pq.ext = NULL;
     pq.ext_len = 0;
-    if (pq.mode == BW_MODE_BYTES)
+    if (pq.mode == BW_MODE_BYTES) {
         pq.mode = BW_MODE_LOSSLESS;
+        /* a byte budget met in one encode (BW_RATE): half the parts, so
+         * that the choice stays a small share of the whole */
+        if (BW_RATE && parts == 2u)
+            parts = 1u;
+        else if (BW_RATE && part.n_in >= 2u)
+            part.n_in /= 2u;
+    }
     for (unsigned b = first; b <= last; b++) {
         bw_plan_t pl;
         size_t sz, total = 0;

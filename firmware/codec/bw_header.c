@@ -82,7 +82,21 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
             seg[sl++] = (uint8_t)(pl->embed - 1u);
         }
     }
-    uint32_t el = pa->ext_len + (uint32_t)sl;
+    /* then the chunks' steps: type, length, K, a byte per chunk */
+    size_t cl = 0, cn = 0;
+#if BW_CFG_CHUNK_STEPS
+    uint8_t ck[12];
+    if (pl->chunk_vec) {
+        uint32_t nvec = pl->dims.n_in * pl->dims.n_out;
+        cn = (nvec - 1u) / pl->chunk_vec + 1u;
+        size_t kl = put_varint(ck + 6, pl->chunk_vec);
+        ck[0] = BW_EXT_CHUNK_STEPS;
+        cl = 1u + put_varint(ck + 1, (uint32_t)(kl + cn));
+        memmove(ck + cl, ck + 6, kl);
+        cl += kl;
+    }
+#endif
+    uint32_t el = pa->ext_len + (uint32_t)(sl + cl + cn);
     h[2] = el || (pa->flags & BW_FLAG_MS) ? BW_VERSION_EXT : BW_VERSION;
     h[3] = (uint8_t)b3;
     h[4] = (uint8_t)(pl->dims.level_out | pl->dims.level_in << 4);
@@ -97,6 +111,12 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
             if (pa->ext_len)
                 memcpy(out + n + k, pa->ext, pa->ext_len);
             memcpy(out + n + k + pa->ext_len, seg, sl);
+#if BW_CFG_CHUNK_STEPS
+            if (cl) {
+                memcpy(out + n + k + pa->ext_len + sl, ck, cl);
+                memcpy(out + n + k + pa->ext_len + sl + cl, pl->chunk_d, cn);
+            }
+#endif
         }
         n += k + el;
     }
@@ -122,26 +142,35 @@ bool bw_ext_next(const uint8_t *area, size_t len, size_t *pos, uint8_t *type,
 
 /* The bytes BW_EXT_FLOAT_EXACT sets apart at the body's end (its first
  * field; 0 without it), or BW_ERR_HEADER for a malformed record,
- * BW_ERR_EXTENSION for a critical type this decoder does not know. */
-static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint32_t *embed)
+ * BW_ERR_EXTENSION for a critical type this decoder does not know; the
+ * core's own records into h, and BW_EXT_CHUNK_STEPS's K and count of
+ * steps into chunk[0] and chunk[1] (0 and 0 without it). */
+static int32_t ext_scan(const uint8_t *area, size_t len, bw_header_t *h, uint32_t chunk[2])
 {
     size_t pos = 0;
     uint8_t type;
     const uint8_t *d;
     uint32_t dl, tail = 0;
     int32_t st = 0;
-    *seg_vec = 0;
+    h->segment_vectors = 0;
     if (BW_CFG_EMBED)
-        *embed = 0;
+        h->embedded = 0;
+#if BW_CFG_CHUNK_STEPS
+    chunk[0] = chunk[1] = 0;
+#else
+    (void)chunk;
+#endif
     while (pos < len) {
         if (!bw_ext_next(area, len, &pos, &type, &d, &dl) ||
             (type == BW_EXT_FLOAT_EXACT && (!get_varint(d, d + dl, &tail) || tail > INT32_MAX)))
             return BW_ERR_HEADER;
-        if (type == BW_EXT_SEGMENTS && !BW_CFG_SEGMENTS) {
+        if ((type == BW_EXT_SEGMENTS && !BW_CFG_SEGMENTS) ||
+            (type == BW_EXT_CHUNK_STEPS && !BW_CFG_CHUNK_STEPS)) {
             st = BW_ERR_NOT_BUILT;
         } else if (type == BW_EXT_SEGMENTS) {
             /* one record, its data one varint V >= 1 */
-            if (*seg_vec || get_varint(d, d + dl, seg_vec) != d + dl || !*seg_vec)
+            if (h->segment_vectors || get_varint(d, d + dl, &h->segment_vectors) != d + dl ||
+                !h->segment_vectors)
                 return BW_ERR_HEADER;
         } else if (type == BW_EXT_EMBEDDED && !BW_CFG_EMBED) {
             st = BW_ERR_NOT_BUILT;
@@ -149,9 +178,18 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint
             /* one record after the segments': no data (form 0, the first),
              * or the form, one byte (1: with groups of strips, 2: and the
              * incoming parent block as a neighbour) */
-            if (*embed || dl > 1u || (dl && d[0] > 2u) || !*seg_vec)
+            if (h->embedded || dl > 1u || (dl && d[0] > 2u) || !h->segment_vectors)
                 return BW_ERR_HEADER;
-            *embed = 1u + (dl ? d[0] : 0u);
+            h->embedded = 1u + (dl ? d[0] : 0u);
+#if BW_CFG_CHUNK_STEPS
+        } else if (type == BW_EXT_CHUNK_STEPS) {
+            /* one record: a varint K >= 1, then the chunks' steps (their
+             * count is checked against the dimensions by the caller) */
+            const uint8_t *q = chunk[0] ? NULL : get_varint(d, d + dl, &chunk[0]);
+            if (!q || !chunk[0])
+                return BW_ERR_HEADER;
+            chunk[1] = (uint32_t)(d + dl - q);
+#endif
         } else if (type < BW_EXT_ANCILLARY && (uint8_t)(type - BW_EXT_FLOAT_EXACT) > 1u) {
             st = BW_ERR_EXTENSION;
         }
@@ -159,12 +197,34 @@ static int32_t ext_scan(const uint8_t *area, size_t len, uint32_t *seg_vec, uint
     return st < 0 ? st : (int32_t)tail;
 }
 
+#if BW_CFG_CHUNK_STEPS
+uint32_t bw_chunk_steps(const uint8_t *p, const bw_header_t *h, const int8_t **steps)
+{
+    size_t pos = 0;
+    uint8_t type;
+    const uint8_t *d;
+    uint32_t dl, K = 0;
+    if (!(h->flags & BW_FLAG_EXT)) /* (a header's ext fields are only set with records) */
+        return 0;
+    while (bw_ext_next(p + h->ext_off, h->ext_len, &pos, &type, &d, &dl)) {
+        const uint8_t *q = type == BW_EXT_CHUNK_STEPS ? get_varint(d, d + dl, &K) : NULL;
+        if (q) {
+            *steps = (const int8_t *)q;
+            return K;
+        }
+    }
+    return 0;
+}
+#endif
+
 /* the encoder writes records without a tail (it codes no bytes past the
- * body) and without segments (its own record says those) */
+ * body) and without segments or chunk steps (its own records say those) */
 bool bw_ext_valid(const uint8_t *area, size_t len)
 {
-    uint32_t sv, em;
-    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &sv, &em) == 0 && !sv;
+    bw_header_t h;
+    uint32_t chunk[2] = {0, 0};
+    return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &h, chunk) == 0 &&
+           !h.segment_vectors && !(BW_CFG_CHUNK_STEPS && chunk[0]);
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -198,6 +258,7 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
     h->version = p[2];
     h->segment_vectors = 0;
     h->embedded = 0;
+    uint32_t chunk[2] = {0, 0}; /* record BW_EXT_CHUNK_STEPS: K, its steps' count */
     d->shape = p[3] & 3u;
     h->mode = (uint8_t)(p[3] >> 2 & 3u);
     h->basis = (uint8_t)(p[3] >> 4 & 3u);
@@ -239,7 +300,7 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
             return BW_ERR_HEADER;
         h->ext_off = (uint32_t)(q - p);
         h->ext_len = el;
-        int32_t tail = ext_scan(q, el, &h->segment_vectors, &h->embedded);
+        int32_t tail = ext_scan(q, el, h, chunk);
         if (tail < 0)
             return (bw_status_t)tail;
         q += el;
@@ -273,6 +334,15 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
         if (sv > nvec)
             return BW_ERR_HEADER;
         h->segments = (nvec - 1u) / sv + 1u;
+    }
+    /* steps per chunk of K vectors: one per chunk, K at most the vectors;
+     * a quantised transform coded in one body in coarse-to-fine order */
+    if (BW_CFG_CHUNK_STEPS && chunk[0]) {
+        uint32_t nvec = d->n_in * d->n_out, K = chunk[0];
+        if (K > nvec || chunk[1] != (nvec - 1u) / K + 1u || h->segment_vectors ||
+            h->step_q8 <= BW_STEP_ONE_Q8 || h->mode == BW_MODE_MAX_ERROR ||
+            h->basis == BW_BASIS_PRED || (h->flags & BW_FLAG_STREAM_ORDER))
+            return BW_ERR_HEADER;
     }
     return pc; /* a valid header, or one this build cannot decode */
 }

@@ -45,6 +45,13 @@ typedef struct {
     bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
     uint32_t seg_vec;       /* vectors per segment (BW_EXT_SEGMENTS), 0: one body */
     uint8_t embed;          /* embedded segments (BW_EXT_EMBEDDED): 0 none, 1 + the form */
+#if BW_CFG_CHUNK_STEPS
+    uint32_t chunk_vec;     /* vectors per chunk (BW_EXT_CHUNK_STEPS), 0: one step */
+    const int8_t *chunk_d;  /* [chunks] each chunk's step change (bw_chunk_step) */
+#endif
+#if BW_CFG_FAST_BUDGET && BW_CFG_CHUNK_STEPS
+    struct bw_rate *rate;   /* encoder: quantises as the body codes (bw_budget.c), or NULL */
+#endif
     int32_t *spec_cls;      /* [bands] context class of each spectral coefficient */
     int32_t *spec_gain;     /* [bands] its inverse gain, Q16                      */
     int32_t *tmp;           /* [bands] lifting scratch                           */
@@ -200,6 +207,40 @@ void bw_quant_vector(const bw_plan_t *pl, int32_t *v, int j);
 #define BW_HIST_BINS 128u
 #define BW_HIST_ZERO_BIN 16u
 void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist);
+/* s 2^(t / 32) for t >= 0, floor(s 2^e m / 2^15) for t = 32 e + f,
+ * m = round(2^15 2^(f / 32)), f = 0..31 (the steps of a byte budget's
+ * search, the chunks' steps), when s 2^e < 2^47. */
+static inline uint64_t bw_oct32(uint32_t s, unsigned t)
+{
+    static const uint16_t frac_q15[32] = {
+        32768, 33486, 34219, 34968, 35734, 36516, 37316, 38133, 38968, 39821, 40693,
+        41584, 42495, 43425, 44376, 45348, 46341, 47356, 48393, 49452, 50535, 51642,
+        52773, 53928, 55109, 56316, 57549, 58809, 60097, 61413, 62757, 64132,
+    };
+    return ((uint64_t)s << (t / 32u)) * frac_q15[t % 32u] >> 15;
+}
+#if BW_CFG_CHUNK_STEPS
+/* The record BW_EXT_CHUNK_STEPS of payload p (its header h read): K, the
+ * vectors per chunk, and *steps its chunks' step changes; 0 without it. */
+uint32_t bw_chunk_steps(const uint8_t *p, const bw_header_t *h, const int8_t **steps);
+#endif
+/* The step of a chunk whose step change is d, -128..127
+ * (BW_EXT_CHUNK_STEPS): step_q8 2^(d / 32) as bw_oct32 (floor(step_q8 2^e
+ * m / 2^15), e = floor(d / 32) < 0 included) within BW_STEP_ONE_Q8 + 1 ..
+ * 2^32 - 1 (docs/FORMAT.md, Chunk steps). */
+uint32_t bw_chunk_step(uint32_t step_q8, int d);
+
+/* log2(v) in Q16, v >= 1: the leading bit's place, and log2(1 + f) for the
+ * fraction f below it from 17 points (Q16) interpolated, within 2^-10 */
+static inline uint32_t bw_log2_q16(uint32_t v)
+{
+    static const uint16_t t[17] = {0,     5732,  11136, 16248, 21098, 25711, 30109, 34312, 38336,
+                                   42196, 45904, 49472, 52911, 56229, 59434, 62534, 65535};
+    unsigned e = bw_bitlen(v) - 1u;
+    uint32_t m = v << (31u - e); /* 1.f in Q31 */
+    uint32_t i = (m >> 27) & 15u, f = (m >> 11) & 0xFFFFu;
+    return (e << 16) + t[i] + (((t[i + 1u] - t[i]) * f) >> 16);
+}
 
 /* ---- coding order (bw_order.c) ------------------------------------------- */
 
@@ -215,6 +256,58 @@ void bw_walk_init(bw_walk_t *w);
 /* The in-place position of the current coefficient of a level-L hemisphere
  * and its parent level (-1: scaling); steps to the next. */
 uint32_t bw_walk_next(bw_walk_t *w, unsigned L, int *level);
+
+/* A byte budget met in one encode (BW_EFFORT_FAST; bw_budget.c, rate):
+ * the quantiser runs ahead of the coder a chunk at a time, each chunk at
+ * its own step (BW_EXT_CHUNK_STEPS). */
+#define BW_RATE (BW_CFG_FAST_BUDGET && BW_CFG_CHUNK_STEPS)
+#if BW_RATE
+/* The outgoing vectors in coding order, one incoming block after another,
+ * for a quantiser that runs ahead of the coder (bw_quant_ahead). */
+typedef struct {
+    uint32_t i, o; /* the next vector: the o-th of incoming block i (coarse to fine) */
+    bw_walk_t w;
+    bool dropped; /* block i fell below the vector threshold */
+} bw_qwalk_t;
+void bw_qwalk_init(bw_qwalk_t *qw);
+/* Quantises the next nvec vectors of the walk forward at the plan's step
+ * as it is at the call, as bw_quantise does (its thresholds; no rounding
+ * offset). */
+void bw_quant_ahead(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uint32_t nvec);
+/* An estimate of the bits of every chunk of chunk_vec vectors in coding
+ * order at the base step 2^(t4 / 4), in est[] (whole bits): a coefficient
+ * c of step st whose x = 4 log2(|c| / st) - t4 (quarter octaves, as
+ * bw_quant_hist's bins) is 0 or more costs a0_q6 / 64 + x a1_q6 / 64 bits,
+ * and every coefficient a2_q8 / 256 of the binary entropy (h64[i], 1/64
+ * bit, of i / 64) of the chunk's share of those. */
+void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int t4,
+                  uint32_t a0_q6, uint32_t a1_q6, uint32_t a2_q8, const uint8_t *h64,
+                  uint32_t *est);
+
+/* The rate: the coder asks for the vectors it is about to code
+ * (bw_strip_coder.c, rate_need), and the rate quantises them a chunk at a
+ * time, each chunk's step from the bits coded so far against the estimate. */
+#define BW_RATE_CHUNKS 64u
+struct bw_rate {
+    bw_plan_t *pl;
+    int32_t *x;
+    bw_qwalk_t qw;
+    uint32_t step_q8;   /* the header's step */
+    uint32_t ahead;     /* vectors quantised and not yet coded */
+    uint32_t chunk;     /* the next chunk */
+    uint32_t chunks;
+    int32_t gamma_q8;   /* octaves of bits per octave of step (the estimate's), Q8 */
+    uint64_t aim;       /* body bits aimed at */
+    uint64_t est_left;  /* estimated bits of the chunks not yet quantised, at the step */
+    uint64_t est_done;  /* of those quantised, at their steps */
+    uint64_t bits_seen, est_seen; /* bits and est_done at the chunk before */
+    uint64_t b_sum, e_sum;        /* their bits and estimates, the estimate's own first */
+    uint32_t est[BW_RATE_CHUNKS];
+    int8_t d[BW_RATE_CHUNKS]; /* each chunk's step change (the record's) */
+};
+/* Quantises the next chunks (at least v vectors) after the bits coded so far. */
+void bw_rate_chunk(struct bw_rate *r, uint64_t bits, uint32_t v);
+#endif
 
 /* The outgoing vectors a streaming encoder completes with one leaf: at most
  * 3 details per level and a scaling vector. */
@@ -345,9 +438,12 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
 bw_status_t bw_budget_encode(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                              int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
                              size_t *len);
-/* The same with BW_EFFORT_FAST: the step estimated from the coefficients,
- * corrected by the size of each encode, until one lands within 1 % under
- * the budget (else the search above, from the steps those encodes tried). */
+/* The same with BW_EFFORT_FAST: one encode that steers the step of each
+ * chunk of vectors as it codes (BW_EXT_CHUNK_STEPS) where the body allows
+ * it; else, or where that one misses, the step estimated from the
+ * coefficients, corrected by the size of each encode, until one lands
+ * within 1 % under the budget (else the search above, from the steps those
+ * encodes tried). */
 bw_status_t bw_budget_encode_fast(bw_plan_t *pl, const bw_params_t *pa, const int32_t *samples,
                                   int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap,
                                   size_t *len);

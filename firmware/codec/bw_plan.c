@@ -27,6 +27,13 @@ void bw_plan_make(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, unsigned
     pl->seg_vec = 0;
     if (BW_CFG_EMBED)
         pl->embed = 0u;
+#if BW_CFG_CHUNK_STEPS
+    pl->chunk_vec = 0;
+    pl->chunk_d = NULL;
+#endif
+#if BW_RATE
+    pl->rate = NULL;
+#endif
     pl->spec_cls = tables;
     pl->spec_gain = tables + dims->bands;
     pl->tmp = tmp;

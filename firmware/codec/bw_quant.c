@@ -202,6 +202,15 @@ static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq1
     return pos;
 }
 
+/* k = level + 1 of the coefficient at in-place position t of a level-L
+ * hemisphere (mask 4^L - 1): 0 for the scaling coefficients, else L less
+ * the index of the lowest non-zero base-4 digit (bw_walk_next) */
+static inline unsigned level_at(uint32_t t, uint32_t mask, unsigned L)
+{
+    uint32_t low = t & mask;
+    return low ? L - (bw_bitlen(low & (0u - low)) - 1u) / 2u : 0u;
+}
+
 #if BW_CFG_FAST_QUANT
 /* One band: every vector is one coefficient whose step depends only on its
  * level, so the block is taken in memory order, the level of position t
@@ -228,10 +237,7 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
     }
     uint32_t mask = (1u << (2u * L)) - 1u;
     for (uint32_t t = 0; t < d->n_out; t++) {
-        uint32_t low = t & mask;
-        /* k = level + 1: 0 for the scaling coefficients, else L less the
-         * index of the lowest non-zero digit */
-        unsigned k = low ? L - (bw_bitlen(low & (0u - low)) - 1u) / 2u : 0u;
+        unsigned k = level_at(t, mask, L);
         int32_t c = blk[t];
         uint32_t a = bw_abs32(c), s32 = st32[k];
         if (forward && s32 && a < (1u << 23)) {
@@ -254,6 +260,30 @@ typedef struct {
     uq16_t gio_q16; /* no vector has gain 0: the first one computes */
 } quant_cache_t;
 
+/* The incoming space: whether the [outgoing][band] block blk of incoming
+ * gain gi_q16 has an energy below the threshold, and then zeroes it. */
+static bool block_below(const bw_plan_t *pl, quant_cache_t *qc, int32_t *blk, uq16_t gi_q16,
+                        uint64_t thr)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint64_t e = 0;
+    bw_walk_t w;
+    bw_walk_init(&w);
+    for (uint32_t o = 0; o < d->n_out && e < thr; o++) {
+        uq16_t gio_q16;
+        uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
+        if (gio_q16 != qc->gio_q16) {
+            vec_steps(pl, &qc->sb, gio_q16, qc->steps_q8);
+            qc->gio_q16 = gio_q16;
+        }
+        e += vec_energy(&qc->sb, qc->steps_q8, blk + (size_t)pos * d->bands, thr - e);
+    }
+    if (e >= thr)
+        return false;
+    memset(blk, 0, (size_t)d->n_out * d->bands * sizeof *blk);
+    return true;
+}
+
 /* The block of coarse-to-fine incoming index i, forward or back. */
 static BW_ALWAYS_INLINE void quant_block(const bw_plan_t *pl, quant_cache_t *qc, int32_t *x,
                                          uint32_t i, bool forward, uint64_t thr)
@@ -263,44 +293,85 @@ static BW_ALWAYS_INLINE void quant_block(const bw_plan_t *pl, quant_cache_t *qc,
     size_t vecs = (size_t)d->n_in * d->n_out;
     uq16_t gi_q16 = bw_in_gain_q16(pl, i);
     int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
-    for (int pass = forward && bw_has_in(d) ? 0 : 1; pass < 2; pass++) {
-        /* pass 0: the incoming space, drop a whole [outgoing][band] block
-         * whose energy stays below the threshold; pass 1: every vector */
+    /* the incoming space first: drop a whole block whose energy stays
+     * below the threshold */
+    if (forward && bw_has_in(d) && block_below(pl, qc, blk, gi_q16, thr))
+        return;
 #if BW_CFG_FAST_QUANT
-        if (pass && b == 1u && pl->round_cut == 0u) {
-            quant_one_band(pl, &qc->sb, blk, gi_q16, forward);
-            continue;
-        }
+    if (b == 1u && pl->round_cut == 0u) {
+        quant_one_band(pl, &qc->sb, blk, gi_q16, forward);
+        return;
+    }
 #endif
-        uint64_t e = 0;
-        bw_walk_t w;
-        bw_walk_init(&w);
-        for (uint32_t o = 0; o < d->n_out && (pass || e < thr); o++) {
-            uq16_t gio_q16;
-            uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
-            if (gio_q16 != qc->gio_q16) {
-                vec_steps(pl, &qc->sb, gio_q16, qc->steps_q8);
-                qc->gio_q16 = gio_q16;
-            }
-            int32_t *v = blk + (size_t)pos * b;
-            if (!pass) {
-                e += vec_energy(&qc->sb, qc->steps_q8, v, thr - e);
-            } else if (forward && b > 1u && vec_energy(&qc->sb, qc->steps_q8, v, thr) < thr) {
-                /* outgoing space: drop the spectral vector */
-                memset(v, 0, (size_t)b * sizeof *v);
-            } else {
-                /* the bands k with k vecs + vi < round_cut (< b vecs) */
-                size_t vi = (size_t)i * d->n_out + o;
-                vec_quant(&qc->sb, qc->steps_q8, v, forward, pl->round_q8,
-                          (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
-            }
+    /* then every vector */
+    bw_walk_t w;
+    bw_walk_init(&w);
+    for (uint32_t o = 0; o < d->n_out; o++) {
+        uq16_t gio_q16;
+        uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
+        if (gio_q16 != qc->gio_q16) {
+            vec_steps(pl, &qc->sb, gio_q16, qc->steps_q8);
+            qc->gio_q16 = gio_q16;
         }
-        if (!pass && e < thr) {
-            memset(blk, 0, (size_t)d->n_out * b * sizeof *blk);
-            break;
+        int32_t *v = blk + (size_t)pos * b;
+        if (forward && b > 1u && vec_energy(&qc->sb, qc->steps_q8, v, thr) < thr) {
+            /* outgoing space: drop the spectral vector */
+            memset(v, 0, (size_t)b * sizeof *v);
+        } else {
+            /* the bands k with k vecs + vi < round_cut (< b vecs) */
+            size_t vi = (size_t)i * d->n_out + o;
+            vec_quant(&qc->sb, qc->steps_q8, v, forward, pl->round_q8,
+                      (uint32_t)((pl->round_cut + vecs - 1u - vi) / vecs));
         }
     }
 }
+
+#if BW_CFG_CHUNK_STEPS
+uint32_t bw_chunk_step(uint32_t step_q8, int d)
+{
+    /* 2^(d / 32) = 2^((d + 128) / 32) / 16: floor(floor(x) / 16) = floor(x / 16) */
+    uint64_t s = d >= 0 ? bw_oct32(step_q8, (unsigned)d) : bw_oct32(step_q8, (unsigned)(d + 128)) >> 4;
+    return s > UINT32_MAX ? UINT32_MAX : s <= BW_STEP_ONE_Q8 ? BW_STEP_ONE_Q8 + 1u : (uint32_t)s;
+}
+
+/* Block i back with the steps of its vectors' chunks (BW_EXT_CHUNK_STEPS):
+ * each run of its vectors in one chunk with that chunk's step. */
+static void dequant_chunks(const bw_plan_t *pl, quant_cache_t *qc, int32_t *x, uint32_t i)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t K = pl->chunk_vec, b = d->bands;
+    size_t v0 = (size_t)i * d->n_out;
+    size_t g = v0 / K, left = K - v0 % K; /* its first vector's chunk, and its vectors left */
+    bw_plan_t cp = *pl;
+    uq16_t gi_q16 = (uq16_t)bw_in_gain_q16(pl, i);
+    int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+    cp.step_q8 = bw_chunk_step(pl->step_q8, pl->chunk_d[g]);
+    qc->gio_q16 = 0;
+#if BW_CFG_FAST_QUANT
+    if (b == 1u && left >= d->n_out) { /* the block in one chunk */
+        quant_one_band(&cp, &qc->sb, blk, gi_q16, false);
+        return;
+    }
+#endif
+    bw_walk_t w;
+    bw_walk_init(&w);
+    for (uint32_t o = 0; o < d->n_out; o++, left--) {
+        if (left == 0u) { /* the next chunk */
+            cp.step_q8 = bw_chunk_step(pl->step_q8, pl->chunk_d[++g]);
+            qc->gio_q16 = 0;
+            left = K;
+        }
+        uq16_t gio_q16;
+        uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
+        if (gio_q16 != qc->gio_q16) {
+            vec_steps(&cp, &qc->sb, gio_q16, qc->steps_q8);
+            qc->gio_q16 = gio_q16;
+        }
+        vec_quant(&qc->sb, qc->steps_q8, blk + (size_t)pos * b, false, 0u, 0u);
+    }
+    qc->gio_q16 = 0; /* the cache is of a chunk's step */
+}
+#endif
 
 void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
 {
@@ -308,8 +379,15 @@ void bw_quantise(const bw_plan_t *pl, int32_t *x, bool forward)
     quant_cache_t qc;
     qc.gio_q16 = 0;
     bw_spec_bands(pl, &qc.sb);
-    for (uint32_t i = 0; i < pl->dims.n_in; i++)
+    for (uint32_t i = 0; i < pl->dims.n_in; i++) {
+#if BW_CFG_CHUNK_STEPS
+        if (!forward && pl->chunk_vec) {
+            dequant_chunks(pl, &qc, x, i);
+            continue;
+        }
+#endif
         quant_block(pl, &qc, x, i, forward, thr);
+    }
 }
 
 void bw_dequant_block(const bw_plan_t *pl, int32_t *x, uint32_t i)
@@ -317,6 +395,12 @@ void bw_dequant_block(const bw_plan_t *pl, int32_t *x, uint32_t i)
     quant_cache_t qc;
     qc.gio_q16 = 0;
     bw_spec_bands(pl, &qc.sb);
+#if BW_CFG_CHUNK_STEPS
+    if (pl->chunk_vec) {
+        dequant_chunks(pl, &qc, x, i);
+        return;
+    }
+#endif
     quant_block(pl, &qc, x, i, false, 0u);
 }
 
@@ -364,6 +448,27 @@ void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
     for (uint32_t i = 0; i < d->n_in; i++) {
         uq16_t gi_q16 = bw_in_gain_q16(pl, i);
         const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
+#if BW_CFG_FAST_QUANT
+        if (b == 1u) {
+            /* one band: the block in memory order, each coefficient's level
+             * from its position (as quant_one_band) */
+            unsigned L = bw_has_out(d) ? d->level_out : 0u, off[BW_MAX_LEVEL + 1u];
+            for (unsigned k = 0; k <= L; k++) {
+                uq16_t g_out_q16 =
+                    bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
+                uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
+                                        sb.gain_q16[0]);
+                off[k] = BW_HIST_ZERO_BIN + 32u - log4(st ? st : 1u);
+            }
+            uint32_t mask = (1u << (2u * L)) - 1u;
+            for (uint32_t t = 0; t < d->n_out; t++) {
+                uint32_t a = bw_abs32(blk[t]);
+                unsigned bin = a ? log4(a) + off[level_at(t, mask, L)] : 0u;
+                hist[bin < BW_HIST_BINS ? bin : BW_HIST_BINS - 1u]++;
+            }
+            continue;
+        }
+#endif
         bw_walk_t w;
         bw_walk_init(&w);
         for (uint32_t o = 0; o < d->n_out; o++) {
@@ -391,3 +496,154 @@ void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
         }
     }
 }
+
+#if BW_RATE
+void bw_qwalk_init(bw_qwalk_t *qw)
+{
+    qw->i = 0;
+    qw->o = 0;
+    qw->dropped = false;
+    bw_walk_init(&qw->w);
+}
+
+/* The next vector of the walk (qw->i < n_in): its place in x, its gain in
+ * *gio_q16; *start: it is the first of its block. */
+static int32_t *qwalk_next(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uq16_t *gi_q16,
+                           uq16_t *gio_q16, bool *start)
+{
+    const bw_dims_t *d = &pl->dims;
+    int32_t *blk = x + (size_t)bw_in_pos(pl, qw->i) * d->n_out * d->bands;
+    *gi_q16 = (uq16_t)bw_in_gain_q16(pl, qw->i);
+    *start = qw->o == 0u;
+    if (*start)
+        bw_walk_init(&qw->w);
+    uint32_t pos = walk_vector(d, &qw->w, *gi_q16, gio_q16);
+    if (++qw->o == d->n_out) {
+        qw->o = 0;
+        qw->i++;
+    }
+    return blk + (size_t)pos * d->bands;
+}
+
+void bw_quant_ahead(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uint32_t nvec)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands;
+    uint64_t thr = vec_thr(pl);
+    quant_cache_t qc;
+    qc.gio_q16 = 0;
+    bw_spec_bands(pl, &qc.sb);
+    for (; nvec && qw->i < d->n_in; nvec--) {
+        if (qw->o == 0u && nvec >= d->n_out) {
+            /* a whole block, as bw_quantise does */
+            quant_block(pl, &qc, x, qw->i++, true, thr);
+            nvec -= d->n_out - 1u;
+            continue;
+        }
+        uq16_t gi_q16, gio_q16;
+        bool start;
+        int32_t *blk = x + (size_t)bw_in_pos(pl, qw->i) * d->n_out * b;
+        int32_t *v = qwalk_next(pl, qw, x, &gi_q16, &gio_q16, &start);
+        if (start)
+            qw->dropped = bw_has_in(d) && block_below(pl, &qc, blk, gi_q16, thr);
+        if (qw->dropped)
+            continue;
+        if (gio_q16 != qc.gio_q16) {
+            vec_steps(pl, &qc.sb, gio_q16, qc.steps_q8);
+            qc.gio_q16 = gio_q16;
+        }
+        if (b > 1u && vec_energy(&qc.sb, qc.steps_q8, v, thr) < thr)
+            memset(v, 0, (size_t)b * sizeof *v);
+        else
+            vec_quant(&qc.sb, qc.steps_q8, v, true, 0u, 0u);
+    }
+}
+
+/* The estimate's sums of one block of one band in memory order (its
+ * outgoing level from the position, as quant_one_band): lst[k] for level
+ * k + 1 (0: scaling) as bw_quant_est's. */
+static void est_one_band(const bw_dims_t *d, const int32_t *blk, const int *lst, uint32_t a0_q6,
+                         uint32_t a1_q6, uint64_t *acc, uint64_t *nz)
+{
+    unsigned L = bw_has_out(d) ? d->level_out : 0u;
+    uint32_t mask = (1u << (2u * L)) - 1u;
+    for (uint32_t t = 0; t < d->n_out; t++) {
+        uint32_t a = bw_abs32(blk[t]);
+        if (!a)
+            continue;
+        int xq = (int)log4(a) - lst[level_at(t, mask, L)];
+        if (xq >= 0) {
+            *acc += a0_q6 + a1_q6 * (uint32_t)xq;
+            (*nz)++;
+        }
+    }
+}
+
+void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int t4,
+                  uint32_t a0_q6, uint32_t a1_q6, uint32_t a2_q8, const uint8_t *h64,
+                  uint32_t *est)
+{
+    const bw_dims_t *d = &pl->dims;
+    uint32_t b = d->bands, left = chunk_vec, *e = est;
+    spec_bands_t sb;
+    int lst[BW_SPEC_MAX_LEVELS + BW_MAX_LEVEL + 2u];
+    uq16_t lst_gio_q16 = 0;
+    uint64_t acc = 0, nz = 0, n = 0;
+    bw_qwalk_t qw;
+    bw_spec_bands(pl, &sb);
+    bw_qwalk_init(&qw);
+    /* one band in chunks of whole blocks: a block at a time in memory order */
+    bool blocks = b == 1u && chunk_vec % d->n_out == 0u;
+    while (qw.i < d->n_in) {
+        uq16_t gi_q16, gio_q16;
+        uint32_t nv = 1;
+        if (blocks) {
+            unsigned L = bw_has_out(d) ? d->level_out : 0u;
+            gi_q16 = (uq16_t)bw_in_gain_q16(pl, qw.i);
+            for (unsigned k = 0; k <= L; k++) {
+                uq16_t g_out_q16 =
+                    bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
+                uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
+                                        sb.gain_q16[0]);
+                lst[k] = (int)log4(st ? st : 1u) - 32 + t4;
+            }
+            est_one_band(d, x + (size_t)bw_in_pos(pl, qw.i) * d->n_out, lst, a0_q6, a1_q6, &acc,
+                         &nz);
+            n += d->n_out;
+            nv = d->n_out;
+            qw.i++;
+        } else {
+            bool start;
+            const int32_t *v =
+                qwalk_next(pl, &qw, (int32_t *)(uintptr_t)x, &gi_q16, &gio_q16, &start);
+            if (gio_q16 != lst_gio_q16) {
+                /* 32 + t4 less the quarter octave of each subband's step at step 1 */
+                for (unsigned s = 0; s < sb.count; s++) {
+                    uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gio_q16, 65536u, sb.gain_q16[s]);
+                    lst[s] = (int)log4(st ? st : 1u) - 32 + t4;
+                }
+                lst_gio_q16 = gio_q16;
+            }
+            n += b;
+            for (unsigned s = 0; s < sb.count; s++) {
+                int l = lst[s];
+                for (uint32_t k = sb.lo[s]; k < sb.lo[s + 1u]; k++) {
+                    uint32_t a = bw_abs32(v[k]);
+                    int xq = a ? (int)log4(a) - l : -1;
+                    if (xq >= 0) {
+                        acc += a0_q6 + a1_q6 * (uint32_t)xq;
+                        nz++;
+                    }
+                }
+            }
+        }
+        left -= nv;
+        if (left == 0u || qw.i == d->n_in) {
+            acc += n * h64[nz * 64u / n] * a2_q8 >> 8;
+            *e++ = (uint32_t)(acc >> 6);
+            acc = nz = n = 0;
+            left = chunk_vec;
+        }
+    }
+}
+#endif

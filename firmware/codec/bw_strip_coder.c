@@ -503,6 +503,25 @@ void bw_strip_put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
     put_vector(se, v, b, spec_cls, cls_dir, par, prev);
 }
 
+#if BW_RATE
+/* A quantiser ahead of the coder (pl->rate): the next v vectors in coding
+ * order quantised before the coder reads them, the rate's control told the
+ * bits coded so far where it quantises a chunk. */
+static inline void rate_need(struct bw_rate *r, const bw_strip_enc_t *se, uint32_t v)
+{
+    if (r->ahead < v)
+        bw_rate_chunk(r, (uint64_t)se->rc.pos * 8u, v);
+    r->ahead -= v;
+}
+#define RATE_NEED(v)                                                                               \
+    do {                                                                                           \
+        if (rate)                                                                                  \
+            rate_need(rate, se, (v));                                                              \
+    } while (0)
+#else
+#define RATE_NEED(v) ((void)0)
+#endif
+
 void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
 {
     const bw_dims_t *d = &pl->dims;
@@ -542,10 +561,14 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
         unsigned L = d->level_out;
         const int32_t *prev = NULL, *sc = pl->spec_cls;
         bool above = b > 1u;
+#if BW_RATE
+        struct bw_rate *rate = se->coder != BW_CODER_RICE ? pl->rate : NULL;
+#endif
         for (uint32_t i = 0; i < d->n_in; i++) {
             const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out * b;
             if (!bw_has_out(d)) {
                 for (uint32_t o = 0; o < d->n_out; o++) {
+                    RATE_NEED(1u);
                     put_vector(se, blk, b, sc, 2u, NULL, above ? prev : NULL);
                     prev = blk;
                 }
@@ -554,6 +577,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
             unsigned cd = bw_level_cls(pl, -1);
             for (uint32_t p = 0; p < 4u; p++) {
                 const int32_t *v = blk + ((size_t)p << (2u * L)) * b;
+                RATE_NEED(1u);
                 put_vector(se, v, b, sc, cd, NULL, above ? prev : NULL);
                 prev = v;
             }
@@ -571,6 +595,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
                     int32_t *sv = se->v;
                     uint8_t *scls = se->cls, *spe = se->pe, *sps = se->ps, *spv = se->pv;
                     for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                        RATE_NEED(3u);
                         int32_t q = *c;
                         uint8_t pe = (uint8_t)bw_bitlen(bw_abs32(q));
                         uint8_t ps = (uint8_t)(q ? 3u + 3u * (q < 0) : 0u);
@@ -596,6 +621,7 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
                     continue;
                 }
                 for (uint32_t p = 0; p < (4u << (2u * j)); p++, c += 4u * step) {
+                    RATE_NEED(3u);
                     for (unsigned m = 1; m <= 3u; m++) {
                         const int32_t *v = c + m * step;
                         put_vector(se, v, b, sc, cd, c, above ? prev : NULL);

@@ -78,6 +78,23 @@ int bw_cmd_info(int argc, char **argv)
         free(p);
         return cli_fail("%s: %s", path, gs != 0 ? bwh_last_error() : "malformed value records");
     }
+    /* a step per chunk (record 0x05): K, the chunks, their step changes */
+    const uint8_t *cd;
+    uint32_t cl, chunk_k = 0, chunks = 0;
+    int dmin = 0, dmax = 0;
+    if (bwh_ext_find(p, &h, BW_EXT_CHUNK_STEPS, &cd, &cl) == 1) {
+        uint32_t at = 0;
+        for (unsigned sh = 0; at < cl && sh < 35u; sh += 7u) {
+            chunk_k |= (uint32_t)(cd[at] & 0x7Fu) << sh;
+            if (!(cd[at++] & 0x80u))
+                break;
+        }
+        for (chunks = 0; at < cl; at++, chunks++) {
+            int dv = (int)(int8_t)cd[at];
+            dmin = chunks == 0u || dv < dmin ? dv : dmin;
+            dmax = chunks == 0u || dv > dmax ? dv : dmax;
+        }
+    }
     bwh_meta_t meta;
     int ms = bwh_meta_of_payload(p, len, &h, &meta);
     size_t meta_bytes = metadata_bytes(p, &h);
@@ -133,6 +150,14 @@ int bw_cmd_info(int argc, char **argv)
         cli_kv_uint(&kv, "segment_table_offset", h.header_len);
         if (seg_lens)
             cli_kv_str(&kv, "segment_bytes", seg_lens);
+    }
+    if (chunk_k) {
+        /* the byte budget's one encode: each chunk's step, step_q8 2^(d / 32) */
+        char steps[64];
+        snprintf(steps, sizeof steps, "%d to %d (1/32 octave)", dmin, dmax);
+        cli_kv_uint(&kv, "chunks", chunks);
+        cli_kv_uint(&kv, "chunk_vectors", chunk_k);
+        cli_kv_str(&kv, "chunk_steps", steps);
     }
     if (!whole)
         cli_kv_str(&kv, "damaged", "yes: not whole (cut or changed); decode rebuilds what the "

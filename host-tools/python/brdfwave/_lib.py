@@ -249,8 +249,39 @@ def _float_of(bits):
     return struct.unpack("<f", struct.pack("<I", bits))[0]
 
 
-def _header_dict(h):
+def _varint(b, i):
+    """A LEB128 value at b[i]; returns it and the index after it."""
+    v = sh = 0
+    while i < len(b):
+        v |= (b[i] & 0x7F) << sh
+        i += 1
+        if not b[i - 1] & 0x80:
+            return v, i
+        sh += 7
+    raise BrdfwaveError("a record's varint runs past the header")
+
+
+def _chunk_steps(payload, h):
+    """Record 0x05 of a payload whose header h was read: (K, [d, ...]), the
+    vectors per chunk and each chunk's step change in 1/32 of an octave, or
+    (0, []) without it."""
+    if not isinstance(payload, (bytes, bytearray, memoryview)) or not h.ext_len:
+        return 0, []
+    area = bytes(payload[h.ext_off:h.ext_off + h.ext_len])
+    i = 0
+    while i < len(area):
+        t = area[i]
+        n, i = _varint(area, i + 1)
+        if t == 0x05:
+            k, j = _varint(area, i)
+            return k, [x - 256 if x > 127 else x for x in area[j:i + n]]
+        i += n
+    return 0, []
+
+
+def _header_dict(h, payload=None):
     d = h.dims
+    chunk_vectors, chunk_steps = _chunk_steps(payload, h)
     scale = _float_of(h.scale_bits)
     return {"version": h.version, "shape": SHAPES[d.shape], "level_out": d.level_out,
             "level_in": d.level_in, "n_in": d.n_in, "n_out": d.n_out, "bands": d.bands,
@@ -267,7 +298,11 @@ def _header_dict(h):
             # vectors in each (0: one body)
             "segments": h.segments, "segment_vectors": h.segment_vectors,
             # embedded segments (encode(..., progressive=True))
-            "embedded": bool(h.embedded)}
+            "embedded": bool(h.embedded),
+            # a step per chunk of that many vectors (record 0x05: a byte
+            # budget met in one encode): each chunk's step is step_q8
+            # 2^(d / 32) for its d in chunk_steps; 0 and [] without it
+            "chunk_vectors": chunk_vectors, "chunk_steps": chunk_steps}
 
 
 def header_of(payload):
@@ -282,7 +317,7 @@ def header_of(payload):
     st = L.bw_header_read(payload, len(payload), ctypes.byref(h))
     if st != 0:
         raise BrdfwaveError(L.bw_strerror(st).decode())
-    return _header_dict(h)
+    return _header_dict(h, payload)
 
 
 def payload_check(payload, max_samples=0):
@@ -294,7 +329,7 @@ def payload_check(payload, max_samples=0):
     payload = bytes(payload)
     if L.bwh_payload_check(payload, len(payload), max_samples, ctypes.byref(h)) != 0:
         raise BrdfwaveError(last_error())
-    return _header_dict(h)
+    return _header_dict(h, payload)
 
 
 def store_payload(outdir, pid, payload):

@@ -413,7 +413,7 @@ def _measurement(vals, meta, d, h, payload, wavelengths):
     """The Measurement of decoded values of dims d from a payload of header h."""
     m = Measurement(vals.reshape(_shape_of(d)), meta, _SHAPE_NAMES[d.shape],
                     d.level_out if d.shape > 0 else None, d.level_in if d.shape == 3 else None,
-                    _header_dict(h), _wavelengths_for(wavelengths, d.bands))
+                    _header_dict(h, payload), _wavelengths_for(wavelengths, d.bands))
     m.guarantee = guarantee(payload)
     return m
 
