@@ -398,7 +398,8 @@ void bw_rate_chunk(struct bw_rate *r, uint64_t bits, uint32_t v)
             r->est_seen = r->est_done;
             /* the chunks left at that ratio, and the d that makes them
              * aim - bits: 2^(-gamma d / 32) = (aim - bits) / need */
-            uint64_t need = r->b_sum * r->est_left / (r->e_sum ? r->e_sum : 1u);
+            uint64_t rho_q16 = (r->b_sum << 16) / (r->e_sum ? r->e_sum : 1u);
+            uint64_t need = rho_q16 * r->est_left >> 16; /* (bits below 2^35: in 64 bits) */
             if (bits >= r->aim) {
                 d = RATE_D_MAX;
             } else if (need > 0u) {
