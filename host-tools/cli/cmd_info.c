@@ -83,14 +83,11 @@ int bw_cmd_info(int argc, char **argv)
     uint32_t cl, chunk_k = 0, chunks = 0;
     int dmin = 0, dmax = 0;
     if (bwh_ext_find(p, &h, BW_EXT_CHUNK_STEPS, &cd, &cl) == 1) {
-        uint32_t at = 0;
-        for (unsigned sh = 0; at < cl && sh < 35u; sh += 7u) {
-            chunk_k |= (uint32_t)(cd[at] & 0x7Fu) << sh;
-            if (!(cd[at++] & 0x80u))
-                break;
-        }
-        for (chunks = 0; at < cl; at++, chunks++) {
-            int dv = (int)(int8_t)cd[at];
+        const uint8_t *q = cd, *end = cd + cl;
+        if (bwh_varint_get(&q, end, &chunk_k) != 0)
+            chunk_k = 0; /* (the header's read vouched for it) */
+        for (chunks = 0; chunk_k && q < end; q++, chunks++) {
+            int dv = (int)(int8_t)*q;
             dmin = chunks == 0u || dv < dmin ? dv : dmin;
             dmax = chunks == 0u || dv > dmax ? dv : dmax;
         }
