@@ -436,6 +436,34 @@ static inline unsigned log4(uint64_t v)
     return 4u * e + (top & 3u);
 }
 
+/* The quarter octave (log4) of each subband's step at a base step of 1,
+ * l4[s] for s < sb->count, of a vector of incoming x outgoing gain gio_q16. */
+static BW_NOINLINE void sub_log4(const spec_bands_t *sb, uq16_t gio_q16, unsigned *l4)
+{
+    for (unsigned s = 0; s < sb->count; s++) {
+        uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gio_q16, 65536u, sb->gain_q16[s]);
+        l4[s] = log4(st ? st : 1u);
+    }
+}
+
+#if BW_CFG_FAST_QUANT || BW_RATE
+/* The same for a block of one band of incoming gain gi_q16, per outgoing
+ * level: l4[k] for k = level + 1 (0: scaling), k = 0..L (as quant_one_band
+ * and level_at); returns L. */
+static BW_NOINLINE unsigned level_log4(const bw_dims_t *d, const spec_bands_t *sb, uq16_t gi_q16,
+                                  unsigned *l4)
+{
+    unsigned L = bw_has_out(d) ? d->level_out : 0u;
+    for (unsigned k = 0; k <= L; k++) {
+        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
+        uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
+                                sb->gain_q16[0]);
+        l4[k] = log4(st ? st : 1u);
+    }
+    return L;
+}
+#endif
+
 void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
 {
     const bw_dims_t *d = &pl->dims;
@@ -452,14 +480,9 @@ void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
         if (b == 1u) {
             /* one band: the block in memory order, each coefficient's level
              * from its position (as quant_one_band) */
-            unsigned L = bw_has_out(d) ? d->level_out : 0u, off[BW_MAX_LEVEL + 1u];
-            for (unsigned k = 0; k <= L; k++) {
-                uq16_t g_out_q16 =
-                    bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-                uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
-                                        sb.gain_q16[0]);
-                off[k] = BW_HIST_ZERO_BIN + 32u - log4(st ? st : 1u);
-            }
+            unsigned off[BW_MAX_LEVEL + 1u], L = level_log4(d, &sb, gi_q16, off);
+            for (unsigned k = 0; k <= L; k++)
+                off[k] = BW_HIST_ZERO_BIN + 32u - off[k];
             uint32_t mask = (1u << (2u * L)) - 1u;
             for (uint32_t t = 0; t < d->n_out; t++) {
                 uint32_t a = bw_abs32(blk[t]);
@@ -475,11 +498,7 @@ void bw_quant_hist(const bw_plan_t *pl, const int32_t *x, uint32_t *hist)
             uq16_t gio_q16;
             uint32_t pos = walk_vector(d, &w, gi_q16, &gio_q16);
             if (gio_q16 != lst_gio_q16) {
-                /* the quarter octave of each subband's step at step 1 */
-                for (unsigned s = 0; s < sb.count; s++) {
-                    uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gio_q16, 65536u, sb.gain_q16[s]);
-                    lst[s] = log4(st ? st : 1u);
-                }
+                sub_log4(&sb, gio_q16, lst);
                 lst_gio_q16 = gio_q16;
             }
             const int32_t *v = blk + (size_t)pos * b;
@@ -586,6 +605,7 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands, left = chunk_vec, *e = est;
     spec_bands_t sb;
+    unsigned l4[BW_SPEC_MAX_LEVELS + BW_MAX_LEVEL + 2u];
     int lst[BW_SPEC_MAX_LEVELS + BW_MAX_LEVEL + 2u];
     uq16_t lst_gio_q16 = 0;
     uint64_t acc = 0, nz = 0, n = 0;
@@ -598,15 +618,10 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
         uq16_t gi_q16, gio_q16;
         uint32_t nv = 1;
         if (blocks) {
-            unsigned L = bw_has_out(d) ? d->level_out : 0u;
             gi_q16 = (uq16_t)bw_in_gain_q16(pl, qw.i);
-            for (unsigned k = 0; k <= L; k++) {
-                uq16_t g_out_q16 =
-                    bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-                uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
-                                        sb.gain_q16[0]);
-                lst[k] = (int)log4(st ? st : 1u) - 32 + t4;
-            }
+            unsigned L = level_log4(d, &sb, gi_q16, l4);
+            for (unsigned k = 0; k <= L; k++)
+                lst[k] = (int)l4[k] - 32 + t4;
             est_one_band(d, x + (size_t)bw_in_pos(pl, qw.i) * d->n_out, lst, a0_q6, a1_q6, &acc,
                          &nz);
             n += d->n_out;
@@ -617,11 +632,10 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
             const int32_t *v =
                 qwalk_next(pl, &qw, (int32_t *)(uintptr_t)x, &gi_q16, &gio_q16, &start);
             if (gio_q16 != lst_gio_q16) {
-                /* 32 + t4 less the quarter octave of each subband's step at step 1 */
-                for (unsigned s = 0; s < sb.count; s++) {
-                    uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gio_q16, 65536u, sb.gain_q16[s]);
-                    lst[s] = (int)log4(st ? st : 1u) - 32 + t4;
-                }
+                /* each subband's quarter octave at step 1, less 32 + t4 */
+                sub_log4(&sb, gio_q16, l4);
+                for (unsigned s = 0; s < sb.count; s++)
+                    lst[s] = (int)l4[s] - 32 + t4;
                 lst_gio_q16 = gio_q16;
             }
             n += b;
