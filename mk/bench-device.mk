@@ -44,10 +44,13 @@ $(BD_ELF): $(BD_OBJ_O2) $(BD_IMG_OBJ) linker/mps2-an386.ld linker/cortex-m.ld
 	$(BD_CC) $(BD_CPU) --specs=rdimon.specs -nostartfiles -Llinker -T linker/mps2-an386.ld \
 	    -Wl,--gc-sections -Wl,-Map=$(BD_DIR)/bench_device.map $(BD_IMG_OBJ) $(BD_OBJ_O2) -o $@
 
-.PHONY: bench-device bench-device-image
+.PHONY: bench-device bench-device-image bench-device-deps
+bench-device-deps:
+	$(Q)tests/deps.sh device
+
 bench-device-image: $(BD_ELF) $(BD_OBJ_OS)
 
-bench-device: bench-device-image $(BW_CLI)
+bench-device: bench-device-deps bench-device-image $(BW_CLI)
 	$(MAKE) --no-print-directory TARGET=mcu build/mcu/libbwcore.a
 	$(MAKE) --no-print-directory TARGET=qemu build/qemu/libbwcore.a
 	BW=$(BW_CLI) $(BENCH_PYTHON) tests/bench/device/run_device_bench.py

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-2-Clause
 # Installs the Debian packages a make goal needs, when they are missing.
-#   tests/deps.sh [check|hw|run|bench|fuzz|reproduce]   (default: check)
+#   tests/deps.sh [check|hw|run|device|bench|fuzz|reproduce]   (default: check)
 set -eu
 goal=${1:-check}
 # the VM tests of the I2C acquirers (tests/hw/run.sh) and brdfwave acquire
@@ -14,6 +14,8 @@ check) pkgs="gcc make libc6-dev libcmocka-dev zlib1g-dev gcc-arm-none-eabi libne
              man-db dpkg-dev debhelper dh-python fakeroot lintian $hw" ;;
 hw)    pkgs="$hw" ;;
 run)   pkgs="gcc make libc6-dev zlib1g-dev bc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm" ;;
+device) pkgs="gcc make libc6-dev zlib1g-dev gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+             python3 python3-numpy" ;;
 bench) pkgs="gcc make libc6-dev zlib1g-dev libcharls-dev libopenjp2-tools zfp fpzip-utils libaec-tools xz-utils zstd
              python3 python3-numpy python3-matplotlib" ;;
 fuzz)  pkgs="clang libclang-rt-14-dev" ;;
