@@ -340,10 +340,11 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
  * (struct bw_rate), each chunk at a step of its own that the payload
  * records (BW_EXT_CHUNK_STEPS): the header's step (the estimate's for the
  * budget) changed by d/32 of an octave. The estimate gives each chunk's
- * bits at the header's step (bw_quant_est, the zeros at the entropy of the
- * chunk's own share of non-zero coefficients) and how the bits follow the
- * step (gamma, octaves of bits per octave of step, from the histogram's
- * estimate an octave apart). Before each chunk, the bits coded so far and
+ * bits at the header's step (bw_quant_est: the coefficients at or above
+ * the step alone; a term for the zeros' share, as the histogram's
+ * estimate has, follows the coder's bits from chunk to chunk less closely)
+ * and how the bits follow the step (gamma, octaves of bits per octave of
+ * step, from the histogram's estimate an octave apart). Before each chunk, the bits coded so far and
  * the ratio of coded to estimated bits of the chunks before (each estimate
  * at its chunk's step; the estimate's own ratio weighing a quarter of the
  * whole at first; the first chunk left out, as it also pays for the models'
@@ -352,11 +353,10 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
  * within RATE_D_SLEW of the chunk before: a step that varies costs
  * quality. Where the payload does not land, the encodes below take over. */
 
-#define RATE_A2_Q8 256u       /* the zeros: the whole entropy of the share        */
-#define RATE_D_MAX 64         /* chunk steps within 2 octaves of the header's     */
+#define RATE_D_MAX 96         /* chunk steps within 3 octaves of the header's     */
 #define RATE_D_SLEW 8         /* and within 1/4 octave of the chunk before        */
-#define RATE_GAMMA_MIN 26     /* gamma, Q8: 0.1 to 4 octaves of bits per octave   */
-#define RATE_GAMMA_MAX 1024
+#define RATE_GAMMA_MIN 26     /* gamma, Q8: 0.1 to 2.5 octaves of bits per octave */
+#define RATE_GAMMA_MAX 640    /* gamma RATE_D_MAX / 256 within 256: at_step       */
 #define RATE_PRIOR_SHIFT 2    /* the estimate's ratio weighs 1/4 of its bits      */
 #define RATE_CHUNK_BYTES 256u /* a chunk (a byte of the record) per 256 bytes of  */
 #define RATE_CHUNKS_MIN 8u    /* budget, 8 to BW_RATE_CHUNKS chunks               */
@@ -480,7 +480,7 @@ static bw_status_t rate_encode(bw_plan_t *pl, const bw_params_t *pa, int32_t *wo
     r->ahead = 0;
     r->chunk = 0;
     memset(r->est, 0, sizeof r->est);
-    bw_quant_est(pl, work, K, t4, EST_A0_Q6, EST_A1_Q6, RATE_A2_Q8, h64, r->est);
+    bw_quant_est(pl, work, K, t4, EST_A0_Q6, EST_A1_Q6, r->est);
     r->est_left = 0;
     for (unsigned g = 0; g < r->chunks; g++)
         r->est_left += r->est[g];

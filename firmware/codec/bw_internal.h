@@ -277,12 +277,10 @@ void bw_quant_ahead(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uint32_t nv
 /* An estimate of the bits of every chunk of chunk_vec vectors in coding
  * order at the base step 2^(t4 / 4), in est[] (whole bits): a coefficient
  * c of step st whose x = 4 log2(|c| / st) - t4 (quarter octaves, as
- * bw_quant_hist's bins) is 0 or more costs a0_q6 / 64 + x a1_q6 / 64 bits,
- * and every coefficient a2_q8 / 256 of the binary entropy (h64[i], 1/64
- * bit, of i / 64) of the chunk's share of those. */
+ * bw_quant_hist's bins) is 0 or more costs a0_q6 / 64 + x a1_q6 / 64 bits;
+ * the others nothing. */
 void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int t4,
-                  uint32_t a0_q6, uint32_t a1_q6, uint32_t a2_q8, const uint8_t *h64,
-                  uint32_t *est);
+                  uint32_t a0_q6, uint32_t a1_q6, uint32_t *est);
 
 /* The rate: the coder asks for the vectors it is about to code
  * (bw_strip_coder.c, rate_need), and the rate quantises them a chunk at a

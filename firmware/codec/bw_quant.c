@@ -582,7 +582,7 @@ void bw_quant_ahead(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uint32_t nv
  * outgoing level from the position, as quant_one_band): lst[k] for level
  * k + 1 (0: scaling) as bw_quant_est's. */
 static void est_one_band(const bw_dims_t *d, const int32_t *blk, const int *lst, uint32_t a0_q6,
-                         uint32_t a1_q6, uint64_t *acc, uint64_t *nz)
+                         uint32_t a1_q6, uint64_t *acc)
 {
     unsigned L = bw_has_out(d) ? d->level_out : 0u;
     uint32_t mask = (1u << (2u * L)) - 1u;
@@ -591,16 +591,13 @@ static void est_one_band(const bw_dims_t *d, const int32_t *blk, const int *lst,
         if (!a)
             continue;
         int xq = (int)log4(a) - lst[level_at(t, mask, L)];
-        if (xq >= 0) {
+        if (xq >= 0)
             *acc += a0_q6 + a1_q6 * (uint32_t)xq;
-            (*nz)++;
-        }
     }
 }
 
 void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int t4,
-                  uint32_t a0_q6, uint32_t a1_q6, uint32_t a2_q8, const uint8_t *h64,
-                  uint32_t *est)
+                  uint32_t a0_q6, uint32_t a1_q6, uint32_t *est)
 {
     const bw_dims_t *d = &pl->dims;
     uint32_t b = d->bands, left = chunk_vec, *e = est;
@@ -608,7 +605,7 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
     unsigned l4[BW_SPEC_MAX_LEVELS + BW_MAX_LEVEL + 2u];
     int lst[BW_SPEC_MAX_LEVELS + BW_MAX_LEVEL + 2u];
     uq16_t lst_gio_q16 = 0;
-    uint64_t acc = 0, nz = 0, n = 0;
+    uint64_t acc = 0;
     bw_qwalk_t qw;
     bw_spec_bands(pl, &sb);
     bw_qwalk_init(&qw);
@@ -622,9 +619,7 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
             unsigned L = level_log4(d, &sb, gi_q16, l4);
             for (unsigned k = 0; k <= L; k++)
                 lst[k] = (int)l4[k] - 32 + t4;
-            est_one_band(d, x + (size_t)bw_in_pos(pl, qw.i) * d->n_out, lst, a0_q6, a1_q6, &acc,
-                         &nz);
-            n += d->n_out;
+            est_one_band(d, x + (size_t)bw_in_pos(pl, qw.i) * d->n_out, lst, a0_q6, a1_q6, &acc);
             nv = d->n_out;
             qw.i++;
         } else {
@@ -638,24 +633,20 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
                     lst[s] = (int)l4[s] - 32 + t4;
                 lst_gio_q16 = gio_q16;
             }
-            n += b;
             for (unsigned s = 0; s < sb.count; s++) {
                 int l = lst[s];
                 for (uint32_t k = sb.lo[s]; k < sb.lo[s + 1u]; k++) {
                     uint32_t a = bw_abs32(v[k]);
                     int xq = a ? (int)log4(a) - l : -1;
-                    if (xq >= 0) {
+                    if (xq >= 0)
                         acc += a0_q6 + a1_q6 * (uint32_t)xq;
-                        nz++;
-                    }
                 }
             }
         }
         left -= nv;
         if (left == 0u || qw.i == d->n_in) {
-            acc += n * h64[nz * 64u / n] * a2_q8 >> 8;
             *e++ = (uint32_t)(acc >> 6);
-            acc = nz = n = 0;
+            acc = 0;
             left = chunk_vec;
         }
     }
