@@ -344,14 +344,15 @@ static uint32_t est_step(const uint32_t *hist, uint64_t ratio_q12, uint64_t bits
  * the step alone; a term for the zeros' share, as the histogram's
  * estimate has, follows the coder's bits from chunk to chunk less closely)
  * and how the bits follow the step (gamma, octaves of bits per octave of
- * step, from the histogram's estimate an octave apart). Before each chunk, the bits coded so far and
- * the ratio of coded to estimated bits of the chunks before (each estimate
- * at its chunk's step; the estimate's own ratio weighing a quarter of the
- * whole at first; the first chunk left out, as it also pays for the models'
- * learning) say what the chunks left will cost, and the chunk takes the d
- * that brings the whole to the bits aimed at (the middle of the landing),
- * within RATE_D_SLEW of the chunk before: a step that varies costs
- * quality. Where the payload does not land, the encodes below take over. */
+ * step, from the histogram's estimate an octave apart). Before each chunk,
+ * the bits coded so far and the ratio of coded to estimated bits of the
+ * chunks before (each estimate at its chunk's step; the estimate's own
+ * ratio weighing a quarter of the whole at first; the first chunk left
+ * out, as it also pays for the models' learning) say what the chunks left
+ * will cost, and the chunk takes the d that brings the whole to the bits
+ * aimed at (the middle of the landing), within RATE_D_SLEW of the chunk
+ * before: a step that varies costs quality. Where the payload does not
+ * land, the encodes below take over. */
 
 #define RATE_D_MAX 96         /* chunk steps within 3 octaves of the header's     */
 #define RATE_D_SLEW 8         /* and within 1/4 octave of the chunk before        */
