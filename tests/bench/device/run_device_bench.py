@@ -1022,7 +1022,9 @@ def main():
                         ("decode_lossless", "lossless decode"),
                         ("encode_ratio8", "bytes encode, ratio 8, basis fixed"),
                         ("encode_rice_lossless", "Rice lossless encode, 5/3"),
-                        ("encode_rice_maxerr4", "Rice max-error 4 encode, 5/3")):
+                        ("encode_rice_maxerr4", "Rice max-error 4 encode, 5/3"),
+                        ("encode_ms_lossless", "multi-symbol lossless encode, 5/3"),
+                        ("encode_ms_maxerr4", "multi-symbol max-error 4 encode, 5/3")):
         A("**%s** — share of samples, top functions:" % label)
         A("")
         A("| data set | samples | as linked | innermost source function |")
