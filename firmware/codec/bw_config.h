@@ -81,8 +81,11 @@
  *                             sample and runs the first one or two Haar levels
  *                             as it loads
  *   BW_CFG_FAST_QUANT         the quantiser's rounding offsets without a choice
- *                             per element
- *   BW_CFG_FAST_SPECTRAL      Haar and 5/3 levels in one pass over the samples
+ *                             per element, one band level by level, a vector's
+ *                             energy past the values below the step
+ *   BW_CFG_FAST_SPECTRAL      Haar, 5/3 and 9/7 levels in one pass over the
+ *                             samples, 9/7's products one SMMULR each on a
+ *                             core with the DSP extension
  *   BW_CFG_FAST_RICE          the Rice writer held in registers, whole strips
  *                             with a fixed count, the coarse-to-fine order as
  *                             loops

@@ -114,8 +114,15 @@ static uint64_t vec_energy(const spec_bands_t *sb, const uq56_8_t *st_q8, const 
         return 0;
     for (unsigned i = 0; i < sb->count; i++) {
         uq56_8_t st = st_q8[i] ? st_q8[i] : 1u;
+        /* |c| < zero (256 |c| < step): an index of 0, nothing to add */
+        uint32_t zero = !BW_CFG_FAST_QUANT        ? 0u
+                        : st >= ((uint64_t)1 << 32) ? 1u << 24
+                                                    : (uint32_t)((st + 255u) >> 8);
         for (uint32_t k = sb->lo[i]; k < sb->lo[i + 1u]; k++) {
-            uint64_t r = div_q8(bw_abs32(x[k]), st);
+            uint32_t a = bw_abs32(x[k]);
+            if (BW_CFG_FAST_QUANT && a < zero)
+                continue;
+            uint64_t r = div_q8(a, st);
             if (r > (1u << 24))
                 r = 1u << 24;
             e += r * r;
@@ -235,16 +242,27 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
         st32[k] = fits ? (uint32_t)st[k] : 0u;
         off32[k] = fits ? (uint32_t)off[k] : 0u;
     }
-    uint32_t mask = (1u << (2u * L)) - 1u;
-    for (uint32_t t = 0; t < d->n_out; t++) {
-        unsigned k = level_at(t, mask, L);
-        int32_t c = blk[t];
-        uint32_t a = bw_abs32(c), s32 = st32[k];
-        if (forward && s32 && a < (1u << 23)) {
-            uint32_t q = ((a << 8) + off32[k]) / s32;
-            blk[t] = c < 0 ? -(int32_t)q : (int32_t)q;
-        } else if (st[k] > BW_STEP_ONE_Q8) {
-            blk[t] = forward ? quant(c, st[k], off[k]) : dequant(c, st[k]);
+    /* level k >= 1 holds the positions m 4^(L - k) with m not a multiple
+     * of 4 (the lowest non-zero base-4 digit, level_at), level 0 the
+     * multiples of 4^L: each level's positions in strides, its step and
+     * offset in registers */
+    for (unsigned k = 0; k <= L; k++) {
+        if (st[k] <= BW_STEP_ONE_Q8)
+            continue;
+        uint32_t stride = (uint32_t)1 << (2u * (L - k)), s32 = st32[k], o32 = off32[k];
+        uint32_t first = k ? stride : 0u, skip = k ? stride * 4u : stride;
+        for (uint32_t base = first; base < d->n_out; base += skip) {
+            unsigned runs = k ? 3u : 1u; /* m = 4 i + 1, 4 i + 2, 4 i + 3 */
+            for (uint32_t t = base; runs--; t += stride) {
+                int32_t c = blk[t];
+                uint32_t a = bw_abs32(c);
+                if (forward && s32 && a < (1u << 23)) {
+                    uint32_t q = ((a << 8) + o32) / s32;
+                    blk[t] = c < 0 ? -(int32_t)q : (int32_t)q;
+                } else {
+                    blk[t] = forward ? quant(c, st[k], off[k]) : dequant(c, st[k]);
+                }
+            }
         }
     }
 }

@@ -64,6 +64,28 @@ unsigned bw_spec_subband(uint32_t n, unsigned levels, uint32_t k)
     return 0;
 }
 
+/* bw_mul_q16_round(c, v) for a constant c = hi 2^16 + lo (|lo| < 2^15):
+ * hi v + floor((lo v + 2^15) / 2^16), the same integer, whose second term
+ * is the rounded high word of (lo 2^16) v, one SMMULR where the core has
+ * it. */
+#define Q16_HI(c) (((c) + 32768) >> 16)
+#define Q16_LO(c) ((c) - Q16_HI(c) * 65536)
+static inline int32_t mul_q16_split(int32_t hi, int32_t lo16, int32_t v)
+{
+#if defined(__ARM_FEATURE_DSP) && defined(__GNUC__)
+    int32_t r;
+    __asm__("smmulr %0, %1, %2" : "=r"(r) : "r"(lo16), "r"(v));
+#else
+    int32_t r = (int32_t)bw_asr64((int64_t)lo16 * v + 0x80000000LL, 32);
+#endif
+    return bw_wadd((int32_t)((uint32_t)hi * (uint32_t)v), r);
+}
+
+_Static_assert(Q16_LO(Q16_A) >= -32768 && Q16_LO(Q16_A) < 32768 && Q16_LO(Q16_B) >= -32768 &&
+                   Q16_LO(Q16_B) < 32768 && Q16_LO(Q16_C) >= -32768 && Q16_LO(Q16_C) < 32768 &&
+                   Q16_LO(Q16_D) >= -32768 && Q16_LO(Q16_D) < 32768,
+               "9/7 constants split into hi 2^16 + lo with |lo| < 2^15");
+
 /* Lifting steps with whole-sample symmetric extension: a neighbour index
  * outside its subband is clamped into it. The interior runs without the
  * clamp; only the first and last positions need it.
@@ -81,7 +103,11 @@ static inline int32_t lift_f(int kind, q16_t c, int32_t sum)
         return bw_asr32(sum, 1);
     if (kind == F_QUARTER)
         return bw_asr32(bw_wadd(sum, 2), 2);
+#if BW_CFG_FAST_SPECTRAL
+    return mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, sum); /* c folded: constants */
+#else
     return bw_mul_q16_round(c, sum);
+#endif
 }
 
 /* The lifting, one copy per basis and direction with the steps' constants
@@ -274,6 +300,62 @@ static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
     x[0] = e;
 }
 
+/* 9/7 in one pass over the interleaved samples (the same values as the four
+ * lifting steps one after the other): at sample pair j the first predict
+ * and update give d1[j] and s1[j], the second pair d2[j - 1] and s2[j - 1],
+ * each from neighbours the pass has just formed; the neighbours outside
+ * the signal are clamped as lift() clamps them. The approximation goes in
+ * place at x[j - 1] (every sample it overwrites has been read), the details
+ * through tmp. n >= 4, so ns >= 2 and nd >= 2. */
+#define lift97(base, c, a, b)                                                                     \
+    bw_wadd((base), mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b))))
+
+static void fwd_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    int32_t s0 = x[0], s0n = x[2];
+    int32_t d1p = lift97(x[1], Q16_A, s0, s0n);  /* d1[0] */
+    int32_t s1p = lift97(s0, Q16_B, d1p, d1p);   /* s1[0] */
+    int32_t s0j = s0n, d2p = 0;
+    /* j with j < nd and j + 1 < ns: every neighbour inside */
+    uint32_t inner = nd < ns - 1u ? nd : ns - 1u, j = 1;
+    for (; j < inner; j++) {
+        int32_t s0next = x[2u * j + 2u];
+        int32_t d1j = lift97(x[2u * j + 1u], Q16_A, s0j, s0next);
+        int32_t s1j = lift97(s0j, Q16_B, d1p, d1j);
+        int32_t d2 = lift97(d1p, Q16_C, s1p, s1j); /* d2[j - 1] */
+        x[j - 1u] = lift97(s1p, Q16_D, j > 1u ? d2p : d2, d2);
+        tmp[j - 1u] = d2;
+        d2p = d2;
+        d1p = d1j;
+        s1p = s1j;
+        s0j = s0next;
+    }
+    for (; j < ns; j++) { /* the last one or two: ns == nd (clamp s), or j == nd */
+        int32_t s1j;
+        int32_t d1j = d1p;
+        if (j < nd) {
+            d1j = lift97(x[2u * j + 1u], Q16_A, s0j, s0j);
+            s1j = lift97(s0j, Q16_B, d1p, d1j);
+        } else {
+            s1j = lift97(s0j, Q16_B, d1p, d1p);
+        }
+        int32_t d2 = lift97(d1p, Q16_C, s1p, s1j);
+        x[j - 1u] = lift97(s1p, Q16_D, j > 1u ? d2p : d2, d2);
+        tmp[j - 1u] = d2;
+        d2p = d2;
+        d1p = d1j;
+        s1p = s1j;
+    }
+    if (ns == nd) { /* the last detail: s1[ns] -> s1[ns - 1] */
+        int32_t d2 = lift97(d1p, Q16_C, s1p, s1p);
+        x[ns - 1u] = lift97(s1p, Q16_D, d2p, d2);
+        tmp[ns - 1u] = d2;
+    } else { /* the last approximation: d2[nd] -> d2[nd - 1] */
+        x[ns - 1u] = lift97(s1p, Q16_D, d2p, d2p);
+    }
+    memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
+}
+
 void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
 {
     if (n < 2u)
@@ -286,6 +368,10 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     }
     if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         fwd_53(x, ns, nd, tmp);
+        return;
+    }
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_97 && n >= 4u) {
+        fwd_97(x, ns, nd, tmp);
         return;
     }
     for (uint32_t k = 0; k < ns; k++)
