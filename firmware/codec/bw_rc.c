@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 #include "bw_rc.h"
 
+#include "bw_config.h"
+
 void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap)
 {
     e->low = 0;
@@ -14,15 +16,20 @@ void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap)
 /* A carry out of low: one more in the bytes already written, through the
  * 0xFF bytes before it. The code value stays below 1, so the carry never
  * passes the first byte. */
-static void carry(bw_rc_enc_t *e)
+void bw_rc_enc_carry(bw_rc_enc_t *e)
 {
-    e->low &= 0xFFFFFFFFu;
     if (!e->out)
         return;
     for (size_t i = e->pos; i-- > 0;) {
         if (i < e->cap && ++e->out[i] != 0u)
             return;
     }
+}
+
+static void carry(bw_rc_enc_t *e)
+{
+    e->low &= 0xFFFFFFFFu;
+    bw_rc_enc_carry(e);
 }
 
 static inline void put(bw_rc_enc_t *e, uint8_t b)
@@ -35,6 +42,8 @@ static inline void put(bw_rc_enc_t *e, uint8_t b)
     }
     e->pos++;
 }
+
+void bw_rc_enc_put(bw_rc_enc_t *e, uint8_t b) { put(e, b); }
 
 /* Writes the top byte of low (a carry first goes into the bytes before). */
 void bw_rc_enc_shift_low(bw_rc_enc_t *e)
@@ -79,6 +88,12 @@ void bw_ms_model_init(bw_ms_model_t *m)
     bw_ms_model_refresh(m);
 }
 
+#if BW_CFG_FAST_STRIPS
+#define BW_UNROLL_MS _Pragma("GCC unroll 16")
+#else
+#define BW_UNROLL_MS
+#endif
+
 void bw_ms_model_refresh(bw_ms_model_t *m)
 {
     /* the total the counts reach (each symbol since the last refresh added
@@ -87,12 +102,20 @@ void bw_ms_model_refresh(bw_ms_model_t *m)
                                                  : m->seen <= BW_MS_WARM1 + BW_MS_WARM2 ? 4u
                                                                                       : BW_MS_REFRESH)
                                     : 0u;
-    unsigned sh = m->cum[BW_MS_SYMS] + since * BW_MS_INC > BW_MS_TOTAL ? 1u : 0u;
-    for (unsigned i = 0; i < BW_MS_SYMS; i++) {
-        unsigned f = (m->f[i] + sh) >> sh;
-        m->f[i] = (uint16_t)f;
-        m->cum[i] = (uint16_t)t;
-        t += f;
+    if (m->cum[BW_MS_SYMS] + since * BW_MS_INC > BW_MS_TOTAL) {
+        BW_UNROLL_MS
+        for (unsigned i = 0; i < BW_MS_SYMS; i++) {
+            unsigned f = (m->f[i] + 1u) >> 1;
+            m->f[i] = (uint16_t)f;
+            m->cum[i] = (uint16_t)t;
+            t += f;
+        }
+    } else { /* most refreshes: the counts as they are */
+        BW_UNROLL_MS
+        for (unsigned i = 0; i < BW_MS_SYMS; i++) {
+            m->cum[i] = (uint16_t)t;
+            t += m->f[i];
+        }
     }
     m->cum[BW_MS_SYMS] = (uint16_t)t;
     /* after every symbol while the model learns, then less often */

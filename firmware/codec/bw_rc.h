@@ -63,6 +63,11 @@ typedef struct {
 
 void bw_rc_enc_init(bw_rc_enc_t *e, uint8_t *out, size_t cap);
 void bw_rc_enc_shift_low(bw_rc_enc_t *e);
+/* For an encoder that holds low in 32 bits (and range) in its own
+ * variables: the carry out of such a low added to the bytes written, and
+ * its top byte written (bw_rc_enc_shift_low in two). */
+void bw_rc_enc_carry(bw_rc_enc_t *e);
+void bw_rc_enc_put(bw_rc_enc_t *e, uint8_t b);
 /* Flushes the coder; returns the number of bytes produced. */
 size_t bw_rc_enc_finish(bw_rc_enc_t *e);
 

@@ -264,16 +264,23 @@ static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, 
 
 #if BW_CFG_FAST_STRIPS
 /* The multi-symbol coder's encoder alone, with the coder's range and low in
- * locals for the whole strip: the same code as range_strip (which the decoder
- * runs), in fewer instructions. */
+ * locals: the same code as range_strip (which the decoder runs), in fewer
+ * instructions. low is held in 32 bits: a carry out of it goes into the
+ * bytes written at once (bw_rc_enc_carry), where the coder's 64-bit low
+ * would hold it until its next byte; the same bytes either way. */
 #define MS_RENORM()                                                                              \
     while (range < BW_RC_TOP) {                                                                  \
-        rc->low = low;                                                                           \
-        rc->range = range << 8;                                                                  \
-        bw_rc_enc_shift_low(rc);                                                                 \
-        low = rc->low;                                                                           \
-        range = rc->range;                                                                       \
+        bw_rc_enc_put(rc, (uint8_t)(low >> 24));                                                 \
+        low <<= 8;                                                                               \
+        range <<= 8;                                                                             \
     }
+#define MS_ADD(x)                                                                                \
+    do {                                                                                         \
+        uint32_t t_ = low + (x);                                                                 \
+        if (t_ < low)                                                                            \
+            bw_rc_enc_carry(rc);                                                                 \
+        low = t_;                                                                                \
+    } while (0)
 #define MS_BIT(prob, bit)                                                                        \
     do {                                                                                         \
         bw_prob_t *p_ = (prob);                                                                  \
@@ -281,57 +288,76 @@ static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, 
         if (!(bit)) {                                                                            \
             range = bound_;                                                                      \
         } else {                                                                                 \
-            low += bound_;                                                                       \
+            MS_ADD(bound_);                                                                      \
             range -= bound_;                                                                     \
         }                                                                                        \
         bw_ms_prob_update(p_, (bit));                                                            \
         MS_RENORM();                                                                             \
     } while (0)
 
-/* Where a strip's values and contexts come from: the strip put (se->v and
- * the contexts strip_put stored), or straight from a vector (vec of the
- * vector put_vector was given, its bands k0.. as v; the contexts found as
- * strip_put would find them, only for the values that need them). */
-typedef struct {
-    const int32_t *vec, *spec_cls, *par, *prev;
-    uint32_t k0;
-    unsigned cls_dir;
-} ms_src_t;
+/* low and range into locals (a carry the coder still holds, into the bytes
+ * first), and back */
+#define MS_LOAD()                                                                                \
+    if (rc->low >> 32)                                                                           \
+        bw_rc_enc_carry(rc);                                                                     \
+    uint32_t low = (uint32_t)rc->low, range = rc->range
+#define MS_STORE()                                                                               \
+    do {                                                                                         \
+        rc->low = low;                                                                           \
+        rc->range = range;                                                                       \
+    } while (0)
 
-static BW_ALWAYS_INLINE void ms_strip_core(bw_strip_enc_t *se, const ms_src_t *src,
-                                           unsigned cnt, const int32_t *v, uint32_t mask)
+/* The bit length e of a non-zero element as the model's symbol (e - 1, or
+ * the escape and 5 bits), then its e - 1 bits below the leading one. */
+#define MS_MAGNITUDE(em, e, a)                                                                   \
+    do {                                                                                         \
+        bw_ms_model_t *m_ = (em);                                                                \
+        unsigned n_ = (e) - 1u, sym_ = n_ < MS_ESC ? n_ : MS_ESC;                                \
+        uint32_t lo_ = m_->cum[sym_], r_ = range / m_->cum[BW_MS_SYMS];                          \
+        range = r_ * (uint32_t)(m_->cum[sym_ + 1u] - lo_);                                       \
+        MS_ADD(r_ * lo_);                                                                        \
+        bw_ms_update(m_, sym_);                                                                  \
+        MS_RENORM();                                                                             \
+        if (n_ >= MS_ESC) {                                                                      \
+            range >>= 5;                                                                         \
+            MS_ADD(range * (n_ - MS_ESC));                                                       \
+            MS_RENORM();                                                                         \
+            if (n_ > 16u) {                                                                      \
+                range >>= n_ - 16u;                                                              \
+                MS_ADD(range * (((a) >> 16) & ((1u << (n_ - 16u)) - 1u)));                      \
+                MS_RENORM();                                                                     \
+                n_ = 16u;                                                                        \
+            }                                                                                    \
+        }                                                                                        \
+        if (n_) {                                                                                \
+            range >>= n_;                                                                        \
+            MS_ADD(range * ((a) & ((1u << n_) - 1u)));                                           \
+            MS_RENORM();                                                                         \
+        }                                                                                        \
+    } while (0)
+
+/* A strip put (se->v and the contexts strip_put stored). */
+static void ms_strip_enc(bw_strip_enc_t *se)
 {
     bw_ms_models_t *m = &se->m.ms;
     bw_rc_enc_t *rc = &se->rc;
     bw_strip_state_t *s = &se->st;
-    const uint8_t *cls = se->cls;
-    bool direct = src != NULL;
-    uint64_t low = rc->low;
-    uint32_t range = rc->range;
-    unsigned c0 = direct ? bw_coef_cls(src->spec_cls[src->k0], src->cls_dir) : cls[0];
-    MS_BIT(&m->present[c0][s->prev_mask != 0], mask != 0);
+    unsigned cnt = se->cnt;
+    uint32_t mask = se->mask;
+    const int32_t *v = se->v;
+    MS_LOAD();
+    MS_BIT(&m->present[se->cls[0]][s->prev_mask != 0], mask != 0);
     if (!mask) {
         s->prev_mask = 0;
         memset(s->e_above, 0, sizeof s->e_above);
         s->e_left = 0;
-        rc->low = low;
-        rc->range = range;
+        MS_STORE();
         return;
     }
     unsigned prev_bit = 0, e_left = s->e_left;
     uint32_t above_mask = s->prev_mask;
     for (unsigned b = 0; b < cnt; b++) {
-        unsigned c, pe_b, bit = (mask >> b) & 1u;
-        const int32_t *par_b = NULL;
-        if (direct) {
-            int32_t sc = src->spec_cls[src->k0 + b];
-            c = bw_coef_cls(sc, src->cls_dir);
-            par_b = bw_parent_of(src->par, src->vec, sc, src->k0 + b);
-            pe_b = ctx_len(par_b);
-        } else {
-            c = cls[b];
-            pe_b = se->pe[b];
-        }
+        unsigned c = se->cls[b], pe_b = se->pe[b], bit = (mask >> b) & 1u;
         MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe_b)], bit);
         prev_bit = bit;
         if (!bit) {
@@ -341,51 +367,89 @@ static BW_ALWAYS_INLINE void ms_strip_core(bw_strip_enc_t *se, const ms_src_t *s
         }
         int32_t x = v[b];
         uint32_t a = bw_abs32(x);
-        const int32_t *prv_b = direct && src->prev ? src->prev + src->k0 + b : NULL;
-        unsigned e = bw_bitlen(a), pv_b = direct ? ctx_len(prv_b) : se->pv[b];
+        unsigned e = bw_bitlen(a), pv_b = se->pv[b];
         unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
-        bw_ms_model_t *em = &m->e[c][mag_ctx(e_left, above, pe_b)];
-        unsigned sym = e - 1u < MS_ESC ? e - 1u : MS_ESC;
-        uint32_t r = range / em->cum[BW_MS_SYMS];
-        low += (uint64_t)r * em->cum[sym];
-        range = r * (uint32_t)(em->cum[sym + 1u] - em->cum[sym]);
-        bw_ms_update(em, sym);
-        MS_RENORM();
-        if (sym == MS_ESC) {
-            range >>= 5;
-            low += (uint64_t)range * (e - 1u - MS_ESC);
-            MS_RENORM();
-        }
-        for (unsigned n = e - 1u; n;) {
-            unsigned k = n > 16u ? n - 16u : n;
-            n -= k;
-            range >>= k;
-            low += (uint64_t)range * ((a >> n) & ((1u << k) - 1u));
-            MS_RENORM();
-        }
-        unsigned sc =
-            (b ? sign_ctx(&v[b - 1]) : 0u) + (direct ? sign_ctx_up(par_b, prv_b) : se->ps[b]);
-        MS_BIT(&m->sign[sc], x < 0);
+        MS_MAGNITUDE(&m->e[c][mag_ctx(e_left, above, pe_b)], e, a);
+        MS_BIT(&m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], x < 0);
         s->e_above[b] = (uint8_t)e;
         e_left = e;
     }
     s->e_left = e_left;
     s->prev_mask = mask;
-    rc->low = low;
-    rc->range = range;
+    MS_STORE();
 }
 
-static void ms_strip_enc(bw_strip_enc_t *se) { ms_strip_core(se, NULL, se->cnt, se->v, se->mask); }
-
-/* A whole strip straight from bands k0..k0+BW_STRIP-1 of a vector (no
- * strip pending): the bytes of putting them one by one. */
-static void ms_strip_direct(bw_strip_enc_t *se, const ms_src_t *src)
+/* Bands k.. of vector vec (no strip pending), whole strips straight from
+ * it, with the contexts strip_put would store found as they are needed:
+ * has_par, the parent vector par (else each band's spectral parent, if
+ * any); has_prev, the vector above prev (else the previous strip). The
+ * callers pass constants, so each gets its own copy. Returns the first
+ * band left for strip_put. */
+static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int32_t *vec,
+                                                  uint32_t k, uint32_t end,
+                                                  const int32_t *spec_cls, unsigned cls_dir,
+                                                  const int32_t *par, const int32_t *prev,
+                                                  bool has_par, bool has_prev)
 {
-    const int32_t *v = src->vec + src->k0;
-    uint32_t mask = 0;
-    for (unsigned b = 0; b < BW_STRIP; b++)
-        mask |= (uint32_t)(v[b] != 0) << b;
-    ms_strip_core(se, src, BW_STRIP, v, mask);
+    bw_ms_models_t *m = &se->m.ms;
+    bw_rc_enc_t *rc = &se->rc;
+    bw_strip_state_t *s = &se->st;
+    MS_LOAD();
+    for (; k + BW_STRIP <= end; k += BW_STRIP) {
+        const int32_t *v = vec + k, *sct = spec_cls + k;
+        uint32_t mask = 0;
+        for (unsigned b = 0; b < BW_STRIP; b++)
+            mask |= (uint32_t)(v[b] != 0) << b;
+        MS_BIT(&m->present[bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0], mask != 0);
+        if (!mask) {
+            s->prev_mask = 0;
+            memset(s->e_above, 0, sizeof s->e_above);
+            s->e_left = 0;
+            continue;
+        }
+        unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
+        uint32_t above_mask = s->prev_mask;
+        uint8_t *ea = s->e_above;
+        for (unsigned b = 0; b < BW_STRIP; b++) {
+            int32_t sc = sct[b];
+            unsigned c = bw_coef_cls(sc, cls_dir), pe = NO_CTX, par_sign = 0;
+            int32_t sp = BW_SPEC_PAR(sc);
+            if (has_par || sp >= 0) {
+                int32_t pval = has_par ? par[k + b] : vec[sp];
+                pe = bw_bitlen(bw_abs32(pval));
+                par_sign = pval ? 1u + (pval < 0) : 0u;
+            }
+            unsigned bit = (mask >> b) & 1u;
+            MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe)], bit);
+            prev_bit = bit;
+            if (!bit) {
+                ea[b] = 0;
+                e_left = 0;
+                left_sign = 0;
+                continue;
+            }
+            int32_t x = v[b];
+            uint32_t a = bw_abs32(x);
+            unsigned e = bw_bitlen(a), above, up_sign = 0;
+            if (has_prev) {
+                int32_t y = prev[k + b];
+                above = bw_bitlen(bw_abs32(y));
+                up_sign = y ? 1u + (y < 0) : 0u;
+            } else {
+                above = ea[b];
+            }
+            MS_MAGNITUDE(&m->e[c][mag_ctx(e_left, above, pe)], e, a);
+            unsigned neg = x < 0;
+            MS_BIT(&m->sign[left_sign + 3u * (par_sign + 3u * up_sign)], neg);
+            left_sign = 1u + neg;
+            ea[b] = (uint8_t)e;
+            e_left = e;
+        }
+        s->e_left = e_left;
+        s->prev_mask = mask;
+    }
+    MS_STORE();
+    return k;
 }
 #endif
 
@@ -485,11 +549,14 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
         /* finish the pending strip, then whole strips straight from v */
         for (; se->cnt && k < b; k++)
             put_band(se, v, k, spec_cls, cls_dir, par, prev);
-        ms_src_t src = {v, spec_cls, par, prev, k, cls_dir};
-        for (; k + BW_STRIP <= b; k += BW_STRIP) {
-            src.k0 = k;
-            ms_strip_direct(se, &src);
-        }
+        if (par && prev)
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, true);
+        else if (par)
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, false);
+        else if (prev)
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, true);
+        else
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, false);
     }
 #endif
     for (; k < b; k++)
