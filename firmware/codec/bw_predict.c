@@ -45,11 +45,14 @@ static inline int32_t sat_d(int32_t d)
     return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d;
 }
 
-/* w + u within +-PRED_W_MAX, |w| <= 2^18, |u| <= 2^30 */
+/* w + u within +-PRED_W_MAX, |w| <= 2^18, |u| <= 2^30 (one unsigned
+ * comparison finds both ends) */
 static inline int32_t pred_add(int32_t w, int32_t u)
 {
     w += u;
-    return w > PRED_W_MAX ? PRED_W_MAX : w < -PRED_W_MAX ? -PRED_W_MAX : w;
+    if ((uint32_t)w + (uint32_t)PRED_W_MAX > 2u * (uint32_t)PRED_W_MAX)
+        w = w < 0 ? -PRED_W_MAX : PRED_W_MAX;
+    return w;
 }
 
 /* One weight's step: w + floor(e ds PRED_MU / 2^sh), kept within
@@ -146,6 +149,89 @@ static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const i
     }
 }
 
+#if BW_CFG_FAST_PREDICT
+/* The encoder's state between samples: the weights, the last two new
+ * differences d_0 and d_1, and r[k-1]. */
+typedef struct {
+    int32_t w0, w1, w2, w3, d0, d1, a1;
+    uint32_t m0, m1; /* |d_0|, |d_1| */
+} pred_enc_t;
+
+/* pred_spectrum's step for one sample of the encoder, the new differences
+ * given (d0, d1): the same values. The encoder's decoded samples are within
+ * E < 2^24 of samples within +-2^24, so r[k-1] + round(acc / 2^16)
+ * (|acc| <= 2^46) and the error e' = q D (|e'| <= |x - p| + D / 2) fit 32
+ * bits. lossless: D = 1, q = x - p. learn: k >= 1. */
+static BW_ALWAYS_INLINE void pred_enc_step(pred_enc_t *st, int32_t *vk, int32_t *ck, int32_t d0,
+                                           int32_t d1, uint32_t D, int64_t dd, bool lossless,
+                                           bool learn)
+{
+    int32_t d3 = st->d0, d2 = st->d1;
+    uint32_t m3 = st->m0, m2 = st->m1; /* found for the sample before */
+    st->d0 = d0;
+    st->d1 = d1;
+    st->m0 = bw_abs32(d0);
+    st->m1 = bw_abs32(d1);
+    int64_t acc = (int64_t)st->w0 * d0 + (int64_t)st->w1 * d1 + (int64_t)st->w2 * d2 +
+                  (int64_t)st->w3 * d3;
+    int32_t p = st->a1 + (int32_t)((acc + 32768) >> 16);
+    p = p > BW_SAMPLE_MAX ? BW_SAMPLE_MAX : p < -BW_SAMPLE_MAX ? -BW_SAMPLE_MAX : p;
+    int32_t e = *vk - p, err;
+    if (lossless) {
+        err = e;
+    } else {
+        uint32_t m = (bw_abs32(e) + D / 2u) / D;
+        int32_t q = e < 0 ? -(int32_t)m : (int32_t)m;
+        err = q * (int32_t)D;
+        e = q;
+    }
+    *vk = e;
+    st->a1 = *ck = p + err;
+    if (!learn)
+        return;
+    uint32_t ae = bw_abs32(err);
+    uint32_t m = st->m0 | st->m1 | m2 | m3;
+    if (BW_LIKELY(dd < PRED_FAST_DD && ((m >> 14) | (ae >> 17)) == 0u &&
+                  (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
+        uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
+                       (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
+        unsigned sh = bw_bitlen(nrm) - 1u;
+        int32_t em = err * PRED_MU;
+        st->w0 = pred_add(st->w0, (em * d0) >> sh);
+        st->w1 = pred_add(st->w1, (em * d1) >> sh);
+        st->w2 = pred_add(st->w2, (em * d2) >> sh);
+        st->w3 = pred_add(st->w3, (em * d3) >> sh);
+    } else {
+        pred_w_t pw = {{st->w0, st->w1, st->w2, st->w3}};
+        pred_learn(&pw, err, dd, d0, d1, d2, d3);
+        st->w0 = pw.w[0];
+        st->w1 = pw.w[1];
+        st->w2 = pw.w[2];
+        st->w3 = pw.w[3];
+    }
+}
+
+/* pred_spectrum forward, the first two samples and the last apart (their
+ * differences need samples outside the spectrum), one copy for each of
+ * has_prev (prev not NULL) and lossless (D = 1). */
+static BW_ALWAYS_INLINE void pred_encode(int32_t *v, int32_t *cur, const int32_t *prev,
+                                         uint32_t bands, uint32_t D, int64_t dd, bool has_prev,
+                                         bool lossless)
+{
+    pred_enc_t st = {0, 0, 0, 0, 0, 0, has_prev ? prev[0] : 0, 0, 0};
+    for (uint32_t k = 0; k < bands && k < 2u; k++)
+        pred_enc_step(&st, v + k, cur + k, k >= 2u ? bw_wsub(st.a1, cur[k - 2]) : 0,
+                      has_prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0, D, dd,
+                      lossless, k != 0u);
+    uint32_t k = 2;
+    for (; k + 1u < bands; k++)
+        pred_enc_step(&st, v + k, cur + k, bw_wsub(st.a1, cur[k - 2]),
+                      has_prev ? bw_wsub(prev[k + 1], prev[k]) : 0, D, dd, lossless, true);
+    if (k < bands) /* the last sample: no k + 1 */
+        pred_enc_step(&st, v + k, cur + k, bw_wsub(st.a1, cur[k - 2]), 0, D, dd, lossless, true);
+}
+#endif
+
 /* Encoder (forward) on range-checked samples x -> coded errors, in place,
  * the decoded spectra in two rows of `bands` (rows); decoder: coded errors
  * -> decoded samples, in place. The decoded samples of a valid payload lie
@@ -158,12 +244,18 @@ BW_NOINLINE void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool
     const int32_t *prev = NULL;
     for (size_t s = 0; s < pl->dims.n_in; s++) {
         int32_t *v = x + s * bands, *cur = fwd ? rows + (s & 1u) * bands : v;
-        if (!BW_CFG_FAST_PREDICT)
-            pred_spectrum(v, cur, prev, bands, D, dd, fwd);
+#if BW_CFG_FAST_PREDICT
+        if (fwd && prev && D == 1u)
+            pred_encode(v, cur, prev, bands, D, dd, true, true);
+        else if (fwd && prev)
+            pred_encode(v, cur, prev, bands, D, dd, true, false);
         else if (fwd)
-            pred_spectrum(v, cur, prev, bands, D, dd, true);
+            pred_encode(v, cur, prev, bands, D, dd, false, D == 1u);
         else
             pred_spectrum(v, cur, prev, bands, D, dd, false);
+#else
+        pred_spectrum(v, cur, prev, bands, D, dd, fwd);
+#endif
         /* a segment's first spectrum has none before it */
         prev = BW_CFG_SEGMENTS && pl->seg_vec && (s + 1u) % pl->seg_vec == 0u ? NULL : cur;
     }
