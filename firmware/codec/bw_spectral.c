@@ -356,6 +356,57 @@ static void fwd_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
     memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
 }
 
+/* 9/7 inverse in two passes, each two lifting steps pipelined: an update
+ * undone on S[k] (from D[k-1], D[k]), then a predict undone on D[k-1] (from
+ * S[k-1], S[k]) as soon as S[k] is known; neighbours clamped as lift()
+ * clamps them. The second pass writes the samples interleaved into out. */
+#define UNLIFT97(c, a, b) mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b)))
+static BW_ALWAYS_INLINE void inv97_pass(int32_t *S, uint32_t ns, int32_t *D, uint32_t nd,
+                                        q16_t cu, q16_t cp, int32_t *out)
+{
+    int32_t sp = bw_wsub(S[0], UNLIFT97(cu, D[0], D[0]));
+    S[0] = sp;
+    if (out)
+        out[0] = sp;
+    uint32_t inner = nd < ns ? nd : ns, k = 1;
+    for (; k < inner; k++) { /* D[k - 1] and D[k] both there */
+        int32_t sk = bw_wsub(S[k], UNLIFT97(cu, D[k - 1u], D[k]));
+        int32_t dk = bw_wsub(D[k - 1u], UNLIFT97(cp, sp, sk));
+        S[k] = sk;
+        D[k - 1u] = dk;
+        if (out) {
+            out[2u * k] = sk;
+            out[2u * k - 1u] = dk;
+        }
+        sp = sk;
+    }
+    for (; k < ns; k++) { /* n odd: the last S[k], D[nd] -> D[nd - 1] */
+        int32_t sk = bw_wsub(S[k], UNLIFT97(cu, D[k - 1u], D[nd - 1u]));
+        int32_t dk = bw_wsub(D[k - 1u], UNLIFT97(cp, sp, sk));
+        S[k] = sk;
+        D[k - 1u] = dk;
+        if (out) {
+            out[2u * k] = sk;
+            out[2u * k - 1u] = dk;
+        }
+        sp = sk;
+    }
+    if (ns == nd) { /* n even: the last D, S[ns] -> S[ns - 1] */
+        int32_t dk = bw_wsub(D[ns - 1u], UNLIFT97(cp, sp, sp));
+        D[ns - 1u] = dk;
+        if (out)
+            out[2u * ns - 1u] = dk;
+    }
+}
+
+/* n >= 4: the coefficients through tmp, the samples back into x */
+static void inv_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+{
+    memcpy(tmp, x, (size_t)(ns + nd) * sizeof *x);
+    inv97_pass(tmp, ns, tmp + ns, nd, Q16_D, Q16_C, NULL);
+    inv97_pass(tmp, ns, tmp + ns, nd, Q16_B, Q16_A, x);
+}
+
 void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
 {
     if (n < 2u)
@@ -393,6 +444,10 @@ void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
     }
     if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
         inv_53(x, ns, nd, tmp);
+        return;
+    }
+    if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_97 && n >= 4u) {
+        inv_97(x, ns, nd, tmp);
         return;
     }
     lift(x, ns, x + ns, nd, basis, true);
