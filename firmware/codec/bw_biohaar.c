@@ -97,6 +97,42 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, le
 
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen) { biohaar_run(x, level, vlen, true); }
 
+#if BW_CFG_UNROLL
+/* biohaar_run on the trees of `blocks` hemispheres `stride` apart, one
+ * value each (vlen 1): each parent's weights found once for all of them,
+ * the step on each tree in turn (the same values as one tree at a time). */
+static BW_ALWAYS_INLINE void biohaar_run_blocks(int32_t *x, unsigned level, size_t blocks,
+                                                size_t stride, bool inverse)
+{
+    for (unsigned i = 0; i < level; i++) {
+        unsigned j = inverse ? i : level - 1u - i;
+        size_t h = (size_t)1 << (2u * (level - j - 1u));
+        uint32_t per_base = 1u << (2u * j);
+        for (uint32_t p = 0; p < 4u * per_base; p++) {
+            uint16_t w[3];
+            bw_geo_weights(j, p & (per_base - 1u), w);
+            int32_t *c0 = x + (size_t)p * 4u * h;
+            for (size_t b = 0; b < blocks; b++, c0 += stride) {
+                if (inverse)
+                    unlift4(c0, c0 + h, c0 + 2u * h, c0 + 3u * h, w, 1u);
+                else
+                    bw_biohaar_lift4(c0, c0 + h, c0 + 2u * h, c0 + 3u * h, w, 1u);
+            }
+        }
+    }
+}
+
+void bw_biohaar_fwd_blocks(int32_t *x, unsigned level, size_t blocks, size_t stride)
+{
+    biohaar_run_blocks(x, level, blocks, stride, false);
+}
+
+void bw_biohaar_inv_blocks(int32_t *x, unsigned level, size_t blocks, size_t stride)
+{
+    biohaar_run_blocks(x, level, blocks, stride, true);
+}
+#endif
+
 void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, uint32_t p)
 {
     size_t h = (size_t)1 << (2u * (level - j - 1u));

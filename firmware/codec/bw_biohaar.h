@@ -25,6 +25,10 @@ void bw_biohaar_fwd(int32_t *x, unsigned level, size_t vlen);
 void bw_biohaar_lift4(int32_t *c0, int32_t *c1, int32_t *c2, int32_t *c3, const uint16_t *w,
                       size_t vlen);
 void bw_biohaar_inv(int32_t *x, unsigned level, size_t vlen);
+/* bw_biohaar_fwd and _inv with vlen 1 on `blocks` hemispheres, the first at
+ * x, each `stride` values after the one before (BW_CFG_UNROLL builds). */
+void bw_biohaar_fwd_blocks(int32_t *x, unsigned level, size_t blocks, size_t stride);
+void bw_biohaar_inv_blocks(int32_t *x, unsigned level, size_t blocks, size_t stride);
 /* The inverse step of one parent p at level j (0 the coarsest) of a tree of
  * depth `level`: its four children from its scaling value and details. */
 void bw_biohaar_inv_node(int32_t *x, unsigned level, size_t vlen, unsigned j, uint32_t p);

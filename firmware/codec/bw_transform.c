@@ -23,6 +23,11 @@ void bw_transform_fwd(const bw_plan_t *pl, int32_t *x, unsigned done)
     if (levels)
         for (size_t v = 0; v < vectors; v++)
             bw_spec_fwd(x + v * d->bands, n, pl->basis, levels, pl->tmp);
+#if BW_CFG_UNROLL
+    if (bw_has_out(d) && d->bands == 1u) /* the incoming blocks together */
+        bw_biohaar_fwd_blocks(x, d->level_out, d->n_in, d->n_out);
+    else
+#endif
     if (bw_has_out(d))
         for (uint32_t i = 0; i < d->n_in; i++)
             bw_biohaar_fwd(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
@@ -36,6 +41,11 @@ void bw_transform_inv(const bw_plan_t *pl, int32_t *x)
     size_t vectors = (size_t)d->n_in * d->n_out;
     if (bw_has_in(d))
         bw_biohaar_inv(x, d->level_in, (size_t)d->n_out * d->bands);
+#if BW_CFG_UNROLL
+    if (bw_has_out(d) && d->bands == 1u)
+        bw_biohaar_inv_blocks(x, d->level_out, d->n_in, d->n_out);
+    else
+#endif
     if (bw_has_out(d))
         for (uint32_t i = 0; i < d->n_in; i++)
             bw_biohaar_inv(x + (size_t)i * d->n_out * d->bands, d->level_out, d->bands);
