@@ -219,6 +219,12 @@ static inline unsigned level_at(uint32_t t, uint32_t mask, unsigned L)
 }
 
 #if BW_CFG_FAST_QUANT
+/* quant, out of the loop that calls it for the rare large value */
+static BW_NOINLINE int32_t quant_far(int32_t c, uq56_8_t st_q8, uq56_8_t off_q8)
+{
+    return quant(c, st_q8, off_q8);
+}
+
 /* One band: every vector is one coefficient whose step depends only on its
  * level, so the block is taken in memory order, the level of position t
  * that of its lowest non-zero base-4 digit (bw_walk_next); without a
@@ -251,19 +257,25 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
             continue;
         uint32_t stride = (uint32_t)1 << (2u * (L - k)), s32 = st32[k], o32 = off32[k];
         uint32_t first = k ? stride : 0u, skip = k ? stride * 4u : stride;
-        for (uint32_t base = first; base < d->n_out; base += skip) {
-            unsigned runs = k ? 3u : 1u; /* m = 4 i + 1, 4 i + 2, 4 i + 3 */
-            for (uint32_t t = base; runs--; t += stride) {
-                int32_t c = blk[t];
-                uint32_t a = bw_abs32(c);
-                if (forward && s32 && a < (1u << 23)) {
-                    uint32_t q = ((a << 8) + o32) / s32;
-                    blk[t] = c < 0 ? -(int32_t)q : (int32_t)q;
-                } else {
-                    blk[t] = forward ? quant(c, st[k], off[k]) : dequant(c, st[k]);
+        unsigned runs = k ? 3u : 1u; /* m = 4 i + 1, 4 i + 2, 4 i + 3 */
+        if (forward && s32) { /* one 32-bit division a value below 2^23 */
+            for (uint32_t base = first; base < d->n_out; base += skip) {
+                int32_t *c = blk + base;
+                for (unsigned r = 0; r < runs; r++, c += stride) {
+                    uint32_t a = bw_abs32(*c);
+                    if (BW_LIKELY(a < (1u << 23))) {
+                        uint32_t q = ((a << 8) + o32) / s32;
+                        *c = *c < 0 ? -(int32_t)q : (int32_t)q;
+                    } else {
+                        *c = quant_far(*c, st[k], off[k]);
+                    }
                 }
             }
+            continue;
         }
+        for (uint32_t base = first; base < d->n_out; base += skip)
+            for (uint32_t t = base, r = 0; r < runs; r++, t += stride)
+                blk[t] = forward ? quant(blk[t], st[k], off[k]) : dequant(blk[t], st[k]);
     }
 }
 #endif

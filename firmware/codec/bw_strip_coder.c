@@ -666,6 +666,23 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
                         int32_t q = *c;
                         uint8_t pe = (uint8_t)bw_bitlen(bw_abs32(q));
                         uint8_t ps = (uint8_t)(q ? 3u + 3u * (q < 0) : 0u);
+                        if (BW_LIKELY(n + 3u < BW_STRIP)) { /* the three, no strip full */
+                            int32_t v1 = c[step], v2 = c[2u * step], v3 = c[3u * step];
+                            mask |= ((uint32_t)(v1 != 0) | (uint32_t)(v2 != 0) << 1 |
+                                     (uint32_t)(v3 != 0) << 2)
+                                    << n;
+                            sv[n] = v1;
+                            sv[n + 1u] = v2;
+                            sv[n + 2u] = v3;
+                            for (unsigned m = 0; m < 3u; m++) {
+                                scls[n + m] = cls;
+                                spe[n + m] = pe;
+                                sps[n + m] = ps;
+                                spv[n + m] = (uint8_t)NO_CTX;
+                            }
+                            n += 3u;
+                            continue;
+                        }
                         for (unsigned m = 1; m <= 3u; m++) {
                             int32_t val = c[m * step];
                             mask |= (uint32_t)(val != 0) << n;

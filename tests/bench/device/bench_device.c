@@ -665,7 +665,7 @@ static void phases(set_t *s)
 #define SCB_VTOR (*(volatile uint32_t *)0xE000ED08u)
 #define TIMER0_IRQ 8u
 #define PROF_TICKS 23u
-#define PROF_BINS 16384u /* 64 KiB of code in 4-byte bins */
+#define PROF_BINS 32768u /* 128 KiB of code in 4-byte bins (the image's text is below) */
 
 static uint32_t prof_hist[PROF_BINS];
 static uint32_t prof_outside, prof_total;

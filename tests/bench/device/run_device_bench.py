@@ -1068,7 +1068,7 @@ def main():
       % (rel(ELF), img[0], img[1], img[2]))
     A("")
     A("The image's bss is the %d-byte arena from which each run carves its buffers, plus "
-      "a 64 KiB profile histogram. Buffers per data set as the image carved them (bytes; the "
+      "a 128 KiB profile histogram. Buffers per data set as the image carved them (bytes; the "
       "codec itself needs `work` and, for decoding, the output; `verify` only for the "
       "self-check; the payload area is what was left, capped at `bw_payload_bound`):"
       % (parsed[sets[0].key]["mem"] or {}).get("arena", 0))
