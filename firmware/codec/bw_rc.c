@@ -32,25 +32,13 @@ static void carry(bw_rc_enc_t *e)
     bw_rc_enc_carry(e);
 }
 
-static inline void put(bw_rc_enc_t *e, uint8_t b)
-{
-    if (e->out) {
-        if (e->pos < e->cap)
-            e->out[e->pos] = b;
-        else
-            e->overflow = true;
-    }
-    e->pos++;
-}
-
-void bw_rc_enc_put(bw_rc_enc_t *e, uint8_t b) { put(e, b); }
 
 /* Writes the top byte of low (a carry first goes into the bytes before). */
 void bw_rc_enc_shift_low(bw_rc_enc_t *e)
 {
     if (e->low >> 32)
         carry(e);
-    put(e, (uint8_t)(e->low >> 24));
+    bw_rc_enc_put(e, (uint8_t)(e->low >> 24));
     e->low = (e->low & 0x00FFFFFFu) << 8;
 }
 
@@ -63,7 +51,7 @@ size_t bw_rc_enc_finish(bw_rc_enc_t *e)
     if (e->low >> 32)
         carry(e);
     if ((uint8_t)(e->low >> 24) != 0u)
-        put(e, (uint8_t)(e->low >> 24));
+        bw_rc_enc_put(e, (uint8_t)(e->low >> 24));
     return e->pos;
 }
 

@@ -67,7 +67,17 @@ void bw_rc_enc_shift_low(bw_rc_enc_t *e);
  * variables: the carry out of such a low added to the bytes written, and
  * its top byte written (bw_rc_enc_shift_low in two). */
 void bw_rc_enc_carry(bw_rc_enc_t *e);
-void bw_rc_enc_put(bw_rc_enc_t *e, uint8_t b);
+static inline void bw_rc_enc_put(bw_rc_enc_t *e, uint8_t b)
+{
+    if (e->out) {
+        if (e->pos < e->cap)
+            e->out[e->pos] = b;
+        else
+            e->overflow = true;
+    }
+    e->pos++;
+}
+
 /* Flushes the coder; returns the number of bytes produced. */
 size_t bw_rc_enc_finish(bw_rc_enc_t *e);
 
