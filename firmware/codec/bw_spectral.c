@@ -310,42 +310,41 @@ static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 #define lift97(base, c, a, b)                                                                     \
     bw_wadd((base), mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b))))
 
+/* The pass's state after pair j - 1: s0[j], d1[j - 1], s1[j - 1], d2[j - 2]. */
+typedef struct {
+    int32_t s0j, d1p, s1p, d2p;
+} fwd97_t;
+
+/* Pair j (j >= 1): d1[j] (has_d: j < nd; else d1[nd - 1] stands in), s1[j],
+ * then d2[j - 1] and s2[j - 1] (first: j = 1, whose d2[-1] is d2[0]);
+ * s0next is s0[j + 1], clamped. */
+static BW_ALWAYS_INLINE void fwd97_pair(int32_t *x, int32_t *tmp, uint32_t j, fwd97_t *f,
+                                        int32_t s0next, bool has_d, bool first)
+{
+    int32_t d1j = has_d ? lift97(x[2u * j + 1u], Q16_A, f->s0j, s0next) : f->d1p;
+    int32_t s1j = lift97(f->s0j, Q16_B, f->d1p, d1j);
+    int32_t d2 = lift97(f->d1p, Q16_C, f->s1p, s1j);
+    x[j - 1u] = lift97(f->s1p, Q16_D, first ? d2 : f->d2p, d2);
+    tmp[j - 1u] = d2;
+    f->d2p = d2;
+    f->d1p = d1j;
+    f->s1p = s1j;
+    f->s0j = s0next;
+}
+
 static void fwd_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 {
-    int32_t s0 = x[0], s0n = x[2];
-    int32_t d1p = lift97(x[1], Q16_A, s0, s0n);  /* d1[0] */
-    int32_t s1p = lift97(s0, Q16_B, d1p, d1p);   /* s1[0] */
-    int32_t s0j = s0n, d2p = 0;
+    int32_t s0 = x[0], d1 = lift97(x[1], Q16_A, s0, x[2]); /* d1[0] */
+    fwd97_t f = {x[2], d1, lift97(s0, Q16_B, d1, d1), 0};
     /* j with j < nd and j + 1 < ns: every neighbour inside */
     uint32_t inner = nd < ns - 1u ? nd : ns - 1u, j = 1;
-    for (; j < inner; j++) {
-        int32_t s0next = x[2u * j + 2u];
-        int32_t d1j = lift97(x[2u * j + 1u], Q16_A, s0j, s0next);
-        int32_t s1j = lift97(s0j, Q16_B, d1p, d1j);
-        int32_t d2 = lift97(d1p, Q16_C, s1p, s1j); /* d2[j - 1] */
-        x[j - 1u] = lift97(s1p, Q16_D, j > 1u ? d2p : d2, d2);
-        tmp[j - 1u] = d2;
-        d2p = d2;
-        d1p = d1j;
-        s1p = s1j;
-        s0j = s0next;
-    }
-    for (; j < ns; j++) { /* the last one or two: ns == nd (clamp s), or j == nd */
-        int32_t s1j;
-        int32_t d1j = d1p;
-        if (j < nd) {
-            d1j = lift97(x[2u * j + 1u], Q16_A, s0j, s0j);
-            s1j = lift97(s0j, Q16_B, d1p, d1j);
-        } else {
-            s1j = lift97(s0j, Q16_B, d1p, d1p);
-        }
-        int32_t d2 = lift97(d1p, Q16_C, s1p, s1j);
-        x[j - 1u] = lift97(s1p, Q16_D, j > 1u ? d2p : d2, d2);
-        tmp[j - 1u] = d2;
-        d2p = d2;
-        d1p = d1j;
-        s1p = s1j;
-    }
+    if (j < inner)
+        fwd97_pair(x, tmp, j++, &f, x[4], true, true);
+    for (; j < inner; j++)
+        fwd97_pair(x, tmp, j, &f, x[2u * j + 2u], true, false);
+    for (; j < ns; j++) /* the last one or two: ns == nd (s0 clamped), or j == nd */
+        fwd97_pair(x, tmp, j, &f, f.s0j, j < nd, j == 1u);
+    int32_t s1p = f.s1p, d1p = f.d1p, d2p = f.d2p;
     if (ns == nd) { /* the last detail: s1[ns] -> s1[ns - 1] */
         int32_t d2 = lift97(d1p, Q16_C, s1p, s1p);
         x[ns - 1u] = lift97(s1p, Q16_D, d2p, d2);
