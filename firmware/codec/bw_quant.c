@@ -218,6 +218,21 @@ static inline unsigned level_at(uint32_t t, uint32_t mask, unsigned L)
     return low ? L - (bw_bitlen(low & (0u - low)) - 1u) / 2u : 0u;
 }
 
+/* The in-place position in its block of the coefficient of coding-order
+ * index o of a one-band hemisphere of level L (bw_biohaar_pos), and its
+ * level k (0: scaling, j + 1 for a detail of level j). */
+static inline uint32_t band_pos(uint32_t o, unsigned L, unsigned *k)
+{
+    if (o < 4u) {
+        *k = 0;
+        return o << (2u * L);
+    }
+    unsigned j = (bw_bitlen(o) - 1u) / 2u - 1u; /* 4^(j+1) <= o < 4^(j+2) */
+    uint32_t r = o - (1u << (2u * (j + 1u))), p = r / 3u;
+    *k = j + 1u;
+    return (4u * p + (r - 3u * p) + 1u) << (2u * (L - j - 1u));
+}
+
 #if BW_CFG_FAST_QUANT
 /* quant, out of the loop that calls it for the rare large value */
 static BW_NOINLINE int32_t quant_far(int32_t c, uq56_8_t st_q8, uq56_8_t off_q8)
@@ -276,6 +291,37 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
         for (uint32_t base = first; base < d->n_out; base += skip)
             for (uint32_t t = base, r = 0; r < runs; r++, t += stride)
                 blk[t] = forward ? quant(blk[t], st[k], off[k]) : dequant(blk[t], st[k]);
+    }
+}
+#endif
+
+#if BW_CFG_FAST_QUANT && BW_RATE
+/* One band, forward, the coefficients of coding-order indices o .. o + n - 1
+ * of one block (what vec_quant gives each at its vector's step, without a
+ * rounding offset), in coding order, each one's level from its index. */
+static void quant_band_range(const bw_plan_t *pl, const spec_bands_t *sb, int32_t *blk,
+                             uq16_t gi_q16, uint32_t o, uint32_t n)
+{
+    const bw_dims_t *d = &pl->dims;
+    unsigned L = bw_has_out(d) ? d->level_out : 0u;
+    uq56_8_t st[BW_MAX_LEVEL + 1u];
+    uint32_t st32[BW_MAX_LEVEL + 1u];
+    for (unsigned k = 0; k <= L; k++) {
+        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
+        st[k] = elem_step(pl->step_q8, gain_io(gi_q16, g_out_q16), 65536u, sb->gain_q16[0]);
+        st32[k] = st[k] > BW_STEP_ONE_Q8 && st[k] <= UINT32_MAX ? (uint32_t)st[k] : 0u;
+    }
+    for (uint32_t end = o + n; o < end; o++) {
+        unsigned k = 0;
+        uint32_t t = bw_has_out(d) ? band_pos(o, L, &k) : o;
+        int32_t c = blk[t];
+        uint32_t a = bw_abs32(c);
+        if (st32[k] && a < (1u << 23)) {
+            uint32_t q = (a << 8) / st32[k];
+            blk[t] = c < 0 ? -(int32_t)q : (int32_t)q;
+        } else if (st[k] > BW_STEP_ONE_Q8) {
+            blk[t] = quant_far(c, st[k], 0u);
+        }
     }
 }
 #endif
@@ -582,6 +628,30 @@ void bw_quant_ahead(const bw_plan_t *pl, bw_qwalk_t *qw, int32_t *x, uint32_t nv
     quant_cache_t qc;
     qc.gio_q16 = 0;
     bw_spec_bands(pl, &qc.sb);
+#if BW_CFG_FAST_QUANT
+    if (b == 1u) { /* one band: runs of a block's coefficients (its walk not kept) */
+        while (nvec && qw->i < d->n_in) {
+            if (qw->o == 0u && nvec >= d->n_out) {
+                quant_block(pl, &qc, x, qw->i++, true, thr);
+                nvec -= d->n_out;
+                continue;
+            }
+            int32_t *blk = x + (size_t)bw_in_pos(pl, qw->i) * d->n_out;
+            uq16_t gi_q16 = (uq16_t)bw_in_gain_q16(pl, qw->i);
+            if (qw->o == 0u)
+                qw->dropped = bw_has_in(d) && block_below(pl, &qc, blk, gi_q16, thr);
+            uint32_t n = d->n_out - qw->o < nvec ? d->n_out - qw->o : nvec;
+            if (!qw->dropped)
+                quant_band_range(pl, &qc.sb, blk, gi_q16, qw->o, n);
+            nvec -= n;
+            if ((qw->o += n) == d->n_out) {
+                qw->o = 0;
+                qw->i++;
+            }
+        }
+        return;
+    }
+#endif
     for (; nvec && qw->i < d->n_in; nvec--) {
         if (qw->o == 0u && nvec >= d->n_out) {
             /* a whole block, as bw_quantise does */
@@ -641,6 +711,30 @@ void bw_quant_est(const bw_plan_t *pl, const int32_t *x, uint32_t chunk_vec, int
     bw_qwalk_init(&qw);
     /* one band in chunks of whole blocks: a block at a time in memory order */
     bool blocks = b == 1u && chunk_vec % d->n_out == 0u;
+#if BW_CFG_FAST_QUANT
+    if (b == 1u && !blocks) { /* one band: each block in coding order */
+        for (uint32_t i = 0; i < d->n_in; i++) {
+            uq16_t gi_q16 = (uq16_t)bw_in_gain_q16(pl, i);
+            unsigned L = level_log4(d, &sb, gi_q16, l4);
+            for (unsigned k = 0; k <= L; k++)
+                lst[k] = (int)l4[k] - 32 + t4;
+            const int32_t *blk = x + (size_t)bw_in_pos(pl, i) * d->n_out;
+            for (uint32_t o = 0; o < d->n_out; o++) {
+                unsigned k = 0;
+                uint32_t a = bw_abs32(blk[bw_has_out(d) ? band_pos(o, L, &k) : o]);
+                int xq = a ? (int)log4(a) - lst[k] : -1;
+                if (xq >= 0)
+                    acc += a0_q6 + a1_q6 * (uint32_t)xq;
+                if (--left == 0u || (i + 1u == d->n_in && o + 1u == d->n_out)) {
+                    *e++ = (uint32_t)(acc >> 6);
+                    acc = 0;
+                    left = chunk_vec;
+                }
+            }
+        }
+        return;
+    }
+#endif
     while (qw.i < d->n_in) {
         uq16_t gi_q16, gio_q16;
         uint32_t nv = 1;

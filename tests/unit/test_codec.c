@@ -37,6 +37,7 @@
 #include "bw_error.h"
 #include "bw_geodesic.h"
 #include "bw_rc.h"
+#include "bw_internal.h"
 #include "bw_spectral.h"
 #include "bwhost.h"
 #include "geodesic.h"
@@ -3342,6 +3343,69 @@ static void fast_byte_budget_lands_on_spectra_in_runs(void **state)
     free(x);
 }
 
+/* The one encode's quantiser ahead of the coder (bw_quant_ahead), a chunk
+ * of vectors at a time, quantises one band as the whole quantiser does,
+ * whatever the chunks' ends within a block; and its per-chunk estimate
+ * (bw_quant_est) counts each coefficient once: chunks of a quarter block
+ * add up to the whole blocks' (with a0 and a1 whole bits no chunk drops a
+ * fraction). */
+static void rate_quantiser_and_estimate_follow_the_chunks_on_one_band(void **state)
+{
+    (void)state;
+#if BW_RATE
+    static const struct {
+        unsigned shape, lo, li;
+        uint32_t n_in;
+    } cases[] = {{BW_SHAPE_BRDF_ISO, 4, 0, 16}, {BW_SHAPE_BRDF_ISO, 2, 0, 5},
+                 {BW_SHAPE_BRDF_FULL, 2, 2, 0}};
+    static const uint32_t runs[] = {100, 37, 512, 3, 1024, 700, 1};
+    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
+        bw_dims_t d = dims_of(cases[c].shape, cases[c].lo, cases[c].li, cases[c].n_in, 1);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x), *work = xmalloc((n + 64) * sizeof *work);
+        int32_t *a = xmalloc(n * sizeof *a), *b = xmalloc(n * sizeof *b);
+        fill_smooth(x, n, 1, 900u + c, 300);
+        for (uint32_t step = 300; step <= 40000; step *= 5) {
+            bw_plan_t pl;
+            bw_plan_make(&pl, &d, BW_BASIS_53, BW_MODE_STEP, step, 0, 0, work + n, work + n);
+            assert_int_equal(bw_encode_prepare(&pl, x, work), BW_OK);
+            memcpy(a, work, n * sizeof *a);
+            memcpy(b, work, n * sizeof *b);
+            bw_quantise(&pl, a, true);
+            bw_qwalk_t qw;
+            bw_qwalk_init(&qw);
+            for (size_t r = 0; qw.i < d.n_in; r++)
+                bw_quant_ahead(&pl, &qw, b, runs[r % ARRAY_LEN(runs)]);
+            size_t bad = first_mismatch(a, b, n);
+            if (bad < n)
+                fail_msg("case %zu step %u: coefficient %zu is %d ahead, %d whole", c, step, bad,
+                         b[bad], a[bad]);
+            uint32_t nb = d.n_in, whole[64], quarter[256];
+            assert_true(nb <= 64u && d.n_out % 4u == 0u);
+            bw_quant_est(&pl, work, d.n_out, 24, 64, 64, whole);
+            bw_quant_est(&pl, work, d.n_out / 4u, 24, 64, 64, quarter);
+            uint64_t total = 0;
+            for (uint32_t g = 0; g < nb; g++) {
+                uint32_t sum = quarter[4 * g] + quarter[4 * g + 1] + quarter[4 * g + 2] +
+                               quarter[4 * g + 3];
+                if (sum != whole[g])
+                    fail_msg("case %zu step %u: block %u estimated %u in quarters, %u whole", c,
+                             step, g, sum, whole[g]);
+                total += whole[g];
+            }
+            if (total == 0)
+                fail_msg("case %zu step %u: nothing estimated", c, step);
+        }
+        free(x);
+        free(work);
+        free(a);
+        free(b);
+    }
+#else
+    skip();
+#endif
+}
+
 /* BW_EFFORT_FAST with a byte budget: the step estimated and corrected by
  * each encode's size lands within 1 % under the budget, near the search's
  * error, on every shape, at budgets from near the exact coding down. */
@@ -3920,6 +3984,7 @@ int main(void)
         cmocka_unit_test(fast_basis_choice_stays_close_to_trying_every_basis),
         cmocka_unit_test(fast_byte_budget_lands_close_to_the_search),
         cmocka_unit_test(fast_byte_budget_lands_on_spectra_in_runs),
+        cmocka_unit_test(rate_quantiser_and_estimate_follow_the_chunks_on_one_band),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
         cmocka_unit_test(coder_auto_picks_rice_for_dense_prediction_errors_else_ms),
         cmocka_unit_test(every_decoder_decodes_prediction_payloads),
