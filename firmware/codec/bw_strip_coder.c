@@ -397,18 +397,18 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
     MS_LOAD();
     for (; k + BW_STRIP <= end; k += BW_STRIP) {
         const int32_t *v = vec + k, *sct = spec_cls + k;
-        uint32_t mask = 0;
+        uint32_t any = 0; /* the strip's mask bit by bit below, as it codes */
         for (unsigned b = 0; b < BW_STRIP; b++)
-            mask |= (uint32_t)(v[b] != 0) << b;
-        MS_BIT(&m->present[bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0], mask != 0);
-        if (!mask) {
+            any |= (uint32_t)v[b];
+        MS_BIT(&m->present[bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0], any != 0);
+        if (!any) {
             s->prev_mask = 0;
             memset(s->e_above, 0, sizeof s->e_above);
             s->e_left = 0;
             continue;
         }
         unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
-        uint32_t above_mask = s->prev_mask;
+        uint32_t above_mask = s->prev_mask, mask = 0;
         uint8_t *ea = s->e_above;
         for (unsigned b = 0; b < BW_STRIP; b++) {
             int32_t sc = sct[b];
@@ -419,7 +419,9 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
                 pe = bw_bitlen(bw_abs32(pval));
                 par_sign = pval ? 1u + (pval < 0) : 0u;
             }
-            unsigned bit = (mask >> b) & 1u;
+            int32_t x = v[b];
+            unsigned bit = x != 0;
+            mask |= (uint32_t)bit << b;
             MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe)], bit);
             prev_bit = bit;
             if (!bit) {
@@ -428,7 +430,6 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
                 left_sign = 0;
                 continue;
             }
-            int32_t x = v[b];
             uint32_t a = bw_abs32(x);
             unsigned e = bw_bitlen(a), above, up_sign = 0;
             if (has_prev) {
