@@ -62,15 +62,21 @@ static void *ticker(void *arg)
     (void)arg;
     pthread_mutex_lock(&P.lock);
     while (!P.stop) {
+        /* the first line once the delay has passed, then a redraw every
+         * REDRAW_NS */
+        double t = since(&P.t0);
+        long wait_ns = t < P.delay && P.delay - t < REDRAW_NS * 1e-9
+                           ? (long)((P.delay - t) * 1e9) + 1L
+                           : REDRAW_NS;
         struct timespec until;
         clock_gettime(CLOCK_MONOTONIC, &until);
-        until.tv_nsec += REDRAW_NS;
+        until.tv_nsec += wait_ns;
         if (until.tv_nsec >= 1000000000L) {
             until.tv_sec++;
             until.tv_nsec -= 1000000000L;
         }
         pthread_cond_timedwait(&P.wake, &P.lock, &until);
-        double t = since(&P.t0);
+        t = since(&P.t0);
         if (!P.stop && t >= P.delay)
             draw(t);
     }

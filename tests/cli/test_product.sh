@@ -169,7 +169,7 @@ assert rest[:1] == b'\r' and rest[1:].lstrip(b' ')[:1] in (b'\r',), rest[:80]
 PY
 }
 "$BW" synth --model phong --kd 0.5 --ks 0.4 --n 30 --level 6 --incoming 16 -o "$T/big.f32"
-export BRDFWAVE_PROGRESS_DELAY=0.1
+export BRDFWAVE_PROGRESS_DELAY=0.02 # well inside the shortest of the commands below
 on_tty "$T/tty" "$BW" encode -i "$T/big.f32" -o "$T/big.bwv" --bands 1 --level 6 --incoming 16 \
     --ratio 30 && progress_seen "$T/tty" encode && ok || bad "encode: no progress line on a terminal: $(head -c 300 "$T/tty" | od -c | head -5)"
 grep -q -a 'big.bwv: 262144 samples -> ' "$T/tty" && ok || bad "encode on a terminal: no summary"
