@@ -298,9 +298,11 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
 #if BW_CFG_FAST_QUANT && BW_RATE
 /* One band, forward, the coefficients of coding-order indices o .. o + n - 1
  * of one block (what vec_quant gives each at its vector's step, without a
- * rounding offset), in coding order, each one's level from its index. */
-static void quant_band_range(const bw_plan_t *pl, const spec_bands_t *sb, int32_t *blk,
-                             uq16_t gi_q16, uint32_t o, uint32_t n)
+ * rounding offset), in coding order, each one's level from its index; out
+ * of line, so that its tables do not deepen bw_quant_ahead's frame on the
+ * way to quant_block's. */
+static BW_NOINLINE void quant_band_range(const bw_plan_t *pl, const spec_bands_t *sb,
+                                         int32_t *blk, uq16_t gi_q16, uint32_t o, uint32_t n)
 {
     const bw_dims_t *d = &pl->dims;
     unsigned L = bw_has_out(d) ? d->level_out : 0u;
