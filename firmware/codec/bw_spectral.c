@@ -360,6 +360,22 @@ static void fwd_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
  * S[k-1], S[k]) as soon as S[k] is known; neighbours clamped as lift()
  * clamps them. The second pass writes the samples interleaved into out. */
 #define UNLIFT97(c, a, b) mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b)))
+/* S[k] from D[k - 1] and dr (D[k], or its clamped stand-in), then D[k - 1]
+ * from S[k - 1] (sp) and S[k]; returns S[k]. */
+static BW_ALWAYS_INLINE int32_t inv97_at(int32_t *S, int32_t *D, uint32_t k, int32_t dr,
+                                         int32_t sp, q16_t cu, q16_t cp, int32_t *out)
+{
+    int32_t sk = bw_wsub(S[k], UNLIFT97(cu, D[k - 1u], dr));
+    int32_t dk = bw_wsub(D[k - 1u], UNLIFT97(cp, sp, sk));
+    S[k] = sk;
+    D[k - 1u] = dk;
+    if (out) {
+        out[2u * k] = sk;
+        out[2u * k - 1u] = dk;
+    }
+    return sk;
+}
+
 static BW_ALWAYS_INLINE void inv97_pass(int32_t *S, uint32_t ns, int32_t *D, uint32_t nd,
                                         q16_t cu, q16_t cp, int32_t *out)
 {
@@ -368,28 +384,10 @@ static BW_ALWAYS_INLINE void inv97_pass(int32_t *S, uint32_t ns, int32_t *D, uin
     if (out)
         out[0] = sp;
     uint32_t inner = nd < ns ? nd : ns, k = 1;
-    for (; k < inner; k++) { /* D[k - 1] and D[k] both there */
-        int32_t sk = bw_wsub(S[k], UNLIFT97(cu, D[k - 1u], D[k]));
-        int32_t dk = bw_wsub(D[k - 1u], UNLIFT97(cp, sp, sk));
-        S[k] = sk;
-        D[k - 1u] = dk;
-        if (out) {
-            out[2u * k] = sk;
-            out[2u * k - 1u] = dk;
-        }
-        sp = sk;
-    }
-    for (; k < ns; k++) { /* n odd: the last S[k], D[nd] -> D[nd - 1] */
-        int32_t sk = bw_wsub(S[k], UNLIFT97(cu, D[k - 1u], D[nd - 1u]));
-        int32_t dk = bw_wsub(D[k - 1u], UNLIFT97(cp, sp, sk));
-        S[k] = sk;
-        D[k - 1u] = dk;
-        if (out) {
-            out[2u * k] = sk;
-            out[2u * k - 1u] = dk;
-        }
-        sp = sk;
-    }
+    for (; k < inner; k++) /* D[k - 1] and D[k] both there */
+        sp = inv97_at(S, D, k, D[k], sp, cu, cp, out);
+    for (; k < ns; k++) /* n odd: the last S[k], D[nd] -> D[nd - 1] */
+        sp = inv97_at(S, D, k, D[nd - 1u], sp, cu, cp, out);
     if (ns == nd) { /* n even: the last D, S[ns] -> S[ns - 1] */
         int32_t dk = bw_wsub(D[ns - 1u], UNLIFT97(cp, sp, sp));
         D[ns - 1u] = dk;
