@@ -194,6 +194,17 @@ static inline uq16_t gain_io(uq16_t gi_q16, uq16_t g_out_q16)
     return (uq16_t)(((uint64_t)gi_q16 * g_out_q16) >> 16);
 }
 
+/* One band: the step, at base step step_q8, of the coefficients of outgoing
+ * level k (0: scaling, j + 1 for a detail of level j) of a block of
+ * incoming gain gi_q16. */
+static inline uq56_8_t band_step(const bw_dims_t *d, const spec_bands_t *sb, uq16_t gi_q16,
+                                 uint32_t step_q8, unsigned k)
+{
+    uq16_t g_out_q16 =
+        bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(d->level_out, (int)k - 1) : 65536u;
+    return elem_step(step_q8, gain_io(gi_q16, g_out_q16), 65536u, sb->gain_q16[0]);
+}
+
 /* The next outgoing vector in the coder's walk: its position, and *gio_q16
  * the incoming x outgoing inverse gain of its subband. */
 static uint32_t walk_vector(const bw_dims_t *d, bw_walk_t *w, uq16_t gi_q16, uq16_t *gio_q16)
@@ -254,9 +265,7 @@ static void quant_one_band(const bw_plan_t *pl, const spec_bands_t *sb, int32_t 
     uq56_8_t st[BW_MAX_LEVEL + 1u], off[BW_MAX_LEVEL + 1u];
     uint32_t st32[BW_MAX_LEVEL + 1u], off32[BW_MAX_LEVEL + 1u];
     for (unsigned k = 0; k <= L; k++) {
-        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-        uq16_t gio_q16 = gain_io(gi_q16, g_out_q16);
-        st[k] = elem_step(pl->step_q8, gio_q16, 65536u, sb->gain_q16[0]);
+        st[k] = band_step(d, sb, gi_q16, pl->step_q8, k);
         off[k] = (st[k] * pl->round_q8) >> 8;
         /* 0: no 32-bit division at this level (exact, or too large) */
         bool fits = st[k] > BW_STEP_ONE_Q8 && st[k] <= UINT32_MAX && off[k] < (1u << 31);
@@ -309,8 +318,7 @@ static BW_NOINLINE void quant_band_range(const bw_plan_t *pl, const spec_bands_t
     uq56_8_t st[BW_MAX_LEVEL + 1u];
     uint32_t st32[BW_MAX_LEVEL + 1u];
     for (unsigned k = 0; k <= L; k++) {
-        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-        st[k] = elem_step(pl->step_q8, gain_io(gi_q16, g_out_q16), 65536u, sb->gain_q16[0]);
+        st[k] = band_step(d, sb, gi_q16, pl->step_q8, k);
         st32[k] = st[k] > BW_STEP_ONE_Q8 && st[k] <= UINT32_MAX ? (uint32_t)st[k] : 0u;
     }
     for (uint32_t end = o + n; o < end; o++) {
@@ -533,9 +541,7 @@ static BW_NOINLINE unsigned level_log4(const bw_dims_t *d, const spec_bands_t *s
 {
     unsigned L = bw_has_out(d) ? d->level_out : 0u;
     for (unsigned k = 0; k <= L; k++) {
-        uq16_t g_out_q16 = bw_has_out(d) ? (uq16_t)bw_biohaar_inv_gain_q16(L, (int)k - 1) : 65536u;
-        uq56_8_t st = elem_step(BW_STEP_ONE_Q8, gain_io(gi_q16, g_out_q16), 65536u,
-                                sb->gain_q16[0]);
+        uq56_8_t st = band_step(d, sb, gi_q16, BW_STEP_ONE_Q8, k);
         l4[k] = log4(st ? st : 1u);
     }
     return L;
