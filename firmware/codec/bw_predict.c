@@ -88,6 +88,37 @@ static BW_NOINLINE void pred_learn(pred_w_t *pw, int64_t err, int64_t dd, int32_
         pw->w[i] = pred_step(pw->w[i], e, ds[i], sh);
 }
 
+/* The weights' step from the decoded error err (k >= 1), given ae = |err|
+ * (its low 32 bits) and m = |d_0| | |d_1| | |d_2| | |d_3|: where the error
+ * and the differences are small (the bounds below) in 32 bits
+ * (BW_CFG_FAST_PREDICT), else pred_learn. Inline, the weights stay in the
+ * caller's registers. */
+static BW_ALWAYS_INLINE void pred_weights(int32_t *w0, int32_t *w1, int32_t *w2, int32_t *w3,
+                                          int64_t err, uint32_t ae, uint32_t m, int64_t dd,
+                                          int32_t d0, int32_t d1, int32_t d2, int32_t d3)
+{
+    if (BW_CFG_FAST_PREDICT && BW_LIKELY(dd < PRED_FAST_DD && err == (int32_t)err &&
+                                         ((m >> 14) | (ae >> 17)) == 0u &&
+                                         (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
+        /* |d_i| < 2^14 and D^2 < 2^30: nrm < 2^31, and sh < 31 */
+        uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
+                       (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
+        unsigned sh = bw_bitlen(nrm) - 1u;
+        int32_t em = (int32_t)err * PRED_MU;
+        *w0 = pred_add(*w0, (em * d0) >> sh);
+        *w1 = pred_add(*w1, (em * d1) >> sh);
+        *w2 = pred_add(*w2, (em * d2) >> sh);
+        *w3 = pred_add(*w3, (em * d3) >> sh);
+    } else {
+        pred_w_t pw = {{*w0, *w1, *w2, *w3}};
+        pred_learn(&pw, err, dd, d0, d1, d2, d3);
+        *w0 = pw.w[0];
+        *w1 = pw.w[1];
+        *w2 = pw.w[2];
+        *w3 = pw.w[3];
+    }
+}
+
 /* One spectrum, either way (fwd a constant where it is inlined): v the
  * samples (encoder: replaced by the coded errors) or the coded errors
  * (decoder: replaced by the decoded samples), cur where the decoded
@@ -124,28 +155,8 @@ static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const i
         a1 = cur[k] = bw_wadd(p, (int32_t)err);
         if (!k)
             continue;
-        uint32_t ae = bw_abs32((int32_t)err);
         uint32_t m = bw_abs32(d0) | bw_abs32(d1) | bw_abs32(d2) | bw_abs32(d3);
-        if (BW_CFG_FAST_PREDICT && BW_LIKELY(dd < PRED_FAST_DD && err == (int32_t)err &&
-                                             ((m >> 14) | (ae >> 17)) == 0u &&
-                                             (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
-            /* |d_i| < 2^14 and D^2 < 2^30: nrm < 2^31, and sh < 31 */
-            uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
-                           (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
-            unsigned sh = bw_bitlen(nrm) - 1u;
-            int32_t em = (int32_t)err * PRED_MU;
-            w0 = pred_add(w0, (em * d0) >> sh);
-            w1 = pred_add(w1, (em * d1) >> sh);
-            w2 = pred_add(w2, (em * d2) >> sh);
-            w3 = pred_add(w3, (em * d3) >> sh);
-        } else {
-            pred_w_t pw = {{w0, w1, w2, w3}};
-            pred_learn(&pw, err, dd, d0, d1, d2, d3);
-            w0 = pw.w[0];
-            w1 = pw.w[1];
-            w2 = pw.w[2];
-            w3 = pw.w[3];
-        }
+        pred_weights(&w0, &w1, &w2, &w3, err, bw_abs32((int32_t)err), m, dd, d0, d1, d2, d3);
     }
 }
 
@@ -189,26 +200,8 @@ static BW_ALWAYS_INLINE void pred_enc_step(pred_enc_t *st, int32_t *vk, int32_t 
     st->a1 = *ck = p + err;
     if (!learn)
         return;
-    uint32_t ae = bw_abs32(err);
-    uint32_t m = st->m0 | st->m1 | m2 | m3;
-    if (BW_LIKELY(dd < PRED_FAST_DD && ((m >> 14) | (ae >> 17)) == 0u &&
-                  (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
-        uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
-                       (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
-        unsigned sh = bw_bitlen(nrm) - 1u;
-        int32_t em = err * PRED_MU;
-        st->w0 = pred_add(st->w0, (em * d0) >> sh);
-        st->w1 = pred_add(st->w1, (em * d1) >> sh);
-        st->w2 = pred_add(st->w2, (em * d2) >> sh);
-        st->w3 = pred_add(st->w3, (em * d3) >> sh);
-    } else {
-        pred_w_t pw = {{st->w0, st->w1, st->w2, st->w3}};
-        pred_learn(&pw, err, dd, d0, d1, d2, d3);
-        st->w0 = pw.w[0];
-        st->w1 = pw.w[1];
-        st->w2 = pw.w[2];
-        st->w3 = pw.w[3];
-    }
+    pred_weights(&st->w0, &st->w1, &st->w2, &st->w3, err, bw_abs32(err),
+                 st->m0 | st->m1 | m2 | m3, dd, d0, d1, d2, d3);
 }
 
 /* pred_spectrum forward, the first two samples and the last apart (their
