@@ -49,12 +49,31 @@ typedef struct {
     bw_ctx_t *ctx;
     size_t budget;
     size_t near; /* > 0: a search may stop at a payload that fits in near or more bytes */
+#if BW_CFG_FAST_BUDGET
+    uint8_t *out; /* with near: each try written here (budget bytes), else counted */
+    size_t last;  /* the size of the last try */
+#endif
 } budget_t;
 
-/* The size of the BYTES payload at the plan's current settings. */
-static bw_status_t count_bytes(const budget_t *b, size_t *sz)
+/* The size of the BYTES payload at the plan's current settings; with b->out
+ * also written there where it fits the budget (a size above it: not). */
+static bw_status_t count_bytes(budget_t *b, size_t *sz)
 {
+#if BW_CFG_FAST_BUDGET
+    *sz = SIZE_MAX; /* (an output too small for the header: too much) */
+    bw_status_t st = bw_encode_pass(b->pl, b->pa, BW_MODE_BYTES, b->samples, b->work, b->ctx,
+                                    b->out, b->out ? b->budget : 0u, sz);
+    b->last = *sz;
+    return st == BW_ERR_OUTPUT_FULL && b->out && *sz > b->budget ? BW_OK : st;
+#else
     return bw_encode_pass(b->pl, b->pa, BW_MODE_BYTES, b->samples, b->work, b->ctx, NULL, 0, sz);
+#endif
+}
+
+/* The try before landed: within the budget, near or more bytes. */
+static bool landed(const budget_t *b, size_t sz)
+{
+    return BW_CFG_FAST_BUDGET && b->near && sz <= b->budget && sz >= b->near;
 }
 
 /* The settings a search moves: value t of each. */
@@ -91,7 +110,7 @@ static void set(bw_plan_t *pl, unsigned what, uint32_t t, uint32_t aux)
  * *lo when `up` (the payload grows with t), else *hi. Narrows them to
  * neighbours, or with `fine` only to within 1/STEP_REFINE of *hi. The
  * setting is left at the last value tried. */
-static bw_status_t bisect(const budget_t *b, unsigned what, uint32_t aux, bool up, bool fine,
+static bw_status_t bisect(budget_t *b, unsigned what, uint32_t aux, bool up, bool fine,
                           uint32_t *lo, uint32_t *hi)
 {
     while (*hi - *lo > 1u && (!fine || (uint64_t)(*hi - *lo) * STEP_REFINE > *hi)) {
@@ -105,8 +124,8 @@ static bw_status_t bisect(const budget_t *b, unsigned what, uint32_t aux, bool u
             *lo = mid;
         else
             *hi = mid;
-        if (BW_CFG_FAST_BUDGET && b->near && sz <= b->budget && sz >= b->near)
-            break; /* near enough: the fitting end is mid */
+        if (landed(b, sz))
+            return BW_OK; /* near enough: the fitting end is mid */
     }
     return BW_OK;
 }
@@ -115,7 +134,7 @@ static bw_status_t bisect(const budget_t *b, unsigned what, uint32_t aux, bool u
  * octave around the budget (*lo_s leaves too much, *hi_s fits); or, where
  * even the coarsest step leaves too much, the vector threshold. *done: the
  * payload is written. */
-static BW_ALWAYS_INLINE bw_status_t coarse(const budget_t *b, uint8_t *out, size_t *len,
+static BW_ALWAYS_INLINE bw_status_t coarse(budget_t *b, uint8_t *out, size_t *len,
                                            bool *done, uint32_t *lo_s, uint32_t *hi_s)
 {
     bw_plan_t *pl = b->pl;
@@ -168,7 +187,14 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
     size_t sz, budget = budget_of(pa, cap);
     bw_status_t st;
     bracket = BW_CFG_FAST_BUDGET ? bracket : NULL;
-    budget_t b = {pl, pa, samples, work, ctx, budget, bracket ? landing(budget) : 0u};
+    budget_t b = {.pl = pl, .pa = pa, .samples = samples, .work = work, .ctx = ctx,
+                  .budget = budget, .near = bracket ? landing(budget) : 0u};
+#if BW_CFG_FAST_BUDGET
+    /* after BW_EFFORT_FAST's encodes each try is written: the first that
+     * lands is the payload */
+    b.out = bracket ? out : NULL;
+    b.last = SIZE_MAX;
+#endif
     uint32_t lo_s = bracket ? bracket[0] : 0u, hi_s = bracket ? bracket[1] : 0u;
     /* one side of the bracket only: widen it by an eighth of the step at a
      * time (up to 8 encodes) */
@@ -180,8 +206,10 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
             break;
         pl->step_q8 = t;
         st = count_bytes(&b, &sz);
-        if (st != BW_OK)
+        if (st != BW_OK || landed(&b, sz)) {
+            *len = sz;
             return st;
+        }
         if (sz <= b.budget)
             hi_s = t;
         else
@@ -190,6 +218,9 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
     if (!bracket || lo_s <= BW_STEP_ONE_Q8 || hi_s == UINT32_MAX) {
         bool done;
         b.near = 0u; /* the whole search, as BW_EFFORT_BEST's */
+#if BW_CFG_FAST_BUDGET
+        b.out = NULL;
+#endif
         st = coarse(&b, out, len, &done, &lo_s, &hi_s);
         if (st != BW_OK || done)
             return st;
@@ -197,9 +228,18 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
     /* then on the step itself, down to 1/16384 of it: at 32 steps per
      * octave the payload still jumps by about 2 % from step to step, and
      * small payloads (a few hundred bytes) move by a few bytes at a time */
+#if BW_CFG_FAST_BUDGET
+    b.last = SIZE_MAX;
+#endif
     st = bisect(&b, SET_STEP, 0, false, true, &lo_s, &hi_s);
     if (st != BW_OK)
         return st;
+#if BW_CFG_FAST_BUDGET
+    if (landed(&b, b.last)) { /* the last try's payload is written */
+        *len = b.last;
+        return st;
+    }
+#endif
     pl->step_q8 = hi_s;
     /* then the quantiser's rounding offset, 0 .. 1/8 of a step: the size
      * jumps at some steps (similar coefficients cross a power of two
@@ -209,7 +249,11 @@ static bw_status_t search(bw_plan_t *pl, const bw_params_t *pa, const int32_t *s
     st = count_bytes(&b, &sz);
     if (st != BW_OK)
         return st;
-    if (sz < b.budget - b.budget / ROUND_FILL && !(BW_CFG_FAST_BUDGET && b.near && sz >= b.near)) {
+    if (landed(&b, sz)) {
+        *len = sz;
+        return BW_OK;
+    }
+    if (sz < b.budget - b.budget / ROUND_FILL) {
         /* t = r n + c: the offset r / 256 for every coefficient, and
          * (r + 1) / 256 for the first c of them, band by band (coarse to
          * fine), each band in the quantiser's order of vectors: so that the
