@@ -128,10 +128,13 @@ typedef enum {
      * smallest payload; a byte budget searches the finest step that fits,
      * coding the measurement once per try */
     BW_EFFORT_BEST = 0,
-    /* for a device, where every try costs an encode: BW_BASIS_AUTO codes
-     * parts of the measurement (an eighth of it) with every basis, then the
-     * whole once with the basis that coded them smallest (for a byte budget,
-     * the smallest exact coding of the parts, on half as much); a byte
+    /* for a device, where every try costs an encode: BW_BASIS_AUTO takes
+     * parts of the measurement (an eighth of it), ranks the transform bases
+     * by the bits of an order-0 coding of their coefficients there, subband
+     * by subband (no coding), codes the parts with the first of them and
+     * with prediction where that applies, then the whole once with the
+     * basis that coded them smallest (for a byte budget, the exact
+     * coefficients of half as much ranked); a byte
      * budget is met in one encode that steers a step per chunk of vectors
      * as it codes (BW_EXT_CHUNK_STEPS) where the body allows it; else, or
      * where that one does not land within 1 % under the budget, the step is

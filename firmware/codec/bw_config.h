@@ -17,7 +17,7 @@
  *                                      rounding offset of 1/8 of a step still
  *                                      leaves the budget short, offsets up to 1/2
  *   BW_CFG_FAST_BASIS         1        BW_EFFORT_FAST: BW_BASIS_AUTO chooses on
- *                                      parts of the measurement (0.4 KiB of
+ *                                      parts of the measurement (0.9 KiB of
  *                                      flash); 0: it chooses as BW_EFFORT_BEST
  *                                      (every basis on the whole), the same
  *                                      payload or a smaller one

@@ -366,8 +366,71 @@ static unsigned quick_parts(const bw_dims_t *d, bw_dims_t *part, size_t first[2]
     return 2u;
 }
 
+/* The bits (Q16) of an order-0 coding of the coefficients x of the plan in
+ * each spectral subband on its own (order0_bits: the bit lengths at their
+ * frequencies, the bits below the leading one and the signs): what ranks
+ * the transform bases for a fast BW_BASIS_AUTO without coding them. */
+static uint64_t subband_bits(const bw_plan_t *pl, const int32_t *x)
+{
+    spec_bands_t sb;
+    bw_spec_bands(pl, &sb);
+    uint32_t b = pl->dims.bands;
+    const int32_t *end = x + pl->n;
+    uint64_t bits = 0;
+    for (unsigned s = 0; s < sb.count; s++) {
+        uint32_t h[33] = {0}, hist[33]; /* h by clz(2a + 1): 31 - the bit length */
+        for (const int32_t *v = x; v < end; v += b)
+            for (uint32_t k = sb.lo[s]; k < sb.lo[s + 1u]; k++)
+                h[bw_clz32(bw_abs32(v[k]) << 1 | 1u)]++;
+        uint64_t sum = 0;
+        for (unsigned e = 0; e < 32u; e++) {
+            hist[e] = h[31u - e];
+            sum += (uint64_t)hist[e] * e;
+        }
+        hist[32] = 0;
+        size_t m = (size_t)(pl->n / b) * (sb.lo[s + 1u] - sb.lo[s]);
+        if (m)
+            bits += order0_bits(hist, m, sum);
+    }
+    return bits;
+}
+
+/* The transform basis first..last whose coefficients of the parts (at
+ * at[parts] in samples, each of dims part) subband_bits finds smallest;
+ * BW_BASIS_COUNT: none. Out of line: its frame stays off the encodes'. */
+static BW_NOINLINE unsigned quick_wave(const bw_dims_t *part, const bw_params_t *pq,
+                                       const int32_t *samples, const size_t *at, unsigned parts,
+                                       int32_t *work, unsigned first, unsigned last)
+{
+    uint64_t least = UINT64_MAX;
+    unsigned wave = BW_BASIS_COUNT;
+    for (unsigned b = first; b <= last; b++) {
+        bw_plan_t pl;
+        uint64_t bits = 0;
+        if (bw_params_check(part, pq->mode, b, pq->flags, mode_param(pq), BW_FOR_ENCODE) != BW_OK)
+            continue;
+        unsigned k;
+        for (k = 0; k < parts; k++) {
+            plan_for(&pl, part, b, pq, work);
+            if (bw_encode_prepare(&pl, samples + at[k], work) != BW_OK)
+                break;
+            if (pl.step_q8 > BW_STEP_ONE_Q8)
+                bw_quantise(&pl, work, true);
+            bits += subband_bits(&pl, work);
+        }
+        if (k == parts && bits < least) {
+            least = bits;
+            wave = b;
+        }
+    }
+    return wave;
+}
+
 /* A fast BW_BASIS_AUTO: the basis first..last that codes the parts smallest
- * (lossless for a byte budget). false: no parts, or no basis codes them. */
+ * (lossless for a byte budget). The transform bases are ranked by
+ * subband_bits and the first of them coded, with prediction where it
+ * applies; every basis is coded where the measurement has no spectral
+ * transform. false: no parts, or no basis codes them. */
 static bool quick_choice(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
                          const int32_t *samples, int32_t *work, unsigned first, unsigned last,
                          unsigned *best)
@@ -390,9 +453,24 @@ static bool quick_choice(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t
         else if (BW_RATE && part.n_in >= 2u)
             part.n_in /= 2u;
     }
+    /* the transform bases by their estimate: the smallest stays to be coded
+     * (all alike without a spectral transform: the first) */
+    unsigned wave = BW_BASIS_COUNT;
+    if (first < BW_BASIS_COUNT && bw_spec_levels(part.bands) == 0u)
+        wave = first;
+    else if (first < BW_BASIS_COUNT) {
+        wave = quick_wave(&part, &pq, samples, at, parts, work, first,
+                          last < BW_BASIS_COUNT ? last : BW_BASIS_COUNT - 1u);
+        if (wave < BW_BASIS_COUNT && last < BW_BASIS_COUNT) {
+            *best = wave; /* transform bases alone: no need to code one */
+            return true;
+        }
+    }
     for (unsigned b = first; b <= last; b++) {
         bw_plan_t pl;
         size_t sz, total = 0;
+        if (wave < BW_BASIS_COUNT && b < BW_BASIS_COUNT && b != wave)
+            continue;
         if (bw_params_check(&part, pq.mode, b, pq.flags, mode_param(&pq), BW_FOR_ENCODE) != BW_OK)
             continue;
         unsigned k;

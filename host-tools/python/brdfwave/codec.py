@@ -629,9 +629,9 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     as they are (never through float32) and decode as those integers; their
     max_error is in their units. basis: "haar", "53", "97", "pred" or "auto";
     effort: "best" (basis="auto" codes the data with each basis, a byte
-    budget searches its step) or "fast" (an eighth of it with each, then the
-    whole once with the best; the budget's step estimated and corrected by
-    each encode's size); None: "best" on this host, "fast" with device;
+    budget searches its step) or "fast" (the wavelets ranked on an eighth of
+    it, the first and prediction coded there, then the whole once with the
+    best; the budget's step estimated and corrected by each encode's size); None: "best" on this host, "fast" with device;
     coder: "range", "ms", "rice" or "auto" (rice for prediction errors of a
     bit or more a sample, else ms); None: "range" on this host, "auto" with
     device; segments=N: the body in about N segments, each decodable alone,

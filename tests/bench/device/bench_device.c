@@ -342,6 +342,53 @@ static unsigned transform_basis(void)
     return lossless_basis == BW_BASIS_PRED ? BW_BASIS_53 : (unsigned)lossless_basis;
 }
 
+/* A payload of len bytes from an encode of status st: decoded, within the
+ * mode's bound and p's budget; its basis in *basis, its squared error in
+ * *sse. */
+static int coded_ok(set_t *s, const bench_mode_t *m, const bw_params_t *p, size_t len,
+                    bw_status_t st, unsigned *basis, uint64_t *sse)
+{
+    bw_header_t h;
+    bw_status_t st_d;
+    uint32_t stk;
+    if (st != BW_OK)
+        return 0;
+    (void)timed_decode(s, len, &h, &st_d, &stk);
+    max_stack(&stack_dec_max, stk);
+    uint32_t worst = st_d == BW_OK ? decoded_error(s, sse) : 0u;
+    *basis = h.basis;
+    return st_d == BW_OK && bound_held(m->mode, m->max_error, worst) &&
+           !(m->mode == BW_MODE_BYTES && len > p->byte_budget);
+}
+
+/* A byte budget: the fast encode (p's coder) with each transform basis
+ * named, decoded: the smallest squared error in *sse, its basis in *basis
+ * (BW_BASIS_AUTO: none). 0: one of them failed. */
+static int every_basis_fast(set_t *s, const bench_mode_t *m, bw_params_t p, uint64_t *sse,
+                            unsigned *basis)
+{
+    int ok = 1;
+    *sse = 0;
+    *basis = BW_BASIS_AUTO;
+    p.effort = BW_EFFORT_FAST;
+    for (unsigned b = 0; b < BW_BASIS_COUNT; b++) {
+        size_t len = 0;
+        bw_status_t st;
+        uint32_t stk;
+        unsigned got = 0;
+        uint64_t e = 0;
+        p.basis = (uint8_t)b;
+        (void)timed_encode(s, &p, NULL, &len, &st, &stk);
+        if (!coded_ok(s, m, &p, len, st, &got, &e) || got != b)
+            ok = 0;
+        else if (*basis == BW_BASIS_AUTO || e < *sse) {
+            *sse = e;
+            *basis = b;
+        }
+    }
+    return ok;
+}
+
 static void run_mode(set_t *s, const bench_mode_t *m)
 {
     bw_params_t p = params_of(m, s, BW_BASIS_AUTO);
@@ -427,31 +474,9 @@ static void run_mode(set_t *s, const bench_mode_t *m)
      * trying every basis with the same encode gives */
     uint64_t sse_every = 0;
     unsigned basis_every = BW_BASIS_AUTO;
-    if (m->mode == BW_MODE_BYTES && levels > 0u) {
-        for (unsigned b = 0; b < BW_BASIS_COUNT; b++) {
-            bw_params_t pb = params_of(m, s, (uint8_t)b);
-            pb.effort = BW_EFFORT_FAST;
-            bw_status_t st_b, st_bd;
-            uint32_t stk_b;
-            size_t len_b = 0;
-            bw_header_t hb;
-            uint64_t sse_b = 0;
-            (void)timed_encode(s, &pb, NULL, &len_b, &st_b, &stk_b);
-            if (st_b != BW_OK) {
-                ok = 0;
-                continue;
-            }
-            (void)timed_decode(s, len_b, &hb, &st_bd, &stk_b);
-            uint32_t worst_b = st_bd == BW_OK ? decoded_error(s, &sse_b) : 0u;
-            if (st_bd != BW_OK || hb.basis != b || len_b > p.byte_budget ||
-                !bound_held(m->mode, m->max_error, worst_b))
-                ok = 0;
-            else if (basis_every == BW_BASIS_AUTO || sse_b < sse_every) {
-                sse_every = sse_b;
-                basis_every = b;
-            }
-        }
-    }
+    if (m->mode == BW_MODE_BYTES && levels > 0u &&
+        !every_basis_fast(s, m, p, &sse_every, &basis_every))
+        ok = 0;
 
     printf("ROW mode=%s max_error=%lu budget=%lu samples=%lu bytes=%lu "
            "bytes_verify=%lu same_payload=%d basis=%u step_q8=%lu enc=%llu"
@@ -467,6 +492,54 @@ static void run_mode(set_t *s, const bench_mode_t *m)
                (int)st_f);
         failures++;
     }
+}
+
+/* ---- the basis choice with the device's coder ------------------------------
+ * BW_EFFORT_FAST with BW_BASIS_AUTO and BW_CODER_AUTO (the device's
+ * defaults) against the same encode with the basis it chose named, and
+ * against trying every basis (BW_EFFORT_BEST, the same coder): its payload
+ * or, for a byte budget, whose payloads all fill it, the smallest squared
+ * error of the fast encode with each transform basis named. Every payload
+ * decoded and checked. Only where there is a spectral axis. */
+static void run_choice(set_t *s, const bench_mode_t *m)
+{
+    if (bw_spec_levels(s->d.bands) == 0u)
+        return;
+    bw_params_t pq = params_of(m, s, BW_BASIS_AUTO);
+    pq.coder = BW_CODER_AUTO;
+    pq.effort = BW_EFFORT_FAST;
+    bw_status_t st;
+    uint32_t stk;
+    size_t len_q = 0, len_f = 0, len_e = 0;
+    unsigned basis_q = 0, basis_e = 0;
+    uint64_t sse_q = 0, sse_e = 0;
+    uint64_t t_q = timed_encode(s, &pq, NULL, &len_q, &st, &stk);
+    max_stack(&stack_enc_max, stk);
+    int ok = coded_ok(s, m, &pq, len_q, st, &basis_q, &sse_q);
+    uint32_t crc_q = ok ? bw_crc32(s->out, len_q) : 0u;
+    bw_params_t pf = pq;
+    pf.basis = (uint8_t)basis_q;
+    uint64_t t_f = timed_encode(s, &pf, NULL, &len_f, &st, &stk);
+    if (!ok || st != BW_OK || len_f != len_q || bw_crc32(s->out, len_f) != crc_q)
+        ok = 0; /* the basis named gives the same payload */
+    bw_params_t pe = pq;
+    pe.effort = BW_EFFORT_BEST;
+    uint64_t t_e = timed_encode(s, &pe, NULL, &len_e, &st, &stk);
+    max_stack(&stack_enc_max, stk);
+    if (!coded_ok(s, m, &pe, len_e, st, &basis_e, &sse_e))
+        ok = 0;
+    uint64_t sse_every = 0;
+    unsigned basis_every = BW_BASIS_AUTO;
+    if (m->mode == BW_MODE_BYTES && !every_basis_fast(s, m, pq, &sse_every, &basis_every))
+        ok = 0;
+    printf("CHOICE coder=auto mode=%s samples=%lu bytes_quick=%lu basis_quick=%u enc_quick=%llu"
+           " enc_quick_fixed=%llu sse_quick=%llu bytes_every=%lu basis_every=%u enc_every=%llu"
+           " sse_every=%llu sse_every_fast=%llu basis_every_fast=%u status=%s\n",
+           m->name, (unsigned long)s->n, (unsigned long)len_q, basis_q, t_q, t_f, sse_q,
+           (unsigned long)len_e, basis_e, t_e, sse_e, sse_every, basis_every,
+           ok ? "ok" : "FAIL");
+    if (!ok)
+        failures++;
 }
 
 /* ---- the Rice strip coder ------------------------------------------------
@@ -816,6 +889,8 @@ int main(void)
     }
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
         run_mode(&s, &modes[m]);
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
+        run_choice(&s, &modes[m]);
     run_fast(&s);
     phases(&s);
     profile(&s);

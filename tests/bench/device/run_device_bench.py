@@ -225,7 +225,7 @@ def kv(line):
 
 
 def parse(out):
-    r = {"floors": {}, "rows": {}, "fast": [], "pred": [], "phases": collections.OrderedDict(),
+    r = {"floors": {}, "rows": {}, "choice": {}, "fast": [], "pred": [], "phases": collections.OrderedDict(),
          "prof": {}, "stack": None, "mem": None, "end": None, "errors": []}
     cur = None
     for line in out.splitlines():
@@ -236,6 +236,9 @@ def parse(out):
         elif tag == "ROW":
             d = kv(line)
             r["rows"][d["mode"]] = d
+        elif tag == "CHOICE":  # the basis choice with the device's coder
+            d = kv(line)
+            r["choice"][d["mode"]] = d
         elif tag == "FAST":  # prediction's rows apart from the transforms'
             d = kv(line)
             r["pred" if d["basis"] == "3" else "fast"].append(d)
@@ -576,6 +579,54 @@ def pred_section(A, sets, parsed):
     A("")
 
 
+def choice_row(A, ds, rows, label, every_bytes, every_basis, every_enc, fixed_enc):
+    """Target 2, the basis choice of BW_EFFORT_FAST, from rows by mode: its
+    encode against the same with the basis named, its payload against
+    trying every basis (every_bytes, every_basis; a byte budget: the squared
+    error against the fast encode with each basis named) and what trying
+    every basis costs (every_enc against fixed_enc)."""
+    worst, worst_b, worst_all, worst_best = None, None, None, None
+    for m in MODES:
+        row = rows.get(m)
+        if not (row and "bytes_quick" in row and int(row.get("enc_quick", 0))):
+            continue
+        if row.get("status") != "ok":
+            worst = (float("inf"), m, 0.0)
+        x = int(row["enc_quick"]) / int(row["enc_quick_fixed"])
+        if m.startswith("ratio"):
+            # every payload fills the budget: the error, against the same
+            # encode with each basis named (its smallest)
+            e = int(row["sse_quick"]) / max(1, int(row["sse_every_fast"]))
+            every = int(row["basis_every_fast"])
+            if "sse" in row:  # against the search, which holds the budget's own error
+                eb = int(row["sse_quick"]) / max(1, int(row["sse"]))
+                if worst_best is None or eb > worst_best[0]:
+                    worst_best = (eb, m)
+        else:
+            e = int(row["bytes_quick"]) / int(row[every_bytes])
+            every = int(row[every_basis])
+        xa = int(row[every_enc]) / int(row[fixed_enc])
+        if worst is None or x > worst[0]:
+            worst = (x, m, int(row["enc_quick"]) / int(row["samples"]))
+        if worst_b is None or e > worst_b[0]:
+            worst_b = (e, m, BASIS_NAMES.get(int(row["basis_quick"]), "-"),
+                       BASIS_NAMES.get(every, "-"))
+        if worst_all is None or xa > worst_all[0]:
+            worst_all = (xa, m)
+    if not worst or not worst_b:
+        return
+    ok = worst[0] <= 1.5 and worst_b[0] <= 1.01
+    A("| %s | basis choice%s <= 1.5 x the fixed basis, payload within 1 %% of trying every "
+      "basis | %.2f x at most (%s, %.1f instr/sample); payload (byte budget: squared error) at "
+      "most %.4f x (%s: chose %s, every basis %s)%s; trying every basis: %.2f x (%s) | %s |" % (
+          ds.key, label, worst[0], worst[1], worst[2], worst_b[0], worst_b[1], worst_b[2],
+          worst_b[3],
+          "" if worst_best is None else
+          "; byte budget against the search (`BW_EFFORT_BEST`) instead: "
+          "squared error at most %.4f x (%s)" % worst_best,
+          worst_all[0], worst_all[1], "yes" if ok else "no"))
+
+
 def device_targets_section(A, sets, parsed):
     """The device encode's targets: the byte budget and the basis choice of
     BW_EFFORT_FAST (the device's default) against one fixed encode of the
@@ -594,16 +645,24 @@ def device_targets_section(A, sets, parsed):
       "side'); target at most 1.5 x, landing within 1 % under the budget (or the lossless "
       "payload, where that fits). *the search* is the same figure for `BW_EFFORT_BEST` (the "
       "*encode, basis fixed* column above), *error* the fast payload's squared error against "
-      "the search's. Basis choice: every basis codes parts of the measurement, an eighth "
-      "of it, then the whole is coded once with the basis that coded the parts smallest; "
-      "for a byte budget, half of that, coded exactly; "
+      "the search's. Basis choice: on parts of the measurement, an eighth of it, the "
+      "wavelets are ranked by the bits of an order-0 coding of their coefficients, "
+      "subband by subband (no coding), the first of them and prediction (where it "
+      "applies) code the parts, then the whole is coded once with the basis that coded "
+      "them smallest; for a byte budget, half of the parts, ranked by their exact "
+      "coefficients; "
       "against one encode with the basis it chose fixed, target at most 1.5 x, with "
       "payloads within 1 % of trying every basis (`BW_EFFORT_BEST`, the *encode* column "
       "above, the host's default); for a byte budget, whose payloads all fill the budget, "
       "the squared error within 1 % of the smallest of the same encode (`BW_EFFORT_FAST`) "
       "with each transform basis named (the budget's own error against the search's is "
       "in the budget rows; the figure against the search's, which holds both, follows "
-      "it). *trying every basis* gives the same ratio for `BW_EFFORT_BEST`.")
+      "it). *trying every basis* gives the same ratio for `BW_EFFORT_BEST`. The rows "
+      "*with the device's coder* measure the same with `BW_CODER_AUTO` (`--coder auto`, "
+      "the device's default: Rice strips or the multi-symbol coder for prediction, the "
+      "multi-symbol coder for the wavelets), against the same encode with the basis "
+      "named and against `BW_EFFORT_BEST` with the same coder; where a byte budget's "
+      "search is the host's default, *trying every basis* includes it.")
     A("")
     A("| data set | target | figure | met |")
     A("|---|---|---|---|")
@@ -633,43 +692,9 @@ def device_targets_section(A, sets, parsed):
                   err, search / int(one["enc"]),
                   "yes" if x <= 1.5 and (exact or 0.99 <= land <= 1.0) else "no"))
         if ds.bands > 1:
-            worst, worst_b, worst_all, worst_best = None, None, None, None
-            for m in MODES:
-                row = r["rows"].get(m)
-                if not (row and "bytes" in row and int(row.get("enc_quick", 0))):
-                    continue
-                x = int(row["enc_quick"]) / int(row["enc_quick_fixed"])
-                if m.startswith("ratio"):
-                    # every payload fills the budget: the error, against the
-                    # same encode with each basis named (its smallest)
-                    e = int(row["sse_quick"]) / max(1, int(row["sse_every_fast"]))
-                    eb = int(row["sse_quick"]) / max(1, int(row["sse"]))
-                    if worst_best is None or eb > worst_best[0]:
-                        worst_best = (eb, m)
-                else:
-                    e = int(row["bytes_quick"]) / int(row["bytes"])
-                xa = int(row["enc"]) / int(row["enc_fixed"])
-                if worst is None or x > worst[0]:
-                    worst = (x, m, int(row["enc_quick"]) / int(row["samples"]))
-                if worst_b is None or e > worst_b[0]:
-                    every = int(row["basis_every_fast"]) if m.startswith("ratio") else int(
-                        row["basis"])
-                    worst_b = (e, m, BASIS_NAMES.get(int(row["basis_quick"]), "-"),
-                               BASIS_NAMES.get(every, "-"))
-                if worst_all is None or xa > worst_all[0]:
-                    worst_all = (xa, m)
-            if worst:
-                ok = worst[0] <= 1.5 and worst_b[0] <= 1.01
-                A("| %s | basis choice <= 1.5 x the fixed basis, payload within 1 %% of trying "
-                  "every basis | %.2f x at most (%s, %.1f instr/sample); payload (byte budget: "
-                  "squared error) at most %.4f x (%s: chose %s, every basis %s)%s; trying every "
-                  "basis: %.2f x (%s) | %s |" % (
-                      ds.key, worst[0], worst[1], worst[2], worst_b[0], worst_b[1], worst_b[2],
-                      worst_b[3],
-                      "" if worst_best is None else
-                      "; byte budget against the search (`BW_EFFORT_BEST`) instead: "
-                      "squared error at most %.4f x (%s)" % worst_best,
-                      worst_all[0], worst_all[1], "yes" if ok else "no"))
+            choice_row(A, ds, r["rows"], "", "bytes", "basis", "enc", "enc_fixed")
+            choice_row(A, ds, r["choice"], " with the device's coder (`--coder auto`)",
+                       "bytes_every", "basis_every", "enc_every", "enc_quick_fixed")
         # the device's coder: the multi-symbol one, every basis and mode of the
         # one-pass rows
         by = {(d.get("coder", "rice"), d["basis"], d["mode"]): d for d in r["fast"]}
