@@ -45,11 +45,10 @@ static inline int32_t sat_d(int32_t d)
     return d > PRED_SAT ? PRED_SAT : d < -PRED_SAT ? -PRED_SAT : d;
 }
 
-/* w + u within +-PRED_W_MAX, |w| <= 2^18, |u| <= 2^30 (one unsigned
- * comparison finds both ends) */
-static inline int32_t pred_add(int32_t w, int32_t u)
+/* w within +-PRED_W_MAX, |w| <= 2^30 + 2^18 (one unsigned comparison
+ * finds both ends) */
+static inline int32_t pred_clamp(int32_t w)
 {
-    w += u;
     if ((uint32_t)w + (uint32_t)PRED_W_MAX > 2u * (uint32_t)PRED_W_MAX)
         w = w < 0 ? -PRED_W_MAX : PRED_W_MAX;
     return w;
@@ -88,35 +87,67 @@ static BW_NOINLINE void pred_learn(pred_w_t *pw, int64_t err, int64_t dd, int32_
         pw->w[i] = pred_step(pw->w[i], e, ds[i], sh);
 }
 
-/* The weights' step from the decoded error err (k >= 1), given ae = |err|
- * (its low 32 bits) and m = |d_0| | |d_1| | |d_2| | |d_3|: where the error
- * and the differences are small (the bounds below) in 32 bits
- * (BW_CFG_FAST_PREDICT), else pred_learn. Inline, the weights stay in the
- * caller's registers. */
-static BW_ALWAYS_INLINE void pred_weights(int32_t *w0, int32_t *w1, int32_t *w2, int32_t *w3,
-                                          int64_t err, uint32_t ae, uint32_t m, int64_t dd,
-                                          int32_t d0, int32_t d1, int32_t d2, int32_t d3)
+/* pred_learn on weights the caller holds in registers. */
+static BW_ALWAYS_INLINE void pred_learn_regs(int32_t *w0, int32_t *w1, int32_t *w2, int32_t *w3,
+                                             int64_t err, int64_t dd, int32_t d0, int32_t d1,
+                                             int32_t d2, int32_t d3)
 {
-    if (BW_CFG_FAST_PREDICT && BW_LIKELY(dd < PRED_FAST_DD && err == (int32_t)err &&
-                                         ((m >> 14) | (ae >> 17)) == 0u &&
-                                         (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
+    pred_w_t pw = {{*w0, *w1, *w2, *w3}};
+    pred_learn(&pw, err, dd, d0, d1, d2, d3);
+    *w0 = pw.w[0];
+    *w1 = pw.w[1];
+    *w2 = pw.w[2];
+    *w3 = pw.w[3];
+}
+
+/* The weights' step in 32 bits from the decoded error err (k >= 1) where
+ * D^2 = dd < 2^30 and err fits 32 bits, given m = |d_0| | |d_1| | |d_2| |
+ * |d_3|: where the error and the differences are small (the bounds below),
+ * else pred_learn. Inline, the weights stay in the caller's registers. */
+static BW_ALWAYS_INLINE void pred_weights32(int32_t *w0, int32_t *w1, int32_t *w2, int32_t *w3,
+                                            int32_t err, uint32_t m, uint32_t dd, int32_t d0,
+                                            int32_t d1, int32_t d2, int32_t d3)
+{
+    uint32_t ae = bw_abs32(err);
+    if (BW_LIKELY(((m >> 14) | (ae >> 17)) == 0u && (ae | 1u) * (m | 1u) <= PRED_FAST_EDS)) {
         /* |d_i| < 2^14 and D^2 < 2^30: nrm < 2^31, and sh < 31 */
-        uint32_t nrm = (uint32_t)dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) +
-                       (uint32_t)(d2 * d2) + (uint32_t)(d3 * d3);
+        uint32_t nrm = dd + (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) + (uint32_t)(d2 * d2) +
+                       (uint32_t)(d3 * d3);
         unsigned sh = bw_bitlen(nrm) - 1u;
-        int32_t em = (int32_t)err * PRED_MU;
-        *w0 = pred_add(*w0, (em * d0) >> sh);
-        *w1 = pred_add(*w1, (em * d1) >> sh);
-        *w2 = pred_add(*w2, (em * d2) >> sh);
-        *w3 = pred_add(*w3, (em * d3) >> sh);
+        int32_t em = err * PRED_MU;
+        int32_t u0 = *w0 + ((em * d0) >> sh), u1 = *w1 + ((em * d1) >> sh);
+        int32_t u2 = *w2 + ((em * d2) >> sh), u3 = *w3 + ((em * d3) >> sh);
+        const uint32_t B = (uint32_t)PRED_W_MAX;
+        /* all four within +-PRED_W_MAX: each of w + B below 2 B (B a power
+         * of two: their OR too), else each kept within */
+        if (BW_LIKELY((((uint32_t)u0 + B) | ((uint32_t)u1 + B) | ((uint32_t)u2 + B) |
+                       ((uint32_t)u3 + B)) < 2u * B)) {
+            *w0 = u0;
+            *w1 = u1;
+            *w2 = u2;
+            *w3 = u3;
+        } else {
+            *w0 = pred_clamp(u0);
+            *w1 = pred_clamp(u1);
+            *w2 = pred_clamp(u2);
+            *w3 = pred_clamp(u3);
+        }
     } else {
-        pred_w_t pw = {{*w0, *w1, *w2, *w3}};
-        pred_learn(&pw, err, dd, d0, d1, d2, d3);
-        *w0 = pw.w[0];
-        *w1 = pw.w[1];
-        *w2 = pw.w[2];
-        *w3 = pw.w[3];
+        pred_learn_regs(w0, w1, w2, w3, err, dd, d0, d1, d2, d3);
     }
+}
+
+/* The weights' step from the decoded error err (k >= 1), given m = |d_0| |
+ * |d_1| | |d_2| | |d_3|: pred_weights32 where D^2 and err allow it
+ * (BW_CFG_FAST_PREDICT), else pred_learn. */
+static BW_ALWAYS_INLINE void pred_weights(int32_t *w0, int32_t *w1, int32_t *w2, int32_t *w3,
+                                          int64_t err, uint32_t m, int64_t dd, int32_t d0,
+                                          int32_t d1, int32_t d2, int32_t d3)
+{
+    if (BW_CFG_FAST_PREDICT && BW_LIKELY(dd < PRED_FAST_DD && err == (int32_t)err))
+        pred_weights32(w0, w1, w2, w3, (int32_t)err, m, (uint32_t)dd, d0, d1, d2, d3);
+    else
+        pred_learn_regs(w0, w1, w2, w3, err, dd, d0, d1, d2, d3);
 }
 
 /* One spectrum, either way (fwd a constant where it is inlined): v the
@@ -156,7 +187,7 @@ static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const i
         if (!k)
             continue;
         uint32_t m = bw_abs32(d0) | bw_abs32(d1) | bw_abs32(d2) | bw_abs32(d3);
-        pred_weights(&w0, &w1, &w2, &w3, err, bw_abs32((int32_t)err), m, dd, d0, d1, d2, d3);
+        pred_weights(&w0, &w1, &w2, &w3, err, m, dd, d0, d1, d2, d3);
     }
 }
 
@@ -165,7 +196,7 @@ static PRED_SPECTRUM_INLINE void pred_spectrum(int32_t *v, int32_t *cur, const i
  * differences d_0 and d_1, and r[k-1]. */
 typedef struct {
     int32_t w0, w1, w2, w3, d0, d1, a1;
-    uint32_t m0, m1; /* |d_0|, |d_1| */
+    uint32_t m; /* |d_0| | |d_1| */
 } pred_enc_t;
 
 /* pred_spectrum's step for one sample of the encoder, the new differences
@@ -175,18 +206,18 @@ typedef struct {
  * bits. lossless: D = 1, q = x - p. learn: k >= 1. */
 static BW_ALWAYS_INLINE void pred_enc_step(pred_enc_t *st, int32_t *vk, int32_t *ck, int32_t d0,
                                            int32_t d1, uint32_t D, int64_t dd, bool lossless,
-                                           bool learn)
+                                           bool small, bool learn)
 {
     int32_t d3 = st->d0, d2 = st->d1;
-    uint32_t m3 = st->m0, m2 = st->m1; /* found for the sample before */
+    uint32_t m23 = st->m; /* |d_2| | |d_3|, found for the sample before */
     st->d0 = d0;
     st->d1 = d1;
-    st->m0 = bw_abs32(d0);
-    st->m1 = bw_abs32(d1);
+    st->m = bw_abs32(d0) | bw_abs32(d1);
     int64_t acc = (int64_t)st->w0 * d0 + (int64_t)st->w1 * d1 + (int64_t)st->w2 * d2 +
                   (int64_t)st->w3 * d3;
     int32_t p = st->a1 + (int32_t)((acc + 32768) >> 16);
-    p = p > BW_SAMPLE_MAX ? BW_SAMPLE_MAX : p < -BW_SAMPLE_MAX ? -BW_SAMPLE_MAX : p;
+    if (!BW_LIKELY((uint32_t)p + (uint32_t)BW_SAMPLE_MAX <= 2u * (uint32_t)BW_SAMPLE_MAX))
+        p = p < 0 ? -BW_SAMPLE_MAX : BW_SAMPLE_MAX;
     int32_t e = *vk - p, err;
     if (lossless) {
         err = e;
@@ -200,28 +231,33 @@ static BW_ALWAYS_INLINE void pred_enc_step(pred_enc_t *st, int32_t *vk, int32_t 
     st->a1 = *ck = p + err;
     if (!learn)
         return;
-    pred_weights(&st->w0, &st->w1, &st->w2, &st->w3, err, bw_abs32(err),
-                 st->m0 | st->m1 | m2 | m3, dd, d0, d1, d2, d3);
+    if (small)
+        pred_weights32(&st->w0, &st->w1, &st->w2, &st->w3, err, st->m | m23, (uint32_t)dd, d0,
+                       d1, d2, d3);
+    else
+        pred_weights(&st->w0, &st->w1, &st->w2, &st->w3, err, st->m | m23, dd, d0, d1, d2, d3);
 }
 
 /* pred_spectrum forward, the first two samples and the last apart (their
  * differences need samples outside the spectrum), one copy for each of
- * has_prev (prev not NULL) and lossless (D = 1). */
+ * has_prev (prev not NULL), lossless (D = 1) and small (D^2 < 2^30: the
+ * weights' step in 32 bits where the values allow it). */
 static BW_ALWAYS_INLINE void pred_encode(int32_t *v, int32_t *cur, const int32_t *prev,
                                          uint32_t bands, uint32_t D, int64_t dd, bool has_prev,
-                                         bool lossless)
+                                         bool lossless, bool small)
 {
-    pred_enc_t st = {0, 0, 0, 0, 0, 0, has_prev ? prev[0] : 0, 0, 0};
+    pred_enc_t st = {0, 0, 0, 0, 0, 0, has_prev ? prev[0] : 0, 0};
     for (uint32_t k = 0; k < bands && k < 2u; k++)
         pred_enc_step(&st, v + k, cur + k, k >= 2u ? bw_wsub(st.a1, cur[k - 2]) : 0,
                       has_prev && k + 1u < bands ? bw_wsub(prev[k + 1], prev[k]) : 0, D, dd,
-                      lossless, k != 0u);
+                      lossless, small, k != 0u);
     uint32_t k = 2;
     for (; k + 1u < bands; k++)
         pred_enc_step(&st, v + k, cur + k, bw_wsub(st.a1, cur[k - 2]),
-                      has_prev ? bw_wsub(prev[k + 1], prev[k]) : 0, D, dd, lossless, true);
+                      has_prev ? bw_wsub(prev[k + 1], prev[k]) : 0, D, dd, lossless, small, true);
     if (k < bands) /* the last sample: no k + 1 */
-        pred_enc_step(&st, v + k, cur + k, bw_wsub(st.a1, cur[k - 2]), 0, D, dd, lossless, true);
+        pred_enc_step(&st, v + k, cur + k, bw_wsub(st.a1, cur[k - 2]), 0, D, dd, lossless, small,
+                      true);
 }
 #endif
 
@@ -239,11 +275,13 @@ BW_NOINLINE void bw_predict(const bw_plan_t *pl, int32_t *x, int32_t *rows, bool
         int32_t *v = x + s * bands, *cur = fwd ? rows + (s & 1u) * bands : v;
 #if BW_CFG_FAST_PREDICT
         if (fwd && prev && D == 1u)
-            pred_encode(v, cur, prev, bands, D, dd, true, true);
+            pred_encode(v, cur, prev, bands, D, dd, true, true, true);
+        else if (fwd && prev && dd < PRED_FAST_DD)
+            pred_encode(v, cur, prev, bands, D, dd, true, false, true);
         else if (fwd && prev)
-            pred_encode(v, cur, prev, bands, D, dd, true, false);
+            pred_encode(v, cur, prev, bands, D, dd, true, false, false);
         else if (fwd)
-            pred_encode(v, cur, prev, bands, D, dd, false, D == 1u);
+            pred_encode(v, cur, prev, bands, D, dd, false, D == 1u, dd < PRED_FAST_DD);
         else
             pred_spectrum(v, cur, prev, bands, D, dd, false);
 #else
