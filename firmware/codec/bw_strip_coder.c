@@ -382,25 +382,28 @@ static void ms_strip_enc(bw_strip_enc_t *se)
 /* Bands k.. of vector vec (no strip pending), whole strips straight from
  * it, with the contexts strip_put would store found as they are needed:
  * has_par, the parent vector par (else each band's spectral parent, if
- * any); has_prev, the vector above prev (else the previous strip). The
- * callers pass constants, so each gets its own copy. Returns the first
- * band left for strip_put. */
+ * any); has_prev, the vector above prev (else the previous strip); flat,
+ * every band of one class and without a spectral parent (no spectral
+ * transform). The callers pass constants, so each gets its own copy.
+ * Returns the first band left for strip_put. */
 static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int32_t *vec,
                                                   uint32_t k, uint32_t end,
                                                   const int32_t *spec_cls, unsigned cls_dir,
                                                   const int32_t *par, const int32_t *prev,
-                                                  bool has_par, bool has_prev)
+                                                  bool has_par, bool has_prev, bool flat)
 {
     bw_ms_models_t *m = &se->m.ms;
     bw_rc_enc_t *rc = &se->rc;
     bw_strip_state_t *s = &se->st;
+    unsigned cls0 = bw_coef_cls(spec_cls[0], cls_dir);
     MS_LOAD();
     for (; k + BW_STRIP <= end; k += BW_STRIP) {
         const int32_t *v = vec + k, *sct = spec_cls + k;
         uint32_t any = 0; /* the strip's mask bit by bit below, as it codes */
         for (unsigned b = 0; b < BW_STRIP; b++)
             any |= (uint32_t)v[b];
-        MS_BIT(&m->present[bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0], any != 0);
+        MS_BIT(&m->present[flat ? cls0 : bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0],
+               any != 0);
         if (!any) {
             s->prev_mask = 0;
             memset(s->e_above, 0, sizeof s->e_above);
@@ -411,9 +414,9 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
         uint32_t above_mask = s->prev_mask, mask = 0;
         uint8_t *ea = s->e_above;
         for (unsigned b = 0; b < BW_STRIP; b++) {
-            int32_t sc = sct[b];
-            unsigned c = bw_coef_cls(sc, cls_dir), pe = NO_CTX, par_sign = 0;
-            int32_t sp = BW_SPEC_PAR(sc);
+            int32_t sc = flat ? 0 : sct[b];
+            unsigned c = flat ? cls0 : bw_coef_cls(sc, cls_dir), pe = NO_CTX, par_sign = 0;
+            int32_t sp = flat ? -1 : BW_SPEC_PAR(sc);
             if (has_par || sp >= 0) {
                 int32_t pval = has_par ? par[k + b] : vec[sp];
                 pe = bw_bitlen(bw_abs32(pval));
@@ -550,14 +553,19 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
         /* finish the pending strip, then whole strips straight from v */
         for (; se->cnt && k < b; k++)
             put_band(se, v, k, spec_cls, cls_dir, par, prev);
+        /* one class and no spectral parents (no spectral transform: the
+         * finest band's class is the first's) */
+        bool flat = b > 1u && spec_cls[0] == spec_cls[b - 1u] && BW_SPEC_PAR(spec_cls[0]) < 0;
         if (par && prev)
-            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, true);
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, true, false);
         else if (par)
-            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, false);
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, false, false);
+        else if (prev && flat)
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, true, true);
         else if (prev)
-            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, true);
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, true, false);
         else
-            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, false);
+            k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, false, false, false);
     }
 #endif
     for (; k < b; k++)
