@@ -598,6 +598,126 @@ static inline void rate_need(struct bw_rate *r, const bw_strip_enc_t *se, uint32
 #define RATE_NEED(v) ((void)0)
 #endif
 
+#if BW_CFG_FAST_STRIPS && BW_CFG_CODER_MS
+/* One band, one level of the coarse-to-fine order, for the multi-symbol
+ * coder: the children 1..3 of np parents from c (parent p at c + 4 p step,
+ * its children 1..3 steps after it), in class cls, each with its parent's
+ * bit length and sign as contexts and none above (as strip_put stages them
+ * and ms_strip_enc codes them): a pending strip completed and the last
+ * few staged, whole strips coded straight from c. The rate (if any) is
+ * asked for each parent's three vectors at its first child, before the
+ * strip that holds it is coded, as when staged. */
+typedef struct {
+    const int32_t *ch; /* the next child */
+    size_t step;
+    unsigned m;        /* its number, 1..3 */
+} band_walk_t;
+
+static inline void band_next(band_walk_t *w)
+{
+    w->ch += w->m == 3u ? 2u * w->step : w->step; /* past the next parent */
+    w->m = w->m == 3u ? 1u : w->m + 1u;
+}
+
+static inline const int32_t *band_parent(const band_walk_t *w)
+{
+    return w->ch - (size_t)w->m * w->step;
+}
+
+static BW_NOINLINE void ms_band_level(bw_strip_enc_t *se, const int32_t *c, size_t step,
+                                      uint32_t np, unsigned cls, struct bw_rate *rate)
+{
+    band_walk_t w = {c + step, step, 1u};
+    uint32_t left = 3u * np;
+#if !BW_RATE
+    (void)rate;
+#endif
+    for (int phase = 0; phase < 2; phase++) {
+        /* staged: up to a strip boundary, then (second) what is left */
+        for (; left && (phase || se->cnt); left--, band_next(&w)) {
+            if (w.m == 1u)
+                RATE_NEED(3u);
+            const int32_t *par = band_parent(&w);
+            unsigned n = se->cnt;
+            int32_t val = *w.ch;
+            se->mask |= (uint32_t)(val != 0) << n;
+            se->v[n] = val;
+            se->cls[n] = (uint8_t)cls;
+            se->pe[n] = (uint8_t)ctx_len(par);
+            se->ps[n] = (uint8_t)(3u * sign_ctx(par));
+            se->pv[n] = (uint8_t)NO_CTX;
+            if ((se->cnt = n + 1u) == BW_STRIP)
+                bw_strip_enc_code(se);
+        }
+        if (phase)
+            break;
+        bw_ms_models_t *m = &se->m.ms;
+        bw_rc_enc_t *rc = &se->rc;
+        bw_strip_state_t *s = &se->st;
+        for (; left >= BW_STRIP; left -= BW_STRIP) {
+            /* the strip's values present (the rate asked first) */
+            band_walk_t u = w;
+            uint32_t any = 0;
+            for (unsigned b = 0; b < BW_STRIP; b++, band_next(&u)) {
+                if (u.m == 1u)
+                    RATE_NEED(3u);
+                any |= (uint32_t)*u.ch;
+            }
+            MS_LOAD();
+            MS_BIT(&m->present[cls][s->prev_mask != 0], any != 0);
+            if (!any) {
+                MS_STORE();
+                s->prev_mask = 0;
+                memset(s->e_above, 0, sizeof s->e_above);
+                s->e_left = 0;
+                w = u;
+                continue;
+            }
+            unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
+            uint32_t above_mask = s->prev_mask, mask = 0;
+            uint8_t *ea = s->e_above;
+            /* the parent's contexts, once for its three children: valid_ctx
+             * and mag_ctx of a parent bit length pe (never NO_CTX here) */
+            const int32_t *par = band_parent(&w);
+            unsigned pe = ctx_len(par), ps = 3u * sign_ctx(par);
+            unsigned vc = valid_ctx(0u, pe), pm = 2u * pe + 2u;
+            for (unsigned b = 0; b < BW_STRIP; b++, band_next(&w)) {
+                if (w.m == 1u && b) {
+                    par = band_parent(&w);
+                    pe = ctx_len(par);
+                    ps = 3u * sign_ctx(par);
+                    vc = valid_ctx(0u, pe);
+                    pm = 2u * pe + 2u;
+                }
+                int32_t x = *w.ch;
+                unsigned bit = x != 0;
+                mask |= (uint32_t)bit << b;
+                MS_BIT(&m->valid[cls][prev_bit][vc + ((above_mask >> b) & 1u)], bit);
+                prev_bit = bit;
+                if (!bit) {
+                    ea[b] = 0;
+                    e_left = 0;
+                    left_sign = 0;
+                    continue;
+                }
+                uint32_t a = bw_abs32(x);
+                unsigned e = bw_bitlen(a);
+                unsigned mc = (e_left + ea[b] + pm) >> 2;
+                MS_MAGNITUDE(&m->e[cls][mc < NB_CTX ? mc : NB_CTX - 1u], e, a);
+                unsigned neg = x < 0;
+                MS_BIT(&m->sign[left_sign + ps], neg);
+                left_sign = 1u + neg;
+                ea[b] = (uint8_t)e;
+                e_left = e;
+            }
+            MS_STORE();
+            s->e_left = e_left;
+            s->prev_mask = mask;
+        }
+    }
+}
+#endif
+
 void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
 {
     const bw_dims_t *d = &pl->dims;
@@ -666,6 +786,16 @@ void bw_code_body(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se)
                      * the strip's count and mask in locals (the byte stores
                      * below would make the compiler reload them) */
                     uint8_t cls = (uint8_t)bw_coef_cls(sc[0], cd);
+#if BW_CFG_CODER_MS
+                    if (se->coder == BW_CODER_MS) {
+#if BW_RATE
+                        ms_band_level(se, c, step, 4u << (2u * j), cls, rate);
+#else
+                        ms_band_level(se, c, step, 4u << (2u * j), cls, NULL);
+#endif
+                        continue;
+                    }
+#endif
                     unsigned n = se->cnt;
                     uint32_t mask = se->mask;
                     int32_t *sv = se->v;
