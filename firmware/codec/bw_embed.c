@@ -101,11 +101,12 @@ typedef struct {
     bool stopped;
 } embed_t;
 
-static inline bool is_sig(const embed_t *c, const int32_t *p)
+/* enc: c->enc, a constant where pass() is inlined */
+static BW_ALWAYS_INLINE bool is_sig(const embed_t *c, const int32_t *p, bool enc)
 {
     if (!p)
         return false;
-    if (!c->enc)
+    if (!enc)
         return *p != 0;
     size_t i = (size_t)(p - c->x0);
     return (c->map[i >> 5] >> (i & 31u)) & 1u;
@@ -120,17 +121,17 @@ static inline void set_sig(embed_t *c, const int32_t *p)
 /* Whether one more symbol may be coded: an encoder stops before its bytes
  * could pass the budget, a decoder of a cut segment before its code value
  * holds a byte that is not there. */
-static inline bool room(embed_t *c)
+static BW_ALWAYS_INLINE bool room(embed_t *c, bool enc)
 {
     if (c->stopped)
         return false;
-    c->stopped = c->enc ? c->re.pos + 2u > c->budget : c->rd.pos > c->avail;
+    c->stopped = enc ? c->re.pos + 2u > c->budget : c->rd.pos > c->avail;
     return !c->stopped;
 }
 
-static inline unsigned bit(embed_t *c, bw_prob_t *p, unsigned b)
+static BW_ALWAYS_INLINE unsigned bit(embed_t *c, bw_prob_t *p, unsigned b, bool enc)
 {
-    if (c->enc) {
+    if (enc) {
         bw_rc_enc_bit(&c->re, p, b);
         return b;
     }
@@ -141,17 +142,18 @@ static inline unsigned bit(embed_t *c, bw_prob_t *p, unsigned b)
  * none or not significant, 1 significant with a leading bit at most one
  * plane above b, 2 higher (its leading bit is known once it is
  * significant). */
-static inline unsigned nb_state(const embed_t *c, const int32_t *p, unsigned b)
+static BW_ALWAYS_INLINE unsigned nb_state(const embed_t *c, const int32_t *p, unsigned b,
+                                          bool enc)
 {
-    if (!p || !is_sig(c, p))
+    if (!p || !is_sig(c, p, enc))
         return 0u;
     return bw_bitlen((uint32_t)bw_abs32(*p)) <= b + 2u ? 1u : 2u;
 }
 
 /* sign context of a known value: 0 none or zero, 1 positive, 2 negative */
-static inline unsigned sgn(const embed_t *c, const int32_t *p)
+static BW_ALWAYS_INLINE unsigned sgn(const embed_t *c, const int32_t *p, bool enc)
 {
-    return p && is_sig(c, p) ? 1u + (*p < 0) : 0u;
+    return p && is_sig(c, p, enc) ? 1u + (*p < 0) : 0u;
 }
 
 /* A walk over a segment's coefficients in coding order with each one's
@@ -253,7 +255,8 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
  * group, then a strip, with no significant coefficient yet (c->groups,
  * c->strips) codes a flag: does one become significant now; only then its
  * coefficients are visited. */
-static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, size_t limit)
+static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                    size_t limit, bool enc)
 {
     walk_t w;
     walk_start(&w, start, &c->so, c->weigh, c->inpar_on);
@@ -271,9 +274,9 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
              * class of its first coefficient) */
             unsigned pg = gi ? GROUP_SIG(c, gi - 1u) : 0u;
             uint8_t cls0 = (uint8_t)bw_coef_cls(w.it.pl->spec_cls[w.it.k], w.it.cls_dir);
-            if (s >= limit || !room(c))
+            if (s >= limit || !room(c, enc))
                 return s;
-            if (!bit(c, &c->m->group[pg][cls0], c->enc && c->gtop[gi] == P + 1u)) {
+            if (!bit(c, &c->m->group[pg][cls0], enc && c->gtop[gi] == P + 1u, enc)) {
                 s += GROUP - STRIP; /* the next group */
                 continue;
             }
@@ -283,10 +286,10 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
             unsigned pc = si ? STRIP_SIG(c, si - 1u) : 0u;
             int32_t sc = w.it.pl->spec_cls[w.it.k];
             uint8_t cls0 = (uint8_t)bw_coef_cls(sc, w.it.cls_dir);
-            unsigned pp = is_sig(c, bw_parent_of(w.it.par, w.it.vec, sc, w.it.k));
-            if (s >= limit || !room(c))
+            unsigned pp = is_sig(c, bw_parent_of(w.it.par, w.it.vec, sc, w.it.k), enc);
+            if (s >= limit || !room(c, enc))
                 return s;
-            if (!bit(c, &c->m->strip[pp][pc][cls0], c->enc && c->stop[si] == P + 1u))
+            if (!bit(c, &c->m->strip[pp][pc][cls0], enc && c->stop[si] == P + 1u, enc))
                 continue;
         }
         for (size_t k = 0; k < cnt; k++) {
@@ -303,24 +306,26 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
                 return s + k;
             }
             uint32_t a = (uint32_t)bw_abs32(*p);
-            bool sig = is_sig(c, p);
-            if (s + k >= limit || !room(c))
+            bool sig = is_sig(c, p, enc);
+            if (s + k >= limit || !room(c, enc))
                 return s + k;
             if (sig) { /* refinement */
-                unsigned r = bit(c, &c->m->ref[(a >> (b + 1u)) == 1u][cls], (a >> b) & 1u);
-                if (!c->enc && r)
+                unsigned r = bit(c, &c->m->ref[(a >> (b + 1u)) == 1u][cls], (a >> b) & 1u, enc);
+                if (!enc && r)
                     *p = *p < 0 ? -(int32_t)(a | 1u << b) : (int32_t)(a | 1u << b);
                 continue;
             }
-            unsigned pc = par ? 1u + nb_state(c, par, b) : 0u;
-            unsigned ctx = ((cls * 4u + pc) * 3u + nb_state(c, left, b)) * 3u + nb_state(c, prv, b);
-            if (!bit(c, &c->m->sig[ctx], (a >> b) & 1u))
+            unsigned pc = par ? 1u + nb_state(c, par, b, enc) : 0u;
+            unsigned ctx = ((cls * 4u + pc) * 3u + nb_state(c, left, b, enc)) * 3u +
+                           nb_state(c, prv, b, enc);
+            if (!bit(c, &c->m->sig[ctx], (a >> b) & 1u, enc))
                 continue;
             /* its sign, then it is significant */
-            if (!room(c))
+            if (!room(c, enc))
                 return s + k;
-            unsigned neg = bit(c, &c->m->sign[3u * sgn(c, par) + sgn(c, left)], *p < 0);
-            if (c->enc)
+            unsigned neg =
+                bit(c, &c->m->sign[3u * sgn(c, par, enc) + sgn(c, left, enc)], *p < 0, enc);
+            if (enc)
                 set_sig(c, p);
             else
                 *p = neg ? -(int32_t)(1u << b) : (int32_t)(1u << b);
@@ -329,6 +334,19 @@ static size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P, siz
         }
     }
     return n;
+}
+
+/* pass() for each side, its tests of the side folded */
+static BW_NOINLINE size_t pass_enc(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                   size_t limit)
+{
+    return pass(c, start, n, P, limit, true);
+}
+
+static BW_NOINLINE size_t pass_dec(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                   size_t limit)
+{
+    return pass(c, start, n, P, limit, false);
 }
 
 /* The encoder's passes of a segment: 1 + the highest plane any
@@ -421,7 +439,7 @@ size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t ca
     unsigned np = passes_of(&c, start, n), done = 0;
     size_t at = n;
     for (; done < np; done++) {
-        at = pass(&c, start, n, np - 1u - done, n);
+        at = pass_enc(&c, start, n, np - 1u - done, n);
         if (at < n)
             break;
     }
@@ -466,7 +484,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
             stop = 0;
             break;
         }
-        stop = pass(&c, start, n, np - 1u - t, t < done ? n : at);
+        stop = pass_dec(&c, start, n, np - 1u - t, t < done ? n : at);
         if (stop < n)
             break;
     }
