@@ -46,6 +46,19 @@ bw_status_t bw_encode_prepare(bw_plan_t *pl, const int32_t *samples, int32_t *wo
  * and on uniform noise, where they are 4 % and more above it */
 #define BW_AUTO_RICE_Q8 248u
 
+/* hist[33] by bit length from h[32], counts by clz(2a + 1) (31 - the bit
+ * length); returns the sum of the bit lengths. */
+static uint64_t bitlen_of_clz(const uint32_t h[32], uint32_t hist[33])
+{
+    uint64_t sum = 0;
+    for (unsigned e = 0; e < 32u; e++) {
+        hist[e] = h[31u - e];
+        sum += (uint64_t)hist[e] * e;
+    }
+    hist[32] = 0;
+    return sum;
+}
+
 /* The bit lengths of the prediction errors x (each below 2^26, n <= 2^32 -
  * 1), of every one, or of every fourth from 4096 on: how many of each into
  * hist[33] (their count *m), and their sum. */
@@ -56,14 +69,8 @@ static uint64_t bitlen_hist(const bw_plan_t *pl, const int32_t *x, uint32_t hist
     const int32_t *end = x + pl->n;
     for (const int32_t *p = x; p < end; p += step)
         h[bw_clz32(bw_abs32(*p) << 1 | 1u)]++;
-    uint64_t sum = 0;
-    for (unsigned e = 0; e < 32u; e++) {
-        hist[e] = h[31u - e];
-        sum += (uint64_t)hist[e] * e;
-    }
-    hist[32] = 0;
     *m = (pl->n + step - 1u) / step;
-    return sum;
+    return bitlen_of_clz(h, hist);
 }
 
 /* The bits of an order-0 coding of n coefficients of those bit lengths in
@@ -378,16 +385,11 @@ static uint64_t subband_bits(const bw_plan_t *pl, const int32_t *x)
     const int32_t *end = x + pl->n;
     uint64_t bits = 0;
     for (unsigned s = 0; s < sb.count; s++) {
-        uint32_t h[33] = {0}, hist[33]; /* h by clz(2a + 1): 31 - the bit length */
+        uint32_t h[32] = {0}, hist[33]; /* h by clz(2a + 1): 31 - the bit length */
         for (const int32_t *v = x; v < end; v += b)
             for (uint32_t k = sb.lo[s]; k < sb.lo[s + 1u]; k++)
                 h[bw_clz32(bw_abs32(v[k]) << 1 | 1u)]++;
-        uint64_t sum = 0;
-        for (unsigned e = 0; e < 32u; e++) {
-            hist[e] = h[31u - e];
-            sum += (uint64_t)hist[e] * e;
-        }
-        hist[32] = 0;
+        uint64_t sum = bitlen_of_clz(h, hist);
         size_t m = (size_t)(pl->n / b) * (sb.lo[s + 1u] - sb.lo[s]);
         if (m)
             bits += order0_bits(hist, m, sum);
