@@ -60,6 +60,15 @@ void bw_models_init(bw_models_t *m, unsigned coder)
 #endif
 }
 
+/* A strip with no value: the next strip's contexts above and to the left
+ * are none. */
+static inline void strip_none(bw_strip_state_t *s)
+{
+    s->prev_mask = 0;
+    memset(s->e_above, 0, sizeof s->e_above);
+    s->e_left = 0;
+}
+
 /* significance: the bit above, and whether the parent is zero, small or not */
 static inline unsigned valid_ctx(unsigned above_bit, unsigned pe)
 {
@@ -217,9 +226,7 @@ static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, 
         if (dec)
             for (unsigned b = 0; b < cnt; b++)
                 *dst[b] = 0;
-        s->prev_mask = 0;
-        memset(s->e_above, 0, sizeof s->e_above);
-        s->e_left = 0;
+        strip_none(s);
         return true;
     }
     unsigned prev_bit = 0;
@@ -348,9 +355,7 @@ static void ms_strip_enc(bw_strip_enc_t *se)
     MS_LOAD();
     MS_BIT(&m->present[se->cls[0]][s->prev_mask != 0], mask != 0);
     if (!mask) {
-        s->prev_mask = 0;
-        memset(s->e_above, 0, sizeof s->e_above);
-        s->e_left = 0;
+        strip_none(s);
         MS_STORE();
         return;
     }
@@ -405,9 +410,7 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
         MS_BIT(&m->present[flat ? cls0 : bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0],
                any != 0);
         if (!any) {
-            s->prev_mask = 0;
-            memset(s->e_above, 0, sizeof s->e_above);
-            s->e_left = 0;
+            strip_none(s);
             continue;
         }
         unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
@@ -637,17 +640,7 @@ static BW_NOINLINE void ms_band_level(bw_strip_enc_t *se, const int32_t *c, size
         for (; left && (phase || se->cnt); left--, band_next(&w)) {
             if (w.m == 1u)
                 RATE_NEED(3u);
-            const int32_t *par = band_parent(&w);
-            unsigned n = se->cnt;
-            int32_t val = *w.ch;
-            se->mask |= (uint32_t)(val != 0) << n;
-            se->v[n] = val;
-            se->cls[n] = (uint8_t)cls;
-            se->pe[n] = (uint8_t)ctx_len(par);
-            se->ps[n] = (uint8_t)(3u * sign_ctx(par));
-            se->pv[n] = (uint8_t)NO_CTX;
-            if ((se->cnt = n + 1u) == BW_STRIP)
-                bw_strip_enc_code(se);
+            strip_put(se, *w.ch, cls, band_parent(&w), NULL);
         }
         if (phase)
             break;
@@ -667,9 +660,7 @@ static BW_NOINLINE void ms_band_level(bw_strip_enc_t *se, const int32_t *c, size
             MS_BIT(&m->present[cls][s->prev_mask != 0], any != 0);
             if (!any) {
                 MS_STORE();
-                s->prev_mask = 0;
-                memset(s->e_above, 0, sizeof s->e_above);
-                s->e_left = 0;
+                strip_none(s);
                 w = u;
                 continue;
             }
