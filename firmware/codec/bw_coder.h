@@ -46,7 +46,10 @@ typedef union {
 
 /* What a strip leaves for the next one's contexts. */
 typedef struct {
-    uint8_t e_above[32]; /* bit lengths of its elements (0: zero) */
+    union {
+        uint8_t e_above[32]; /* bit lengths of its elements (0: zero) */
+        uint32_t e_above_w[8]; /* the same, cleared four at a time */
+    };
     uint32_t prev_mask;  /* its valid bits (0: absent) */
     unsigned e_left;     /* bit length of its last element */
 } bw_strip_state_t;

@@ -65,7 +65,12 @@ void bw_models_init(bw_models_t *m, unsigned coder)
 static inline void strip_none(bw_strip_state_t *s)
 {
     s->prev_mask = 0;
+#if BW_CFG_FAST_STRIPS
+    for (unsigned i = 0; i < 8u; i++) /* in line, where memset is a call */
+        s->e_above_w[i] = 0;
+#else
     memset(s->e_above, 0, sizeof s->e_above);
+#endif
     s->e_left = 0;
 }
 
@@ -343,53 +348,122 @@ static STRIP_INLINE bool range_strip(bool ms, bw_models_t *m, bw_rc_enc_t *rce, 
         }                                                                                        \
     } while (0)
 
-/* A strip put (se->v and the contexts strip_put stored). */
-static void ms_strip_enc(bw_strip_enc_t *se)
+/* ms_strip's element b (x, class c, parent bit length pe): its valid bit;
+ * for a zero, the contexts it leaves, and the loop's next element */
+#define MS_VALID_OR_NEXT(c, pe, b, x)                                                            \
+    {                                                                                            \
+        unsigned bit_ = (x) != 0;                                                                \
+        mask |= (uint32_t)bit_ << (b);                                                           \
+        MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> (b)) & 1u, pe)], bit_);           \
+        prev_bit = bit_;                                                                         \
+        if (!bit_) {                                                                             \
+            ea[b] = 0;                                                                           \
+            e_left = 0;                                                                          \
+            left_sign = 0;                                                                       \
+            continue;                                                                            \
+        }                                                                                        \
+    }
+/* ... and of a non-zero one (a = |x|, bit length e) its bit length (above:
+ * the bit length above), bits and sign (up: its sign model but for the
+ * left sign) */
+#define MS_NONZERO(c, pe, b, x, a, e, above, up)                                                 \
+    do {                                                                                         \
+        MS_MAGNITUDE(&m->e[c][mag_ctx(e_left, above, pe)], e, a);                                \
+        unsigned neg_ = (x) < 0;                                                                 \
+        MS_BIT(&m->sign[left_sign + (up)], neg_);                                                \
+        left_sign = 1u + neg_;                                                                   \
+        ea[b] = (uint8_t)(e);                                                                    \
+        e_left = (e);                                                                            \
+    } while (0)
+
+/*
+ * One strip: its first b0 elements put (se->v and the contexts strip_put
+ * stored), then, up to len, bands k.. of vector vec coded straight from it,
+ * with the contexts strip_put would store found as they are needed:
+ * has_par, the parent vector par (else each band's spectral parent, if
+ * any); has_prev, the vector above prev (else the previous strip); flat,
+ * every band of one class and without a spectral parent (no spectral
+ * transform); put, the elements put alone (b0 = len). The coder's low and
+ * range in *lo and *ra. The callers pass constants, so each gets its own
+ * copy.
+ */
+static BW_ALWAYS_INLINE void ms_strip(bw_strip_enc_t *se, uint32_t *lo, uint32_t *ra, unsigned b0,
+                                      unsigned len, const int32_t *vec, uint32_t k,
+                                      const int32_t *spec_cls, unsigned cls_dir,
+                                      const int32_t *par, const int32_t *prev, bool has_par,
+                                      bool has_prev, bool flat, bool put)
 {
     bw_ms_models_t *m = &se->m.ms;
     bw_rc_enc_t *rc = &se->rc;
     bw_strip_state_t *s = &se->st;
-    unsigned cnt = se->cnt;
-    uint32_t mask = se->mask;
-    const int32_t *v = se->v;
-    MS_LOAD();
-    MS_BIT(&m->present[se->cls[0]][s->prev_mask != 0], mask != 0);
-    if (!mask) {
+    uint32_t low = *lo, range = *ra;
+    unsigned cls0 = put ? 0u : bw_coef_cls(spec_cls[0], cls_dir);
+    const int32_t *v = put ? NULL : vec + k, *sct = put ? NULL : spec_cls + k;
+    uint32_t any = se->mask; /* the mask bit by bit below, as it codes */
+    if (!put)
+        for (unsigned i = 0; i < len - b0; i++)
+            any |= (uint32_t)v[i];
+    unsigned c_first = put || b0 ? se->cls[0] : flat ? cls0 : bw_coef_cls(sct[0], cls_dir);
+    MS_BIT(&m->present[c_first][s->prev_mask != 0], any != 0);
+    se->cnt = 0;
+    se->mask = 0;
+    if (!any) {
         strip_none(s);
-        MS_STORE();
+        *lo = low;
+        *ra = range;
         return;
     }
-    unsigned prev_bit = 0, e_left = s->e_left;
-    uint32_t above_mask = s->prev_mask;
-    for (unsigned b = 0; b < cnt; b++) {
-        unsigned c = se->cls[b], pe_b = se->pe[b], bit = (mask >> b) & 1u;
-        MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe_b)], bit);
-        prev_bit = bit;
-        if (!bit) {
-            s->e_above[b] = 0;
-            e_left = 0;
-            continue;
-        }
-        int32_t x = v[b];
+    unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
+    uint32_t above_mask = s->prev_mask, mask = 0;
+    uint8_t *ea = s->e_above;
+    for (unsigned b = 0; b < b0; b++) { /* the elements put */
+        int32_t x = se->v[b];
+        unsigned c = se->cls[b], pe = se->pe[b];
+        MS_VALID_OR_NEXT(c, pe, b, x)
         uint32_t a = bw_abs32(x);
         unsigned e = bw_bitlen(a), pv_b = se->pv[b];
-        unsigned above = pv_b != NO_CTX ? pv_b : s->e_above[b];
-        MS_MAGNITUDE(&m->e[c][mag_ctx(e_left, above, pe_b)], e, a);
-        MS_BIT(&m->sign[(b ? sign_ctx(&v[b - 1]) : 0u) + se->ps[b]], x < 0);
-        s->e_above[b] = (uint8_t)e;
-        e_left = e;
+        MS_NONZERO(c, pe, b, x, a, e, pv_b != NO_CTX ? pv_b : ea[b], se->ps[b]);
+    }
+    for (unsigned b = b0, i = 0; b < len; b++, i++) { /* vec's */
+        int32_t sc = flat ? 0 : sct[i];
+        unsigned c = flat ? cls0 : bw_coef_cls(sc, cls_dir), pe = NO_CTX, par_sign = 0;
+        int32_t sp = flat ? -1 : BW_SPEC_PAR(sc);
+        if (has_par || sp >= 0) {
+            int32_t pval = has_par ? par[k + i] : vec[sp];
+            pe = bw_bitlen(bw_abs32(pval));
+            par_sign = pval ? 1u + (pval < 0) : 0u;
+        }
+        int32_t x = v[i];
+        MS_VALID_OR_NEXT(c, pe, b, x)
+        uint32_t a = bw_abs32(x);
+        unsigned e = bw_bitlen(a), above, up_sign = 0;
+        if (has_prev) {
+            int32_t y = prev[k + i];
+            above = bw_bitlen(bw_abs32(y));
+            up_sign = y ? 1u + (y < 0) : 0u;
+        } else {
+            above = ea[b];
+        }
+        MS_NONZERO(c, pe, b, x, a, e, above, 3u * (par_sign + 3u * up_sign));
     }
     s->e_left = e_left;
     s->prev_mask = mask;
+    *lo = low;
+    *ra = range;
+}
+
+/* A strip put (se->v and the contexts strip_put stored). */
+static void ms_strip_enc(bw_strip_enc_t *se)
+{
+    bw_rc_enc_t *rc = &se->rc;
+    MS_LOAD();
+    ms_strip(se, &low, &range, se->cnt, se->cnt, NULL, 0, NULL, 0, NULL, NULL, false, false, false,
+             true);
     MS_STORE();
 }
 
-/* Bands k.. of vector vec (no strip pending), whole strips straight from
- * it, with the contexts strip_put would store found as they are needed:
- * has_par, the parent vector par (else each band's spectral parent, if
- * any); has_prev, the vector above prev (else the previous strip); flat,
- * every band of one class and without a spectral parent (no spectral
- * transform). The callers pass constants, so each gets its own copy.
+/* Bands k.. of vector vec: the pending strip completed (where vec holds
+ * enough bands), then whole strips straight from vec (ms_strip).
  * Returns the first band left for strip_put. */
 static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int32_t *vec,
                                                   uint32_t k, uint32_t end,
@@ -397,64 +471,18 @@ static BW_ALWAYS_INLINE uint32_t ms_vector_strips(bw_strip_enc_t *se, const int3
                                                   const int32_t *par, const int32_t *prev,
                                                   bool has_par, bool has_prev, bool flat)
 {
-    bw_ms_models_t *m = &se->m.ms;
     bw_rc_enc_t *rc = &se->rc;
-    bw_strip_state_t *s = &se->st;
-    unsigned cls0 = bw_coef_cls(spec_cls[0], cls_dir);
     MS_LOAD();
-    for (; k + BW_STRIP <= end; k += BW_STRIP) {
-        const int32_t *v = vec + k, *sct = spec_cls + k;
-        uint32_t any = 0; /* the strip's mask bit by bit below, as it codes */
-        for (unsigned b = 0; b < BW_STRIP; b++)
-            any |= (uint32_t)v[b];
-        MS_BIT(&m->present[flat ? cls0 : bw_coef_cls(sct[0], cls_dir)][s->prev_mask != 0],
-               any != 0);
-        if (!any) {
-            strip_none(s);
-            continue;
-        }
-        unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
-        uint32_t above_mask = s->prev_mask, mask = 0;
-        uint8_t *ea = s->e_above;
-        for (unsigned b = 0; b < BW_STRIP; b++) {
-            int32_t sc = flat ? 0 : sct[b];
-            unsigned c = flat ? cls0 : bw_coef_cls(sc, cls_dir), pe = NO_CTX, par_sign = 0;
-            int32_t sp = flat ? -1 : BW_SPEC_PAR(sc);
-            if (has_par || sp >= 0) {
-                int32_t pval = has_par ? par[k + b] : vec[sp];
-                pe = bw_bitlen(bw_abs32(pval));
-                par_sign = pval ? 1u + (pval < 0) : 0u;
-            }
-            int32_t x = v[b];
-            unsigned bit = x != 0;
-            mask |= (uint32_t)bit << b;
-            MS_BIT(&m->valid[c][prev_bit][valid_ctx((above_mask >> b) & 1u, pe)], bit);
-            prev_bit = bit;
-            if (!bit) {
-                ea[b] = 0;
-                e_left = 0;
-                left_sign = 0;
-                continue;
-            }
-            uint32_t a = bw_abs32(x);
-            unsigned e = bw_bitlen(a), above, up_sign = 0;
-            if (has_prev) {
-                int32_t y = prev[k + b];
-                above = bw_bitlen(bw_abs32(y));
-                up_sign = y ? 1u + (y < 0) : 0u;
-            } else {
-                above = ea[b];
-            }
-            MS_MAGNITUDE(&m->e[c][mag_ctx(e_left, above, pe)], e, a);
-            unsigned neg = x < 0;
-            MS_BIT(&m->sign[left_sign + 3u * (par_sign + 3u * up_sign)], neg);
-            left_sign = 1u + neg;
-            ea[b] = (uint8_t)e;
-            e_left = e;
-        }
-        s->e_left = e_left;
-        s->prev_mask = mask;
+    unsigned b0 = se->cnt;
+    if (b0 && k + BW_STRIP - b0 <= end) {
+        ms_strip(se, &low, &range, b0, BW_STRIP, vec, k, spec_cls, cls_dir, par, prev, has_par,
+                 has_prev, flat, false);
+        k += BW_STRIP - b0;
     }
+    if (!se->cnt)
+        for (; k + BW_STRIP <= end; k += BW_STRIP)
+            ms_strip(se, &low, &range, 0u, BW_STRIP, vec, k, spec_cls, cls_dir, par, prev,
+                     has_par, has_prev, flat, false);
     MS_STORE();
     return k;
 }
@@ -553,9 +581,10 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
     uint32_t k = 0;
 #if BW_CFG_FAST_STRIPS
     if (BW_CFG_CODER_MS && se->coder == BW_CODER_MS) {
-        /* finish the pending strip, then whole strips straight from v */
-        for (; se->cnt && k < b; k++)
-            put_band(se, v, k, spec_cls, cls_dir, par, prev);
+        /* a pending strip that v cannot complete: staged */
+        if (se->cnt && b < BW_STRIP - se->cnt)
+            for (; k < b; k++)
+                put_band(se, v, k, spec_cls, cls_dir, par, prev);
         /* one class and no spectral parents (no spectral transform: the
          * finest band's class is the first's) */
         bool flat = b > 1u && spec_cls[0] == spec_cls[b - 1u] && BW_SPEC_PAR(spec_cls[0]) < 0;
@@ -622,6 +651,14 @@ static inline void band_next(band_walk_t *w)
     w->m = w->m == 3u ? 1u : w->m + 1u;
 }
 
+/* n children on */
+static inline void band_skip(band_walk_t *w, uint32_t n)
+{
+    uint32_t i = w->m - 1u + n, p = i / 3u, m = i - 3u * p + 1u;
+    w->ch += (4u * p + m - w->m) * w->step;
+    w->m = m;
+}
+
 static inline const int32_t *band_parent(const band_walk_t *w)
 {
     return w->ch - (size_t)w->m * w->step;
@@ -647,21 +684,35 @@ static BW_NOINLINE void ms_band_level(bw_strip_enc_t *se, const int32_t *c, size
         bw_ms_models_t *m = &se->m.ms;
         bw_rc_enc_t *rc = &se->rc;
         bw_strip_state_t *s = &se->st;
+        size_t step4 = 4u * step;
+        bw_prob_t(*valid)[6] = m->valid[cls];
+        bw_ms_model_t *em = m->e[cls];
         for (; left >= BW_STRIP; left -= BW_STRIP) {
             /* the strip's values present (the rate asked first) */
-            band_walk_t u = w;
             uint32_t any = 0;
-            for (unsigned b = 0; b < BW_STRIP; b++, band_next(&u)) {
-                if (u.m == 1u)
-                    RATE_NEED(3u);
-                any |= (uint32_t)*u.ch;
+            if (BW_RATE && rate) {
+                band_walk_t u = w;
+                for (unsigned b = 0; b < BW_STRIP; b++, band_next(&u)) {
+                    if (u.m == 1u)
+                        RATE_NEED(3u);
+                    any |= (uint32_t)*u.ch;
+                }
+            } else { /* the rest of this parent's children, then three a parent */
+                const int32_t *ch = w.ch;
+                unsigned b = 4u - w.m;
+                for (unsigned r = b; r; r--, ch += step)
+                    any |= (uint32_t)*ch;
+                for (ch += step; b + 3u <= BW_STRIP; b += 3u, ch += step4)
+                    any |= (uint32_t)(ch[0] | ch[step] | ch[2u * step]);
+                for (; b < BW_STRIP; b++, ch += step)
+                    any |= (uint32_t)*ch;
             }
             MS_LOAD();
             MS_BIT(&m->present[cls][s->prev_mask != 0], any != 0);
             if (!any) {
                 MS_STORE();
                 strip_none(s);
-                w = u;
+                band_skip(&w, BW_STRIP);
                 continue;
             }
             unsigned prev_bit = 0, e_left = s->e_left, left_sign = 0;
@@ -669,38 +720,47 @@ static BW_NOINLINE void ms_band_level(bw_strip_enc_t *se, const int32_t *c, size
             uint8_t *ea = s->e_above;
             /* the parent's contexts, once for its three children: valid_ctx
              * and mag_ctx of a parent bit length pe (never NO_CTX here) */
-            const int32_t *par = band_parent(&w);
+            const int32_t *ch = w.ch;
+            unsigned rem = 4u - w.m; /* this parent's children left */
+            const int32_t *par = ch - (size_t)w.m * step;
             unsigned pe = ctx_len(par), ps = 3u * sign_ctx(par);
             unsigned vc = valid_ctx(0u, pe), pm = 2u * pe + 2u;
-            for (unsigned b = 0; b < BW_STRIP; b++, band_next(&w)) {
-                if (w.m == 1u && b) {
-                    par = band_parent(&w);
-                    pe = ctx_len(par);
-                    ps = 3u * sign_ctx(par);
-                    vc = valid_ctx(0u, pe);
-                    pm = 2u * pe + 2u;
-                }
-                int32_t x = *w.ch;
+            for (unsigned b = 0; b < BW_STRIP; b++) {
+                int32_t x = *ch;
                 unsigned bit = x != 0;
                 mask |= (uint32_t)bit << b;
-                MS_BIT(&m->valid[cls][prev_bit][vc + ((above_mask >> b) & 1u)], bit);
+                MS_BIT(&valid[prev_bit][vc + ((above_mask >> b) & 1u)], bit);
                 prev_bit = bit;
                 if (!bit) {
                     ea[b] = 0;
                     e_left = 0;
                     left_sign = 0;
-                    continue;
+                } else {
+                    uint32_t a = bw_abs32(x);
+                    unsigned e = bw_bitlen(a);
+                    unsigned mc = (e_left + ea[b] + pm) >> 2;
+                    MS_MAGNITUDE(&em[mc < NB_CTX ? mc : NB_CTX - 1u], e, a);
+                    unsigned neg = x < 0;
+                    MS_BIT(&m->sign[left_sign + ps], neg);
+                    left_sign = 1u + neg;
+                    ea[b] = (uint8_t)e;
+                    e_left = e;
                 }
-                uint32_t a = bw_abs32(x);
-                unsigned e = bw_bitlen(a);
-                unsigned mc = (e_left + ea[b] + pm) >> 2;
-                MS_MAGNITUDE(&m->e[cls][mc < NB_CTX ? mc : NB_CTX - 1u], e, a);
-                unsigned neg = x < 0;
-                MS_BIT(&m->sign[left_sign + ps], neg);
-                left_sign = 1u + neg;
-                ea[b] = (uint8_t)e;
-                e_left = e;
+                ch += step;
+                if (--rem == 0u) { /* past the next parent, to its first child */
+                    par = ch;
+                    ch += step;
+                    rem = 3u;
+                    if (b + 1u == BW_STRIP)
+                        break; /* (which may lie past the level's end) */
+                    pe = ctx_len(par);
+                    ps = 3u * sign_ctx(par);
+                    vc = valid_ctx(0u, pe);
+                    pm = 2u * pe + 2u;
+                }
             }
+            w.ch = ch;
+            w.m = 4u - rem;
             MS_STORE();
             s->e_left = e_left;
             s->prev_mask = mask;
