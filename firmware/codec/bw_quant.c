@@ -118,10 +118,17 @@ static uint64_t vec_energy(const spec_bands_t *sb, const uq56_8_t *st_q8, const 
         uint32_t zero = !BW_CFG_FAST_QUANT        ? 0u
                         : st >= ((uint64_t)1 << 32) ? 1u << 24
                                                     : (uint32_t)((st + 255u) >> 8);
-        for (uint32_t k = sb->lo[i]; k < sb->lo[i + 1u]; k++) {
+        /* |c| < zero, as one unsigned comparison: c + zero - 1 < 2 zero - 1 */
+        uint32_t bias = zero - 1u, lim = 2u * zero - 1u;
+        for (uint32_t k = sb->lo[i], end = sb->lo[i + 1u]; k < end; k++) {
+            if (BW_CFG_FAST_QUANT) {
+                while ((uint32_t)x[k] + bias < lim)
+                    if (++k == end)
+                        break;
+                if (k == end)
+                    break;
+            }
             uint32_t a = bw_abs32(x[k]);
-            if (BW_CFG_FAST_QUANT && a < zero)
-                continue;
             uint64_t r = div_q8(a, st);
             if (r > (1u << 24))
                 r = 1u << 24;
