@@ -31,13 +31,9 @@ static bw_status_t range_status(uint32_t acc, const int32_t *in, size_t n)
  * floor((x + E) / q), the nearest multiple of q, error <= E: as
  * (x + bias) / q - k in unsigned arithmetic (x + bias >= 0 for every
  * valid x; |x| <= 2^24 and q <= 2^25 + 1: x + bias fits 32 bits). */
-typedef struct {
-    uint32_t q, k, bias;
-} prequant_t;
-
-static inline prequant_t prequant_of(uint32_t q)
+static inline bw_prequant_t prequant_of(uint32_t q)
 {
-    prequant_t pq;
+    bw_prequant_t pq;
     pq.q = q;
     pq.k = (uint32_t)BW_SAMPLE_MAX / q + 1u;
     pq.bias = (q - 1u) / 2u + pq.k * q;
@@ -45,24 +41,24 @@ static inline prequant_t prequant_of(uint32_t q)
 }
 
 /* (x + bias) / q: the prequantised sample plus k */
-static inline uint32_t prequant_k(int32_t x, const prequant_t *pq)
+static inline uint32_t prequant_k(int32_t x, const bw_prequant_t *pq)
 {
     return ((uint32_t)x + pq->bias) / pq->q;
 }
 
 /* A sample as the loads take it: prequantised plus k, or (pre false, no
  * prequantiser) itself; the loads subtract koff(pq, pre) where k stays. */
-static BW_ALWAYS_INLINE uint32_t load_k(int32_t x, const prequant_t *pq, bool pre)
+static BW_ALWAYS_INLINE uint32_t load_k(int32_t x, const bw_prequant_t *pq, bool pre)
 {
     return pre ? prequant_k(x, pq) : (uint32_t)x;
 }
-static BW_ALWAYS_INLINE uint32_t koff(const prequant_t *pq, bool pre) { return pre ? pq->k : 0u; }
+static BW_ALWAYS_INLINE uint32_t koff(const bw_prequant_t *pq, bool pre) { return pre ? pq->k : 0u; }
 
 /* The loops below are written once and called with pre constant: with the
  * prequantiser, and without it (q = 1: no division). Each returns the OR of
  * the range check (range_status). */
 static BW_ALWAYS_INLINE uint32_t load_pass(int32_t *out, const int32_t *in, size_t n,
-                                           const prequant_t *pq, bool pre)
+                                           const bw_prequant_t *pq, bool pre)
 {
     uint32_t acc = 0;
     BW_UNROLL8
@@ -79,7 +75,7 @@ static BW_ALWAYS_INLINE uint32_t load_pass(int32_t *out, const int32_t *in, size
  * the details go straight to their places in out, with no scratch. Same
  * values (the k of the prequantiser cancels in the details). */
 static BW_ALWAYS_INLINE uint32_t haar1_pass(const bw_plan_t *pl, int32_t *o, const int32_t *x,
-                                            const prequant_t *pq, bool pre)
+                                            const bw_prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
     uint32_t b = pl->dims.bands, ns = (b + 1u) / 2u, nd = b / 2u, acc = 0;
@@ -106,7 +102,7 @@ static BW_ALWAYS_INLINE uint32_t haar1_pass(const bw_plan_t *pl, int32_t *o, con
  * approximation, written to their places in out. Same values (k cancels in
  * every detail). */
 static BW_ALWAYS_INLINE uint32_t haar2_pass(const bw_plan_t *pl, int32_t *o, const int32_t *x,
-                                            const prequant_t *pq, bool pre)
+                                            const bw_prequant_t *pq, bool pre)
 {
     size_t vectors = (size_t)pl->dims.n_in * pl->dims.n_out;
     uint32_t b = pl->dims.bands, n1 = b / 2u, n2 = b / 4u, acc = 0;
@@ -132,7 +128,7 @@ static BW_ALWAYS_INLINE uint32_t haar2_pass(const bw_plan_t *pl, int32_t *o, con
 
 bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t q)
 {
-    prequant_t pq = prequant_of(q);
+    bw_prequant_t pq = prequant_of(q);
 #if !BW_CFG_FAST_LOADS
     /* each sample checked exactly: the same result, less code */
     uint32_t bad = 0;
@@ -157,12 +153,20 @@ bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsign
     if (BW_CFG_FAST_LOADS && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
         !pl->recip)
         levels = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
+    /* 9/7 spectra likewise, one level */
+    bool l97 = BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL && pl->basis == BW_BASIS_97 &&
+               pl->spec_levels > 0u && pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
+    if (l97)
+        levels = 1u;
     *done = levels;
     if (levels == 0u)
         return bw_load_samples(out, in, pl->n, q);
-    prequant_t pq = prequant_of(q);
-    uint32_t acc;
-    if (levels == 2u)
+    bw_prequant_t pq = prequant_of(q);
+    uint32_t acc = 0;
+    if (l97)
+        for (size_t i = 0; i < pl->n; i += pl->dims.bands)
+            acc |= bw_spec_fwd97_load(out + i, in + i, pl->dims.bands, &pq);
+    else if (levels == 2u)
         acc = q == 1u ? haar2_pass(pl, out, in, &pq, false) : haar2_pass(pl, out, in, &pq, true);
     else
         acc = q == 1u ? haar1_pass(pl, out, in, &pq, false) : haar1_pass(pl, out, in, &pq, true);

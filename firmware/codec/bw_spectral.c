@@ -310,50 +310,89 @@ static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 #define lift97(base, c, a, b)                                                                     \
     bw_wadd((base), mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b))))
 
+/* Where a 9/7 pass reads its samples: in place (FROM_SELF), or apart from
+ * the caller's samples as the load takes them (bw_prequant_t), each once,
+ * without (FROM_IN) or with the prequantiser (FROM_IN_Q), the range check's
+ * OR gathered in *acc. */
+enum { FROM_SELF, FROM_IN, FROM_IN_Q };
+
+static BW_ALWAYS_INLINE int32_t rd97(const int32_t *src, uint32_t i, int how,
+                                     const bw_prequant_t *pq, uint32_t *acc)
+{
+    int32_t v = src[i];
+    if (how == FROM_SELF)
+        return v;
+    *acc |= (uint32_t)(v ^ bw_asr32(v, 31));
+    return how == FROM_IN ? v : (int32_t)(((uint32_t)v + pq->bias) / pq->q - pq->k);
+}
+
 /* The pass's state after pair j - 1: s0[j], d1[j - 1], s1[j - 1], d2[j - 2]. */
 typedef struct {
     int32_t s0j, d1p, s1p, d2p;
 } fwd97_t;
 
 /* Pair j (j >= 1): d1[j] (has_d: j < nd; else d1[nd - 1] stands in), s1[j],
- * then d2[j - 1] and s2[j - 1] (first: j = 1, whose d2[-1] is d2[0]);
- * s0next is s0[j + 1], clamped. */
-static BW_ALWAYS_INLINE void fwd97_pair(int32_t *x, int32_t *tmp, uint32_t j, fwd97_t *f,
-                                        int32_t s0next, bool has_d, bool first)
+ * then d2[j - 1] and s2[j - 1] (first: j = 1, whose d2[-1] is d2[0]) into
+ * dst[j - 1] and det[j - 1]; s0next is s0[j + 1], clamped. */
+static BW_ALWAYS_INLINE void fwd97_pair(const int32_t *src, int32_t *dst, int32_t *det,
+                                        uint32_t j, fwd97_t *f, int32_t s0next, bool has_d,
+                                        bool first, int how, const bw_prequant_t *pq,
+                                        uint32_t *acc)
 {
-    int32_t d1j = has_d ? lift97(x[2u * j + 1u], Q16_A, f->s0j, s0next) : f->d1p;
+    int32_t d1j = has_d ? lift97(rd97(src, 2u * j + 1u, how, pq, acc), Q16_A, f->s0j, s0next)
+                        : f->d1p;
     int32_t s1j = lift97(f->s0j, Q16_B, f->d1p, d1j);
     int32_t d2 = lift97(f->d1p, Q16_C, f->s1p, s1j);
-    x[j - 1u] = lift97(f->s1p, Q16_D, first ? d2 : f->d2p, d2);
-    tmp[j - 1u] = d2;
+    dst[j - 1u] = lift97(f->s1p, Q16_D, first ? d2 : f->d2p, d2);
+    det[j - 1u] = d2;
     f->d2p = d2;
     f->d1p = d1j;
     f->s1p = s1j;
     f->s0j = s0next;
 }
 
-static void fwd_97(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+/* n = ns + nd >= 4 samples from src into [s | d] at dst: in place (src is
+ * dst, the details through tmp), or apart (how, pq, acc: rd97). */
+static BW_ALWAYS_INLINE void fwd_97(int32_t *dst, const int32_t *src, uint32_t ns, uint32_t nd,
+                                    int32_t *tmp, int how, const bw_prequant_t *pq,
+                                    uint32_t *acc)
 {
-    int32_t s0 = x[0], d1 = lift97(x[1], Q16_A, s0, x[2]); /* d1[0] */
-    fwd97_t f = {x[2], d1, lift97(s0, Q16_B, d1, d1), 0};
+    int32_t *det = how == FROM_SELF ? tmp : dst + ns;
+    int32_t s0 = rd97(src, 0, how, pq, acc), x1 = rd97(src, 1, how, pq, acc);
+    int32_t x2 = rd97(src, 2, how, pq, acc), d1 = lift97(x1, Q16_A, s0, x2); /* d1[0] */
+    fwd97_t f = {x2, d1, lift97(s0, Q16_B, d1, d1), 0};
     /* j with j < nd and j + 1 < ns: every neighbour inside */
     uint32_t inner = nd < ns - 1u ? nd : ns - 1u, j = 1;
     if (j < inner)
-        fwd97_pair(x, tmp, j++, &f, x[4], true, true);
+        fwd97_pair(src, dst, det, j++, &f, rd97(src, 4, how, pq, acc), true, true, how, pq, acc);
     for (; j < inner; j++)
-        fwd97_pair(x, tmp, j, &f, x[2u * j + 2u], true, false);
+        fwd97_pair(src, dst, det, j, &f, rd97(src, 2u * j + 2u, how, pq, acc), true, false, how,
+                   pq, acc);
     for (; j < ns; j++) /* the last one or two: ns == nd (s0 clamped), or j == nd */
-        fwd97_pair(x, tmp, j, &f, f.s0j, j < nd, j == 1u);
+        fwd97_pair(src, dst, det, j, &f, f.s0j, j < nd, j == 1u, how, pq, acc);
     int32_t s1p = f.s1p, d1p = f.d1p, d2p = f.d2p;
     if (ns == nd) { /* the last detail: s1[ns] -> s1[ns - 1] */
         int32_t d2 = lift97(d1p, Q16_C, s1p, s1p);
-        x[ns - 1u] = lift97(s1p, Q16_D, d2p, d2);
-        tmp[ns - 1u] = d2;
+        dst[ns - 1u] = lift97(s1p, Q16_D, d2p, d2);
+        det[ns - 1u] = d2;
     } else { /* the last approximation: d2[nd] -> d2[nd - 1] */
-        x[ns - 1u] = lift97(s1p, Q16_D, d2p, d2p);
+        dst[ns - 1u] = lift97(s1p, Q16_D, d2p, d2p);
     }
-    memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
+    if (how == FROM_SELF)
+        memcpy(dst + ns, tmp, (size_t)nd * sizeof *dst);
 }
+
+#if BW_CFG_FAST_LOADS
+uint32_t bw_spec_fwd97_load(int32_t *out, const int32_t *in, uint32_t n, const bw_prequant_t *pq)
+{
+    uint32_t acc = 0, ns = (n + 1u) / 2u, nd = n / 2u;
+    if (pq->q == 1u)
+        fwd_97(out, in, ns, nd, NULL, FROM_IN, pq, &acc);
+    else
+        fwd_97(out, in, ns, nd, NULL, FROM_IN_Q, pq, &acc);
+    return acc;
+}
+#endif
 
 /* 9/7 inverse in two passes, each two lifting steps pipelined: an update
  * undone on S[k] (from D[k-1], D[k]), then a predict undone on D[k-1] (from
@@ -419,7 +458,7 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
         return;
     }
     if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_97 && n >= 4u) {
-        fwd_97(x, ns, nd, tmp);
+        fwd_97(x, x, ns, nd, tmp, FROM_SELF, NULL, NULL);
         return;
     }
     for (uint32_t k = 0; k < ns; k++)

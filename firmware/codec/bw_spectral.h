@@ -31,6 +31,19 @@ void bw_spec_inv1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp);
 void bw_spec_fwd(int32_t *x, uint32_t n, unsigned basis, unsigned levels, int32_t *tmp);
 void bw_spec_inv(int32_t *x, uint32_t n, unsigned basis, unsigned levels, int32_t *tmp);
 
+/* A sample as the encoder's load takes it (bw_load.c): with q > 1 the
+ * max-error prequantiser, (x + bias) / q - k in unsigned arithmetic, else
+ * the sample itself. */
+typedef struct {
+    uint32_t q, k, bias;
+} bw_prequant_t;
+
+/* The load (pq) and the first 9/7 level of one spectrum of n >= 4 samples
+ * in one pass, from in into out (apart): the values bw_spec_fwd1 gives the
+ * loaded samples. Returns the OR over the samples x of x ^ (x >> 31), the
+ * load's range check (BW_CFG_FAST_LOADS). */
+uint32_t bw_spec_fwd97_load(int32_t *out, const int32_t *in, uint32_t n, const bw_prequant_t *pq);
+
 /* Subband of coefficient k in Mallat order: 0 = approximation, l = 1..levels
  * the detail band of level l (1 = finest). */
 unsigned bw_spec_subband(uint32_t n, unsigned levels, uint32_t k);

@@ -991,6 +991,44 @@ static void spectral_step_of_a_constant_has_zero_details(void **state)
     print_message("largest 9/7 detail of a full-range constant: %lld\n", (long long)worst97);
 }
 
+/* The encoder's load and first 9/7 level in one pass (bw_spec_fwd97_load)
+ * gives what the load (bw_load_samples) and the level (bw_spec_fwd1) give
+ * one after the other, and the load's range check, for every length from 4,
+ * with and without the prequantiser, on smooth, random and extreme samples. */
+static void spectral_97_load_matches_load_then_level(void **state)
+{
+    (void)state;
+#if !BW_CFG_FAST_LOADS
+    skip(); /* a device build: the load without the level */
+#else
+    static const uint32_t qs[] = {1, 3, 7, 2001, 2u * 65536u + 1u};
+    enum { N_MAX = 67 };
+    int32_t in[N_MAX], want[N_MAX], got[N_MAX], tmp[N_MAX];
+    rng_t r;
+    rng_seed(&r, 97);
+    for (uint32_t n = 4; n <= N_MAX; n++)
+        for (size_t qi = 0; qi < ARRAY_LEN(qs); qi++)
+            for (unsigned kind = 0; kind < 3u; kind++) {
+                uint32_t q = qs[qi], or_want = 0;
+                for (uint32_t i = 0; i < n; i++) {
+                    in[i] = kind == 0u   ? (int32_t)(20000 + 300 * i) - (int32_t)(i * i)
+                            : kind == 1u ? rng_between(&r, -BW_SAMPLE_MAX, BW_SAMPLE_MAX)
+                                         : (i & 1u ? BW_SAMPLE_MAX : -BW_SAMPLE_MAX);
+                    or_want |= (uint32_t)(in[i] ^ (in[i] >> 31));
+                }
+                assert_int_equal(bw_load_samples(want, in, n, q), BW_OK);
+                bw_spec_fwd1(want, n, BW_BASIS_97, tmp);
+                bw_prequant_t pq = {q, (uint32_t)BW_SAMPLE_MAX / q + 1u, 0};
+                pq.bias = (q - 1u) / 2u + pq.k * q;
+                assert_int_equal(bw_spec_fwd97_load(got, in, n, &pq), or_want);
+                for (uint32_t i = 0; i < n; i++)
+                    if (got[i] != want[i])
+                        fail_msg("n=%u q=%u kind %u: coefficient %u is %d, expected %d", n, q,
+                                 kind, i, got[i], want[i]);
+            }
+#endif
+}
+
 /* ---- Bio-Haar lifting ----------------------------------------------------- */
 
 static void biohaar_inverse_undoes_forward_for_every_level_and_vector_length(void **state)
@@ -2749,14 +2787,15 @@ static void reciprocity_refuses_what_it_cannot_do(void **state)
 /* ---- bad encoder input ------------------------------------------------------ */
 
 /* The range check on every load: plain, Haar one level at once (bands not
- * divisible by 4) and two levels at once (bands divisible by 4), lossless
+ * divisible by 4) and two levels at once (bands divisible by 4), 9/7 one
+ * level at once, lossless
  * and with the max-error prequantiser. A sample one past +-BW_SAMPLE_MAX
  * anywhere is refused; +-BW_SAMPLE_MAX, which set every bit that the
  * check's first look sees, are coded exactly as bounded. */
 static void encoder_range_check_on_every_load_path(void **state)
 {
     (void)state;
-    static const unsigned bases[] = {BW_BASIS_HAAR, BW_BASIS_53};
+    static const unsigned bases[] = {BW_BASIS_HAAR, BW_BASIS_53, BW_BASIS_97};
     static const uint32_t bands[] = {8, 12, 7, 6, 1024};
     static const int32_t outside[] = {BW_SAMPLE_MAX + 1, -BW_SAMPLE_MAX - 1, INT32_MIN};
     for (size_t bi = 0; bi < ARRAY_LEN(bases); bi++)
@@ -3939,6 +3978,7 @@ int main(void)
         cmocka_unit_test(spectral_rounding_ties_follow_the_formula),
         cmocka_unit_test(spectral_inverse_undoes_forward_for_every_length_basis_and_depth),
         cmocka_unit_test(spectral_step_of_a_constant_has_zero_details),
+        cmocka_unit_test(spectral_97_load_matches_load_then_level),
         cmocka_unit_test(biohaar_positions_are_a_bijection_for_every_level),
         cmocka_unit_test(biohaar_level_one_matches_the_weighted_lifting),
         cmocka_unit_test(biohaar_update_rounds_every_small_difference_like_the_formula),
