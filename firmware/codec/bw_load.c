@@ -144,6 +144,25 @@ bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t 
 #endif
 }
 
+/* 9/7 spectra of 4 bands or more without a symmetry step: the load and the
+ * first spectral level at once (bw_spec_fwd97_load) */
+static bool load_97(const bw_plan_t *pl)
+{
+    return BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL && pl->basis == BW_BASIS_97 &&
+           pl->spec_levels > 0u && pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
+}
+
+bw_status_t bw_load_spectrum(const bw_plan_t *pl, int32_t *out, const int32_t *in,
+                             unsigned *done)
+{
+    *done = 0;
+    if (!load_97(pl))
+        return bw_load_samples(out, in, pl->dims.bands, pl->prequant);
+    bw_prequant_t pq = prequant_of(pl->prequant);
+    *done = 1;
+    return range_status(bw_spec_fwd97_load(out, in, pl->dims.bands, &pq), in, pl->dims.bands);
+}
+
 bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsigned *done)
 {
     /* prediction quantises its errors in the loop: no prequantiser here */
@@ -154,8 +173,7 @@ bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsign
         !pl->recip)
         levels = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
     /* 9/7 spectra likewise, one level */
-    bool l97 = BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL && pl->basis == BW_BASIS_97 &&
-               pl->spec_levels > 0u && pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
+    bool l97 = load_97(pl);
     if (l97)
         levels = 1u;
     *done = levels;

@@ -137,11 +137,12 @@ bw_status_t bw_stream_push(bw_stream_t *s, const int32_t *spectrum)
     stream_plan(s, &pl);
     unsigned lv = bw_has_out(d) ? L : 0u;
     int32_t *v = pend_slot(s, lv, s->pend_n[lv]);
-    bw_status_t st = bw_load_samples(v, spectrum, b, pl.prequant);
+    unsigned done;
+    bw_status_t st = bw_load_spectrum(&pl, v, spectrum, &done);
     if (st != BW_OK)
         return s->err = st;
-    if (pl.spec_levels)
-        bw_spec_fwd(v, b, pl.basis, pl.spec_levels, pl.tmp);
+    if (pl.spec_levels > done)
+        bw_spec_fwd(v, bw_spec_approx_len(b, done), pl.basis, pl.spec_levels - done, pl.tmp);
     s->pushed++;
     if (!bw_has_out(d)) {
         stream_emit(s, &pl, v, -1);

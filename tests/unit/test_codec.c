@@ -3187,6 +3187,12 @@ static void streaming_encoder_refuses_what_it_cannot_do(void **state)
     assert_int_equal(bw_stream_init(&s, &d, &p, mem, mem_len, out, cap), BW_OK);
     assert_int_equal(bw_stream_push(&s, bad), BW_ERR_RANGE);
     assert_int_equal(bw_stream_push(&s, spec), BW_ERR_RANGE); /* the error sticks */
+    /* 9/7: the load and the first level in one pass, the same check */
+    bw_params_t p97 = params_of(BW_MODE_MAX_ERROR, BW_BASIS_97);
+    p97.max_error = 2u;
+    assert_int_equal(bw_stream_init(&s, &d, &p97, mem, mem_len, out, cap), BW_OK);
+    assert_int_equal(bw_stream_push(&s, spec), BW_OK);
+    assert_int_equal(bw_stream_push(&s, bad), BW_ERR_RANGE);
     assert_int_equal(bw_stream_init(&s, &d, &p, mem, mem_len, out, cap), BW_OK);
     for (size_t v = 0; v < d.n_out; v++)
         assert_int_equal(bw_stream_push(&s, spec), BW_OK);
