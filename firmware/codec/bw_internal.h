@@ -156,11 +156,12 @@ bool bw_pred_applies(const bw_dims_t *d, unsigned mode, unsigned flags);
 bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t prequant);
 /* The encoder's load of a plan into out; without a symmetry step
  * (BW_CFG_FAST_LOADS) for the Haar basis the first one or two spectral
- * levels in the same pass, for the 9/7 basis the first (BW_CFG_FAST_SPECTRAL
- * too), their number in *done. */
+ * levels in the same pass, for the 5/3 and 9/7 bases the first
+ * (BW_CFG_FAST_SPECTRAL too), their number in *done. */
 bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsigned *done);
 /* The streaming encoder's load of one spectrum of the plan's bands into out,
- * and for the 9/7 basis its first spectral level as bw_load does (*done). */
+ * and for the 5/3 and 9/7 bases its first spectral level as bw_load does
+ * (*done). */
 bw_status_t bw_load_spectrum(const bw_plan_t *pl, int32_t *out, const int32_t *in,
                              unsigned *done);
 

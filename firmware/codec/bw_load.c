@@ -144,23 +144,25 @@ bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t 
 #endif
 }
 
-/* 9/7 spectra of 4 bands or more without a symmetry step: the load and the
- * first spectral level at once (bw_spec_fwd97_load) */
-static bool load_97(const bw_plan_t *pl)
+/* 5/3 and 9/7 spectra of 4 bands or more without a symmetry step: the load
+ * and the first spectral level at once (bw_spec_fwd1_load) */
+static bool load_lift(const bw_plan_t *pl)
 {
-    return BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL && pl->basis == BW_BASIS_97 &&
-           pl->spec_levels > 0u && pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
+    return BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL &&
+           (pl->basis == BW_BASIS_53 || pl->basis == BW_BASIS_97) && pl->spec_levels > 0u &&
+           pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
 }
 
 bw_status_t bw_load_spectrum(const bw_plan_t *pl, int32_t *out, const int32_t *in,
                              unsigned *done)
 {
     *done = 0;
-    if (!load_97(pl))
+    if (!load_lift(pl))
         return bw_load_samples(out, in, pl->dims.bands, pl->prequant);
     bw_prequant_t pq = prequant_of(pl->prequant);
     *done = 1;
-    return range_status(bw_spec_fwd97_load(out, in, pl->dims.bands, &pq), in, pl->dims.bands);
+    return range_status(bw_spec_fwd1_load(out, in, 1, pl->dims.bands, pl->basis, &pq), in,
+                        pl->dims.bands);
 }
 
 bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsigned *done)
@@ -172,18 +174,17 @@ bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsign
     if (BW_CFG_FAST_LOADS && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
         !pl->recip)
         levels = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
-    /* 9/7 spectra likewise, one level */
-    bool l97 = load_97(pl);
-    if (l97)
+    /* 5/3 and 9/7 spectra likewise, one level */
+    bool l1 = load_lift(pl);
+    if (l1)
         levels = 1u;
     *done = levels;
     if (levels == 0u)
         return bw_load_samples(out, in, pl->n, q);
     bw_prequant_t pq = prequant_of(q);
     uint32_t acc = 0;
-    if (l97)
-        for (size_t i = 0; i < pl->n; i += pl->dims.bands)
-            acc |= bw_spec_fwd97_load(out + i, in + i, pl->dims.bands, &pq);
+    if (l1)
+        acc = bw_spec_fwd1_load(out, in, pl->n / pl->dims.bands, pl->dims.bands, pl->basis, &pq);
     else if (levels == 2u)
         acc = q == 1u ? haar2_pass(pl, out, in, &pq, false) : haar2_pass(pl, out, in, &pq, true);
     else

@@ -244,33 +244,58 @@ static void inv_haar(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 static inline int32_t p53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(a, b), 1); }
 static inline int32_t u53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(bw_wadd(a, b), 2), 2); }
 
-/* n >= 3, so ns >= 2 and nd >= 1 */
-static void fwd_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
+/* Where a pass (fwd_53, fwd_97) reads its samples: in place (FROM_SELF), or apart from
+ * the caller's samples as the load takes them (bw_prequant_t), each once,
+ * without (FROM_IN) or with the prequantiser (FROM_IN_Q), the range check's
+ * OR gathered in *acc. */
+enum { FROM_SELF, FROM_IN, FROM_IN_Q };
+
+static BW_ALWAYS_INLINE int32_t rd_at(const int32_t *src, uint32_t i, int how,
+                                     const bw_prequant_t *pq, uint32_t *acc)
 {
+    int32_t v = src[i];
+    if (how == FROM_SELF)
+        return v;
+    *acc |= (uint32_t)(v ^ bw_asr32(v, 31));
+    return how == FROM_IN ? v : (int32_t)(((uint32_t)v + pq->bias) / pq->q - pq->k);
+}
+
+/* n >= 3, so ns >= 2 and nd >= 1: from src into [s | d] at dst, in place
+ * (src is dst, the details through tmp) or apart (how, pq, acc: rd_at),
+ * each sample read once. */
+static BW_ALWAYS_INLINE void fwd_53(int32_t *dst, const int32_t *src, uint32_t ns, uint32_t nd,
+                                    int32_t *tmp, int how, const bw_prequant_t *pq,
+                                    uint32_t *acc)
+{
+    int32_t *det = how == FROM_SELF ? tmp : dst + ns;
     uint32_t inner = nd < ns - 1u ? nd : ns - 1u; /* k with k + 1 < ns and k < nd */
-    int32_t dprev = bw_wsub(x[1], p53(x[0], x[2]));
-    int32_t e = x[0];
-    x[0] = bw_wadd(e, u53(dprev, dprev));
-    tmp[0] = dprev;
+    int32_t e = rd_at(src, 0, how, pq, acc), o = rd_at(src, 1, how, pq, acc);
+    int32_t enext = rd_at(src, 2, how, pq, acc); /* x[2 k + 2] below */
+    int32_t dprev = bw_wsub(o, p53(e, enext));
+    dst[0] = bw_wadd(e, u53(dprev, dprev));
+    det[0] = dprev;
     uint32_t k = 1;
     for (; k < inner; k++) {
-        e = x[2u * k];
-        int32_t d = bw_wsub(x[2u * k + 1u], p53(e, x[2u * k + 2u]));
-        x[k] = bw_wadd(e, u53(dprev, d));
-        tmp[k] = d;
+        e = enext;
+        o = rd_at(src, 2u * k + 1u, how, pq, acc);
+        enext = rd_at(src, 2u * k + 2u, how, pq, acc);
+        int32_t d = bw_wsub(o, p53(e, enext));
+        dst[k] = bw_wadd(e, u53(dprev, d));
+        det[k] = d;
         dprev = d;
     }
     if (k < nd) { /* n even: the last detail's right neighbour is itself */
-        e = x[2u * k];
-        int32_t d = bw_wsub(x[2u * k + 1u], p53(e, e));
-        x[k] = bw_wadd(e, u53(dprev, d));
-        tmp[k] = d;
+        e = enext;
+        int32_t d = bw_wsub(rd_at(src, 2u * k + 1u, how, pq, acc), p53(e, e));
+        dst[k] = bw_wadd(e, u53(dprev, d));
+        det[k] = d;
         dprev = d;
         k++;
     }
     if (k < ns) /* n odd: the last approximation sample, d[nd] -> d[nd - 1] */
-        x[k] = bw_wadd(x[2u * k], u53(dprev, dprev));
-    memcpy(x + ns, tmp, (size_t)nd * sizeof *x);
+        dst[k] = bw_wadd(enext, u53(dprev, dprev));
+    if (how == FROM_SELF)
+        memcpy(dst + ns, tmp, (size_t)nd * sizeof *dst);
 }
 
 static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
@@ -310,22 +335,6 @@ static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 #define lift97(base, c, a, b)                                                                     \
     bw_wadd((base), mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b))))
 
-/* Where a 9/7 pass reads its samples: in place (FROM_SELF), or apart from
- * the caller's samples as the load takes them (bw_prequant_t), each once,
- * without (FROM_IN) or with the prequantiser (FROM_IN_Q), the range check's
- * OR gathered in *acc. */
-enum { FROM_SELF, FROM_IN, FROM_IN_Q };
-
-static BW_ALWAYS_INLINE int32_t rd97(const int32_t *src, uint32_t i, int how,
-                                     const bw_prequant_t *pq, uint32_t *acc)
-{
-    int32_t v = src[i];
-    if (how == FROM_SELF)
-        return v;
-    *acc |= (uint32_t)(v ^ bw_asr32(v, 31));
-    return how == FROM_IN ? v : (int32_t)(((uint32_t)v + pq->bias) / pq->q - pq->k);
-}
-
 /* The pass's state after pair j - 1: s0[j], d1[j - 1], s1[j - 1], d2[j - 2]. */
 typedef struct {
     int32_t s0j, d1p, s1p, d2p;
@@ -339,7 +348,7 @@ static BW_ALWAYS_INLINE void fwd97_pair(const int32_t *src, int32_t *dst, int32_
                                         bool first, int how, const bw_prequant_t *pq,
                                         uint32_t *acc)
 {
-    int32_t d1j = has_d ? lift97(rd97(src, 2u * j + 1u, how, pq, acc), Q16_A, f->s0j, s0next)
+    int32_t d1j = has_d ? lift97(rd_at(src, 2u * j + 1u, how, pq, acc), Q16_A, f->s0j, s0next)
                         : f->d1p;
     int32_t s1j = lift97(f->s0j, Q16_B, f->d1p, d1j);
     int32_t d2 = lift97(f->d1p, Q16_C, f->s1p, s1j);
@@ -352,21 +361,21 @@ static BW_ALWAYS_INLINE void fwd97_pair(const int32_t *src, int32_t *dst, int32_
 }
 
 /* n = ns + nd >= 4 samples from src into [s | d] at dst: in place (src is
- * dst, the details through tmp), or apart (how, pq, acc: rd97). */
+ * dst, the details through tmp), or apart (how, pq, acc: rd_at). */
 static BW_ALWAYS_INLINE void fwd_97(int32_t *dst, const int32_t *src, uint32_t ns, uint32_t nd,
                                     int32_t *tmp, int how, const bw_prequant_t *pq,
                                     uint32_t *acc)
 {
     int32_t *det = how == FROM_SELF ? tmp : dst + ns;
-    int32_t s0 = rd97(src, 0, how, pq, acc), x1 = rd97(src, 1, how, pq, acc);
-    int32_t x2 = rd97(src, 2, how, pq, acc), d1 = lift97(x1, Q16_A, s0, x2); /* d1[0] */
+    int32_t s0 = rd_at(src, 0, how, pq, acc), x1 = rd_at(src, 1, how, pq, acc);
+    int32_t x2 = rd_at(src, 2, how, pq, acc), d1 = lift97(x1, Q16_A, s0, x2); /* d1[0] */
     fwd97_t f = {x2, d1, lift97(s0, Q16_B, d1, d1), 0};
     /* j with j < nd and j + 1 < ns: every neighbour inside */
     uint32_t inner = nd < ns - 1u ? nd : ns - 1u, j = 1;
     if (j < inner)
-        fwd97_pair(src, dst, det, j++, &f, rd97(src, 4, how, pq, acc), true, true, how, pq, acc);
+        fwd97_pair(src, dst, det, j++, &f, rd_at(src, 4, how, pq, acc), true, true, how, pq, acc);
     for (; j < inner; j++)
-        fwd97_pair(src, dst, det, j, &f, rd97(src, 2u * j + 2u, how, pq, acc), true, false, how,
+        fwd97_pair(src, dst, det, j, &f, rd_at(src, 2u * j + 2u, how, pq, acc), true, false, how,
                    pq, acc);
     for (; j < ns; j++) /* the last one or two: ns == nd (s0 clamped), or j == nd */
         fwd97_pair(src, dst, det, j, &f, f.s0j, j < nd, j == 1u, how, pq, acc);
@@ -383,14 +392,27 @@ static BW_ALWAYS_INLINE void fwd_97(int32_t *dst, const int32_t *src, uint32_t n
 }
 
 #if BW_CFG_FAST_LOADS
-uint32_t bw_spec_fwd97_load(int32_t *out, const int32_t *in, uint32_t n, const bw_prequant_t *pq)
+/* each of them in a function of its own (how constant), over every vector */
+#define LOAD_LIFT(name, fwd, how)                                                                \
+    static BW_NOINLINE uint32_t name(int32_t *out, const int32_t *in, size_t vectors,           \
+                                     uint32_t n, const bw_prequant_t *pq)                        \
+    {                                                                                            \
+        uint32_t acc = 0;                                                                        \
+        for (size_t v = 0; v < vectors; v++)                                                     \
+            fwd(out + v * n, in + v * n, (n + 1u) / 2u, n / 2u, NULL, how, pq, &acc);           \
+        return acc;                                                                              \
+    }
+LOAD_LIFT(load_53, fwd_53, FROM_IN)
+LOAD_LIFT(load_53_q, fwd_53, FROM_IN_Q)
+LOAD_LIFT(load_97, fwd_97, FROM_IN)
+LOAD_LIFT(load_97_q, fwd_97, FROM_IN_Q)
+
+uint32_t bw_spec_fwd1_load(int32_t *out, const int32_t *in, size_t vectors, uint32_t n,
+                           unsigned basis, const bw_prequant_t *pq)
 {
-    uint32_t acc = 0, ns = (n + 1u) / 2u, nd = n / 2u;
-    if (pq->q == 1u)
-        fwd_97(out, in, ns, nd, NULL, FROM_IN, pq, &acc);
-    else
-        fwd_97(out, in, ns, nd, NULL, FROM_IN_Q, pq, &acc);
-    return acc;
+    if (basis == BW_BASIS_53)
+        return (pq->q == 1u ? load_53 : load_53_q)(out, in, vectors, n, pq);
+    return (pq->q == 1u ? load_97 : load_97_q)(out, in, vectors, n, pq);
 }
 #endif
 
@@ -454,7 +476,7 @@ void bw_spec_fwd1(int32_t *x, uint32_t n, unsigned basis, int32_t *tmp)
         return;
     }
     if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_53 && n >= 3u) {
-        fwd_53(x, ns, nd, tmp);
+        fwd_53(x, x, ns, nd, tmp, FROM_SELF, NULL, NULL);
         return;
     }
     if (BW_CFG_FAST_SPECTRAL && basis == BW_BASIS_97 && n >= 4u) {

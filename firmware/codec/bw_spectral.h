@@ -38,11 +38,13 @@ typedef struct {
     uint32_t q, k, bias;
 } bw_prequant_t;
 
-/* The load (pq) and the first 9/7 level of one spectrum of n >= 4 samples
- * in one pass, from in into out (apart): the values bw_spec_fwd1 gives the
- * loaded samples. Returns the OR over the samples x of x ^ (x >> 31), the
- * load's range check (BW_CFG_FAST_LOADS). */
-uint32_t bw_spec_fwd97_load(int32_t *out, const int32_t *in, uint32_t n, const bw_prequant_t *pq);
+/* The load (pq) and the first level of each of `vectors` spectra of n
+ * samples in one pass, from in into out (apart): the values bw_spec_fwd1
+ * gives the loaded samples, for the 5/3 basis (n >= 3) or the 9/7 (n >= 4).
+ * Returns the OR over the samples x of x ^ (x >> 31), the load's range
+ * check (BW_CFG_FAST_LOADS). */
+uint32_t bw_spec_fwd1_load(int32_t *out, const int32_t *in, size_t vectors, uint32_t n,
+                           unsigned basis, const bw_prequant_t *pq);
 
 /* Subband of coefficient k in Mallat order: 0 = approximation, l = 1..levels
  * the detail band of level l (1 = finest). */

@@ -991,41 +991,46 @@ static void spectral_step_of_a_constant_has_zero_details(void **state)
     print_message("largest 9/7 detail of a full-range constant: %lld\n", (long long)worst97);
 }
 
-/* The encoder's load and first 9/7 level in one pass (bw_spec_fwd97_load)
- * gives what the load (bw_load_samples) and the level (bw_spec_fwd1) give
- * one after the other, and the load's range check, for every length from 4,
- * with and without the prequantiser, on smooth, random and extreme samples. */
-static void spectral_97_load_matches_load_then_level(void **state)
+/* The encoder's load and first 5/3 or 9/7 level in one pass
+ * (bw_spec_fwd1_load) gives what the load (bw_load_samples) and the level
+ * (bw_spec_fwd1) give one after the other, and the load's range check, for
+ * every length from 4, with and without the prequantiser, on smooth, random
+ * and extreme samples. */
+static void spectral_load_and_level_match_load_then_level(void **state)
 {
     (void)state;
 #if !BW_CFG_FAST_LOADS
     skip(); /* a device build: the load without the level */
 #else
     static const uint32_t qs[] = {1, 3, 7, 2001, 2u * 65536u + 1u};
+    static const unsigned bases[] = {BW_BASIS_53, BW_BASIS_97};
     enum { N_MAX = 67 };
     int32_t in[N_MAX], want[N_MAX], got[N_MAX], tmp[N_MAX];
     rng_t r;
     rng_seed(&r, 97);
-    for (uint32_t n = 4; n <= N_MAX; n++)
-        for (size_t qi = 0; qi < ARRAY_LEN(qs); qi++)
-            for (unsigned kind = 0; kind < 3u; kind++) {
-                uint32_t q = qs[qi], or_want = 0;
-                for (uint32_t i = 0; i < n; i++) {
-                    in[i] = kind == 0u   ? (int32_t)(20000 + 300 * i) - (int32_t)(i * i)
-                            : kind == 1u ? rng_between(&r, -BW_SAMPLE_MAX, BW_SAMPLE_MAX)
-                                         : (i & 1u ? BW_SAMPLE_MAX : -BW_SAMPLE_MAX);
-                    or_want |= (uint32_t)(in[i] ^ (in[i] >> 31));
+    for (size_t bi = 0; bi < ARRAY_LEN(bases); bi++)
+        for (uint32_t n = 4; n <= N_MAX; n++)
+            for (size_t qi = 0; qi < ARRAY_LEN(qs); qi++)
+                for (unsigned kind = 0; kind < 3u; kind++) {
+                    uint32_t q = qs[qi], or_want = 0;
+                    for (uint32_t i = 0; i < n; i++) {
+                        in[i] = kind == 0u ? (int32_t)(20000 + 300 * i) - (int32_t)(i * i)
+                                : kind == 1u
+                                    ? rng_between(&r, -BW_SAMPLE_MAX, BW_SAMPLE_MAX)
+                                    : (i & 1u ? BW_SAMPLE_MAX : -BW_SAMPLE_MAX);
+                        or_want |= (uint32_t)(in[i] ^ (in[i] >> 31));
+                    }
+                    assert_int_equal(bw_load_samples(want, in, n, q), BW_OK);
+                    bw_spec_fwd1(want, n, bases[bi], tmp);
+                    bw_prequant_t pq = {q, (uint32_t)BW_SAMPLE_MAX / q + 1u, 0};
+                    pq.bias = (q - 1u) / 2u + pq.k * q;
+                    assert_int_equal(bw_spec_fwd1_load(got, in, 1, n, bases[bi], &pq), or_want);
+                    for (uint32_t i = 0; i < n; i++)
+                        if (got[i] != want[i])
+                            fail_msg("basis %s n=%u q=%u kind %u: coefficient %u is %d, "
+                                     "expected %d",
+                                     basis_name(bases[bi]), n, q, kind, i, got[i], want[i]);
                 }
-                assert_int_equal(bw_load_samples(want, in, n, q), BW_OK);
-                bw_spec_fwd1(want, n, BW_BASIS_97, tmp);
-                bw_prequant_t pq = {q, (uint32_t)BW_SAMPLE_MAX / q + 1u, 0};
-                pq.bias = (q - 1u) / 2u + pq.k * q;
-                assert_int_equal(bw_spec_fwd97_load(got, in, n, &pq), or_want);
-                for (uint32_t i = 0; i < n; i++)
-                    if (got[i] != want[i])
-                        fail_msg("n=%u q=%u kind %u: coefficient %u is %d, expected %d", n, q,
-                                 kind, i, got[i], want[i]);
-            }
 #endif
 }
 
@@ -2787,8 +2792,8 @@ static void reciprocity_refuses_what_it_cannot_do(void **state)
 /* ---- bad encoder input ------------------------------------------------------ */
 
 /* The range check on every load: plain, Haar one level at once (bands not
- * divisible by 4) and two levels at once (bands divisible by 4), 9/7 one
- * level at once, lossless
+ * divisible by 4) and two levels at once (bands divisible by 4), 5/3 and
+ * 9/7 one level at once, lossless
  * and with the max-error prequantiser. A sample one past +-BW_SAMPLE_MAX
  * anywhere is refused; +-BW_SAMPLE_MAX, which set every bit that the
  * check's first look sees, are coded exactly as bounded. */
@@ -3187,12 +3192,27 @@ static void streaming_encoder_refuses_what_it_cannot_do(void **state)
     assert_int_equal(bw_stream_init(&s, &d, &p, mem, mem_len, out, cap), BW_OK);
     assert_int_equal(bw_stream_push(&s, bad), BW_ERR_RANGE);
     assert_int_equal(bw_stream_push(&s, spec), BW_ERR_RANGE); /* the error sticks */
-    /* 9/7: the load and the first level in one pass, the same check */
-    bw_params_t p97 = params_of(BW_MODE_MAX_ERROR, BW_BASIS_97);
-    p97.max_error = 2u;
-    assert_int_equal(bw_stream_init(&s, &d, &p97, mem, mem_len, out, cap), BW_OK);
-    assert_int_equal(bw_stream_push(&s, spec), BW_OK);
-    assert_int_equal(bw_stream_push(&s, bad), BW_ERR_RANGE);
+    /* 5/3 and 9/7 spectra with a spectral level (more than 4 bands): the
+     * load and the first level in one pass, the same check, lossless and
+     * with the prequantiser */
+    bw_dims_t d9 = dims_of(BW_SHAPE_REFLECTANCE, 2, 0, 1, 9);
+    size_t n9 = bw_dims_samples(&d9), cap9 = bw_payload_bound(n9);
+    size_t len9 = bw_stream_mem_bound(2, 9);
+    int32_t *mem9 = xmalloc(len9 * sizeof *mem9), spec9[9], bad9[9];
+    uint8_t *out9 = xmalloc(cap9);
+    for (unsigned i = 0; i < 9u; i++)
+        spec9[i] = bad9[i] = (int32_t)(1000 + 10 * i);
+    bad9[8] = -BW_SAMPLE_MAX - 1;
+    for (unsigned basis = BW_BASIS_53; basis <= BW_BASIS_97; basis++)
+        for (unsigned me = 0; me < 2u; me++) {
+            bw_params_t pl = params_of(me ? BW_MODE_MAX_ERROR : BW_MODE_LOSSLESS, basis);
+            pl.max_error = me ? 2u : 0u;
+            assert_int_equal(bw_stream_init(&s, &d9, &pl, mem9, len9, out9, cap9), BW_OK);
+            assert_int_equal(bw_stream_push(&s, spec9), BW_OK);
+            assert_int_equal(bw_stream_push(&s, bad9), BW_ERR_RANGE);
+        }
+    free(mem9);
+    free(out9);
     assert_int_equal(bw_stream_init(&s, &d, &p, mem, mem_len, out, cap), BW_OK);
     for (size_t v = 0; v < d.n_out; v++)
         assert_int_equal(bw_stream_push(&s, spec), BW_OK);
@@ -3984,7 +4004,7 @@ int main(void)
         cmocka_unit_test(spectral_rounding_ties_follow_the_formula),
         cmocka_unit_test(spectral_inverse_undoes_forward_for_every_length_basis_and_depth),
         cmocka_unit_test(spectral_step_of_a_constant_has_zero_details),
-        cmocka_unit_test(spectral_97_load_matches_load_then_level),
+        cmocka_unit_test(spectral_load_and_level_match_load_then_level),
         cmocka_unit_test(biohaar_positions_are_a_bijection_for_every_level),
         cmocka_unit_test(biohaar_level_one_matches_the_weighted_lifting),
         cmocka_unit_test(biohaar_update_rounds_every_small_difference_like_the_formula),
