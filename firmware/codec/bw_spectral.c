@@ -244,10 +244,10 @@ static void inv_haar(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
 static inline int32_t p53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(a, b), 1); }
 static inline int32_t u53(int32_t a, int32_t b) { return bw_asr32(bw_wadd(bw_wadd(a, b), 2), 2); }
 
-/* Where a pass (fwd_53, fwd_97) reads its samples: in place (FROM_SELF), or apart from
- * the caller's samples as the load takes them (bw_prequant_t), each once,
- * without (FROM_IN) or with the prequantiser (FROM_IN_Q), the range check's
- * OR gathered in *acc. */
+/* Where a forward pass (fwd_53, fwd_97) reads its samples: in place
+ * (FROM_SELF), or apart from the caller's samples as the load takes them
+ * (bw_prequant_t), each once, without (FROM_IN) or with the prequantiser
+ * (FROM_IN_Q), the range check's OR gathered in *acc. */
 enum { FROM_SELF, FROM_IN, FROM_IN_Q };
 
 static BW_ALWAYS_INLINE int32_t rd_at(const int32_t *src, uint32_t i, int how,
@@ -329,9 +329,10 @@ static void inv_53(int32_t *x, uint32_t ns, uint32_t nd, int32_t *tmp)
  * lifting steps one after the other): at sample pair j the first predict
  * and update give d1[j] and s1[j], the second pair d2[j - 1] and s2[j - 1],
  * each from neighbours the pass has just formed; the neighbours outside
- * the signal are clamped as lift() clamps them. The approximation goes in
- * place at x[j - 1] (every sample it overwrites has been read), the details
- * through tmp. n >= 4, so ns >= 2 and nd >= 2. */
+ * the signal are clamped as lift() clamps them. In place, the
+ * approximation goes to x[j - 1] (every sample it overwrites has been read),
+ * the details through tmp; apart, each straight to its place. n >= 4, so
+ * ns >= 2 and nd >= 2. */
 #define lift97(base, c, a, b)                                                                     \
     bw_wadd((base), mul_q16_split(Q16_HI(c), Q16_LO(c) * 65536, bw_wadd((a), (b))))
 
