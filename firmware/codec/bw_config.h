@@ -78,8 +78,9 @@
  *
  *   switch                    what the fast form does
  *   BW_CFG_FAST_LOADS         the load checks the sample range with one OR a
- *                             sample and runs the first one or two Haar levels
- *                             as it loads
+ *                             sample and runs the first one or two Haar levels,
+ *                             or the first 5/3 or 9/7 level (with
+ *                             BW_CFG_FAST_SPECTRAL), as it loads
  *   BW_CFG_FAST_QUANT         the quantiser's rounding offsets without a choice
  *                             per element, one band level by level, a vector's
  *                             energy past the values below the step
@@ -91,7 +92,8 @@
  *                             loops
  *   BW_CFG_FAST_STRIPS        the range coders' strip code built once for each
  *                             direction (else one copy codes and decodes), the
- *                             coarse-to-fine order as loops
+ *                             coarse-to-fine order as loops, the multi-symbol
+ *                             encoder's strips straight from the vectors
  *   BW_CFG_FAST_PREDICT       prediction's weight steps in 32 bits where the
  *                             values allow it, encoder and decoder loops
  *                             built apart
