@@ -581,12 +581,10 @@ static inline void put_vector(bw_strip_enc_t *se, const int32_t *v, uint32_t b,
     uint32_t k = 0;
 #if BW_CFG_FAST_STRIPS
     if (BW_CFG_CODER_MS && se->coder == BW_CODER_MS) {
-        /* a pending strip that v cannot complete: staged */
-        if (se->cnt && b < BW_STRIP - se->cnt)
-            for (; k < b; k++)
-                put_band(se, v, k, spec_cls, cls_dir, par, prev);
-        /* one class and no spectral parents (no spectral transform: the
-         * finest band's class is the first's) */
+        /* whole strips straight from v, the pending one first where v
+         * completes it (else v's bands are all put below); flat: one class
+         * and no spectral parents (no spectral transform: the finest band's
+         * class is the first's) */
         bool flat = b > 1u && spec_cls[0] == spec_cls[b - 1u] && BW_SPEC_PAR(spec_cls[0]) < 0;
         if (par && prev)
             k = ms_vector_strips(se, v, k, b, spec_cls, cls_dir, par, prev, true, true, false);
