@@ -144,13 +144,19 @@ bw_status_t bw_load_samples(int32_t *out, const int32_t *in, size_t n, uint32_t 
 #endif
 }
 
-/* 5/3 and 9/7 spectra of 4 bands or more without a symmetry step: the load
- * and the first spectral level at once (bw_spec_fwd1_load) */
+/* Spectra with a spectral level and no symmetry step: the load may run the
+ * first levels as it goes */
+static bool load_levels(const bw_plan_t *pl)
+{
+    return BW_CFG_FAST_LOADS && pl->spec_levels > 0u && !pl->mirror && !pl->recip;
+}
+
+/* 5/3 and 9/7 spectra of 4 bands or more: the load and the first spectral
+ * level at once (bw_spec_fwd1_load) */
 static bool load_lift(const bw_plan_t *pl)
 {
-    return BW_CFG_FAST_LOADS && BW_CFG_FAST_SPECTRAL &&
-           (pl->basis == BW_BASIS_53 || pl->basis == BW_BASIS_97) && pl->spec_levels > 0u &&
-           pl->dims.bands >= 4u && !pl->mirror && !pl->recip;
+    return load_levels(pl) && BW_CFG_FAST_SPECTRAL &&
+           (pl->basis == BW_BASIS_53 || pl->basis == BW_BASIS_97) && pl->dims.bands >= 4u;
 }
 
 bw_status_t bw_load_spectrum(const bw_plan_t *pl, int32_t *out, const int32_t *in,
@@ -171,8 +177,7 @@ bw_status_t bw_load(const bw_plan_t *pl, int32_t *out, const int32_t *in, unsign
     uint32_t q = pl->basis == BW_BASIS_PRED ? 1u : pl->prequant;
     unsigned levels = 0;
     /* Haar spectra without a symmetry step: the load and the first levels at once */
-    if (BW_CFG_FAST_LOADS && pl->basis == BW_BASIS_HAAR && pl->spec_levels > 0u && !pl->mirror &&
-        !pl->recip)
+    if (pl->basis == BW_BASIS_HAAR && load_levels(pl))
         levels = pl->spec_levels > 1u && pl->dims.bands % 4u == 0u ? 2u : 1u;
     /* 5/3 and 9/7 spectra likewise, one level */
     bool l1 = load_lift(pl);
