@@ -358,7 +358,8 @@ typedef struct {
     uint32_t segments;
     /* record BW_EXT_EMBEDDED: 0 none, else 1 + its form (1: the first,
      * without groups of strips; 2: with them; 3: with the incoming parent
-     * block as a neighbour too) */
+     * block as a neighbour too; 4: and each pass split, significance
+     * first) */
     uint32_t embedded;
 } bw_header_t;
 

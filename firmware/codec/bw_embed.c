@@ -10,7 +10,11 @@
  * already weigh the subbands). Per pass, in coding order, strips of 32
  * coefficients: a strip with none significant yet codes one flag (does one
  * become significant now), then its coefficients their significance and
- * sign; significant coefficients code their refinement bit.
+ * sign; significant coefficients code their refinement bit. Form 3 (the
+ * encoder's) splits each pass in two: first the significance of every
+ * coefficient not yet significant, then the refinement bits of those that
+ * were, so that a pass cut short has found the new coefficients first
+ * (the same bits in each model, in another order).
  */
 #include <string.h>
 
@@ -95,6 +99,7 @@ typedef struct {
     bool weigh;     /* plane offsets from the gains (exact coefficients) */
     bool groups_on; /* form 1: groups of 32 strips, each with a flag */
     bool inpar_on;  /* form 2: the incoming parent block as a neighbour */
+    bool split;     /* form 3: each pass significance first, then refinement */
     spec_off_t so;
     const int32_t *x0;
     embed_models_t *m;
@@ -247,16 +252,39 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
     return p;
 }
 
+/* The same for a refinement pass, which needs no neighbours. */
+static inline int32_t *walk_next_ref(walk_t *w, uint8_t *cls, unsigned *e)
+{
+    if (w->it.vi != w->vi)
+        walk_offsets(w);
+    while (w->it.k >= w->so->b.lo[w->sb + 1u])
+        w->sb++;
+    *e = w->ed + w->so->e[w->sb];
+    uint32_t k = w->it.k;
+    int32_t *p = w->it.vec + k;
+    *cls = (uint8_t)bw_coef_cls(w->it.pl->spec_cls[k], w->it.cls_dir);
+    if (++w->it.k == w->it.pl->dims.bands)
+        bw_iter_next_vec(&w->it);
+    w->last = p;
+    return p;
+}
+
 #define STRIP_SIG(c, s) (((c)->strips[(s) >> 5] >> ((s)&31u)) & 1u)
 #define GROUP_SIG(c, g) (((c)->groups[(g) >> 5] >> ((g)&31u)) & 1u)
+
+/* What a pass codes: every bit of plane P in coding order (forms 0 to 2),
+ * or (form 3) the significance of the coefficients not yet significant,
+ * then the refinement of the others. */
+enum { PASS_ALL, PASS_SIG, PASS_REF };
 
 /* One pass at plane P over the n coefficients from start, up to
  * coefficient `limit`; returns where it stopped (n: the whole pass). A
  * group, then a strip, with no significant coefficient yet (c->groups,
  * c->strips) codes a flag: does one become significant now; only then its
- * coefficients are visited. */
+ * coefficients are visited (what: PASS_*; a refinement pass visits only the
+ * strips with a coefficient significant before plane P). */
 static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
-                                    size_t limit, bool enc)
+                                    size_t limit, bool enc, unsigned what)
 {
     walk_t w;
     walk_start(&w, start, &c->so, c->weigh, c->inpar_on);
@@ -267,6 +295,11 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
         if (at != s) {
             walk_seek(&w, s);
             at = s;
+        }
+        if (what == PASS_REF && !any_sig) {
+            if (s % GROUP == 0u && !GROUP_SIG(c, gi))
+                s += GROUP - STRIP; /* nor any of its group */
+            continue;
         }
         if (c->groups_on && s % GROUP == 0u && !GROUP_SIG(c, gi)) {
             /* a group of strips none significant yet: does one of its
@@ -294,9 +327,10 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
         }
         for (size_t k = 0; k < cnt; k++) {
             uint8_t cls;
-            const int32_t *par, *prv, *left;
+            const int32_t *par = NULL, *prv = NULL, *left = NULL;
             unsigned e;
-            int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
+            int32_t *p = what == PASS_REF ? walk_next_ref(&w, &cls, &e)
+                                          : walk_next(&w, &cls, &par, &prv, &left, &e);
             at++;
             if (P < e)
                 continue; /* every plane coded */
@@ -307,6 +341,11 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
             }
             uint32_t a = (uint32_t)bw_abs32(*p);
             bool sig = is_sig(c, p, enc);
+            /* a refinement pass: those significant before plane b (not
+             * those whose leading bit is b, found by this plane's first
+             * half); a significance pass: the others */
+            if (what == PASS_REF ? !sig || a >> b == 1u : what == PASS_SIG && sig)
+                continue;
             if (s + k >= limit || !room(c, enc))
                 return s + k;
             if (sig) { /* refinement */
@@ -336,17 +375,48 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
     return n;
 }
 
-/* pass() for each side, its tests of the side folded */
+/* pass() for each side and each kind of pass, its tests of both folded */
 static BW_NOINLINE size_t pass_enc(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
-                                   size_t limit)
+                                   size_t limit, unsigned what)
 {
-    return pass(c, start, n, P, limit, true);
+    if (what == PASS_SIG)
+        return pass(c, start, n, P, limit, true, PASS_SIG);
+    if (what == PASS_REF)
+        return pass(c, start, n, P, limit, true, PASS_REF);
+    return pass(c, start, n, P, limit, true, PASS_ALL);
 }
 
 static BW_NOINLINE size_t pass_dec(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
-                                   size_t limit)
+                                   size_t limit, unsigned what)
 {
-    return pass(c, start, n, P, limit, false);
+    if (what == PASS_SIG)
+        return pass(c, start, n, P, limit, false, PASS_SIG);
+    if (what == PASS_REF)
+        return pass(c, start, n, P, limit, false, PASS_REF);
+    return pass(c, start, n, P, limit, false, PASS_ALL);
+}
+
+/* The positions of a plane: 0..n (forms 0 to 2), or 0..2n (form 3: its
+ * significance half, then n + the refinement half's). */
+static inline size_t plane_end(const embed_t *c, size_t n)
+{
+    return c->split ? 2u * n : n;
+}
+
+/* Plane P up to position limit; returns where it stopped (plane_end: the
+ * whole plane). In line, so that no frame lies between the segment's
+ * coder and its passes. */
+static BW_ALWAYS_INLINE size_t plane(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                     size_t limit, bool enc)
+{
+    size_t (*f)(embed_t *, const bw_iter_t *, size_t, unsigned, size_t, unsigned) =
+        enc ? pass_enc : pass_dec;
+    if (!c->split)
+        return f(c, start, n, P, limit, PASS_ALL);
+    size_t at = f(c, start, n, P, limit < n ? limit : n, PASS_SIG);
+    if (at < n)
+        return at;
+    return n + f(c, start, n, P, limit - n, PASS_REF);
 }
 
 /* The encoder's passes of a segment: 1 + the highest plane any
@@ -421,6 +491,7 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, b
     c->weigh = start->pl->step_q8 <= BW_STEP_ONE_Q8;
     c->groups_on = start->pl->embed >= 2u;
     c->inpar_on = start->pl->embed >= 3u;
+    c->split = start->pl->embed >= 4u;
     spec_offsets(start->pl, c->weigh, &c->so);
     c->m = (embed_models_t *)(void *)m;
     models_init(c->m);
@@ -437,10 +508,10 @@ size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t ca
     c.budget = out && truncate ? cap - EMBED_HEAD : SIZE_MAX;
     bw_rc_enc_init(&c.re, out ? out + EMBED_HEAD : NULL, out ? cap - EMBED_HEAD : 0u);
     unsigned np = passes_of(&c, start, n), done = 0;
-    size_t at = n;
+    size_t end = plane_end(&c, n), at = end;
     for (; done < np; done++) {
-        at = pass_enc(&c, start, n, np - 1u - done, n);
-        if (at < n)
+        at = plane(&c, start, n, np - 1u - done, end, true);
+        if (at < end)
             break;
     }
     size_t len = bw_rc_enc_finish(&c.re);
@@ -471,21 +542,22 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         return cut ? BW_OK : BW_ERR_CORRUPT;
     unsigned np = in[0], done = in[1];
     uint32_t at = bw_get_u32(in + 2);
-    if (np > 64u || done > np || (done == np && at) || (done < np && at >= n))
+    size_t end = plane_end(&c, n);
+    if (np > 64u || done > np || (done == np && at) || (done < np && at >= end))
         return BW_ERR_CORRUPT;
     c.avail = cut ? len - EMBED_HEAD : SIZE_MAX;
     bw_rc_dec_init(&c.rd, in + EMBED_HEAD, len - EMBED_HEAD);
     /* the passes the encoder coded, the last up to where it stopped; a cut
      * segment to where its bytes end */
     unsigned t = 0;
-    size_t stop = n;
+    size_t stop = end;
     for (; t < np; t++) {
         if (t > done) { /* pass `done` ended where its coding did */
             stop = 0;
             break;
         }
-        stop = pass_dec(&c, start, n, np - 1u - t, t < done ? n : at);
-        if (stop < n)
+        stop = plane(&c, start, n, np - 1u - t, t < done ? end : at, false);
+        if (stop < end)
             break;
     }
     if (c.bad)
@@ -494,9 +566,10 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         *inexact = false;
         return BW_OK;
     }
-    /* stopped in pass t before coefficient `stop`: a significant
-     * coefficient whose planes below b are not known takes the middle of
-     * their span */
+    /* stopped in pass t before position `stop`: a significant coefficient
+     * whose planes below b are not known takes the middle of their span
+     * (form 3: those found in this pass, and in its refinement half those
+     * before the stop, know plane b; the others b + 1) */
     unsigned P = np - 1u - t;
     walk_start(&w, start, &c.so, c.weigh, false);
     for (size_t k = 0; k < n; k++) {
@@ -505,6 +578,10 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         unsigned e;
         int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
         unsigned lo = k < stop ? P : P + 1u; /* its lowest plane known, + e */
+        if (c.split) {
+            bool found = P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u;
+            lo = found || (stop > n && k < stop - n) ? P : P + 1u;
+        }
         if (*p && lo > e && lo - e <= 30u) {
             uint32_t add = ((1u << (lo - e)) - 1u) >> 1;
             *p = *p < 0 ? *p - (int32_t)add : *p + (int32_t)add;
