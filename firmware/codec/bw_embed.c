@@ -414,7 +414,7 @@ static BW_ALWAYS_INLINE size_t plane(embed_t *c, const bw_iter_t *start, size_t 
     if (!c->split)
         return f(c, start, n, P, limit, PASS_ALL);
     size_t at = f(c, start, n, P, limit < n ? limit : n, PASS_SIG);
-    if (at < n)
+    if (at < n || limit < n) /* (a malformed `at` may hold nothing to code) */
         return at;
     return n + f(c, start, n, P, limit - n, PASS_REF);
 }
