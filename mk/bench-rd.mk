@@ -25,6 +25,6 @@ bench-rd: bench-guarantee
 # chunk costs in samples, and what they cost the emulated board's streaming
 # encoder (build/bench/progressive.md; QEMU from deps-run).
 .PHONY: bench-progressive
-bench-progressive: deps-run $(BW_CLI)
+bench-progressive: deps-run $(BW_CLI) $(PYLIB)
 	$(Q)$(MAKE) --no-print-directory TARGET=qemu all
 	BW=$(BW_CLI) $(BENCH_PYTHON) tests/bench/run_progressive_bench.py

@@ -454,9 +454,28 @@ def budget_bytes_for(inp, ref, rel_target, hi):
     return best
 
 
+def decode_ms(path):
+    """The least time of 5 whole decodes of a payload in this process
+    (bwh_decode_limit, float values out), in ms."""
+    import ctypes
+    sys.path.insert(0, os.path.join(ROOT, "host-tools/python"))
+    from brdfwave._lib import Header, free, lib
+    L = lib()
+    p = open(path, "rb").read()
+
+    def once():
+        h, v = Header(), ctypes.POINTER(ctypes.c_float)()
+        if L.bwh_decode_limit(p, len(p), 0, ctypes.byref(h), None, ctypes.byref(v)) != 0:
+            sys.exit("bench-progressive: decode of %s failed" % path)
+        free(v)
+
+    return 1e3 * best_of(once)[0]
+
+
 def embed_rows():
-    """Embedded payloads: what the order costs at equal samples, and their
-    prefixes against byte-budget encodes at the same error."""
+    """Embedded payloads: what the order costs at equal samples (bytes and
+    decode time), and their prefixes against byte-budget encodes at the same
+    error."""
     sizes, prefix = [], []
     for key, desc, inp, lossy in sets():
         for mode, margs in (("lossless", ["--lossless"]), ("max-error", lossy)):
@@ -470,7 +489,9 @@ def embed_rows():
                 "emb_%s_%s_best.bwv" % (key, mode))]).stdout.decode().splitlines()
                 if ": " in l)["basis"]
             sizes.append({"set": key, "mode": mode, "best": got["best"][0], "basis": basis,
-                          "embedded": got["embedded"][0], "same": "yes" if same else "no"})
+                          "embedded": got["embedded"][0], "same": "yes" if same else "no",
+                          "dec_best_ms": decode_ms(tmp("emb_%s_%s_best.bwv" % (key, mode))),
+                          "dec_emb_ms": decode_ms(tmp("emb_%s_%s_embedded.bwv" % (key, mode)))})
         # prefixes of the exact embedded coding of the samples a byte budget
         # codes (a budget that holds it all: the values mapped linearly,
         # where a lossless payload of float input may code their bit
@@ -642,13 +663,18 @@ def main():
            "prediction included where it applies) and with `--progressive` (embedded, one "
            "segment; a transform basis), lossless and with the max error above. *same "
            "samples*: the two payloads decode to the same samples (the same transform and "
-           "quantiser: the bytes compare at equal error).", "",
-           "| set | mode | best (basis) | embedded | cost | same samples |",
-           "|---|---|---|---|---|---|"]
+           "quantiser: the bytes compare at equal error). *decode*: the least time of 5 whole "
+           "decodes of each payload (`bwh_decode_limit`, float values out), in this run, and "
+           "the embedded one's against the other's (the bit plane passes, each walked twice, "
+           "against one strip pass).", "",
+           "| set | mode | best (basis) | embedded | cost | same samples | decode: best | "
+           "decode: embedded | ratio |",
+           "|---|---|---|---|---|---|---|---|---|"]
     for r in emb_sizes:
-        md.append("| %s | %s | %d (%s) | %d | %+.1f %% | %s |" % (
+        md.append("| %s | %s | %d (%s) | %d | %+.1f %% | %s | %.2f ms | %.2f ms | %.2f x |" % (
             r["set"], r["mode"], r["best"], r["basis"], r["embedded"],
-            100.0 * (r["embedded"] / r["best"] - 1), r["same"]))
+            100.0 * (r["embedded"] / r["best"] - 1), r["same"], r["dec_best_ms"],
+            r["dec_emb_ms"], r["dec_emb_ms"] / r["dec_best_ms"]))
     md += ["", "## Embedded segments: prefixes", "",
            "The exact embedded coding of each set's samples as a byte budget maps them "
            "(`--bytes N --progressive` with N more than it needs: the whole coding) cut to 5, "
