@@ -359,7 +359,7 @@ typedef struct {
     /* record BW_EXT_EMBEDDED: 0 none, else 1 + its form (1: the first,
      * without groups of strips; 2: with them; 3: with the incoming parent
      * block as a neighbour too; 4: and each pass split, significance
-     * first) */
+     * first; 5: in three parts, refinement second) */
     uint32_t embedded;
 } bw_header_t;
 

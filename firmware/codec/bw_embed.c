@@ -11,10 +11,14 @@
  * coefficients: a strip with none significant yet codes one flag (does one
  * become significant now), then its coefficients their significance and
  * sign; significant coefficients code their refinement bit. Form 3 (the
- * encoder's) splits each pass in two: first the significance of every
- * coefficient not yet significant, then the refinement bits of those that
- * were, so that a pass cut short has found the new coefficients first
- * (the same bits in each model, in another order).
+ * encoder's for several bands) splits each pass in two: first the
+ * significance of every coefficient not yet significant, then the
+ * refinement bits of those that were, so that a pass cut short has found
+ * the new coefficients first (the same bits in each model, in another
+ * order). Form 4 (the encoder's for one band, where a strip holds
+ * neighbouring directions) in three: the significance in the strips
+ * already significant, the refinement, then the strips not yet
+ * significant, whose values are more often isolated and small.
  */
 #include <string.h>
 
@@ -100,6 +104,8 @@ typedef struct {
     bool groups_on; /* form 1: groups of 32 strips, each with a flag */
     bool inpar_on;  /* form 2: the incoming parent block as a neighbour */
     bool split;     /* form 3: each pass significance first, then refinement */
+    bool split3;    /* form 4: significance in significant strips, refinement,
+                     * then the other strips */
     spec_off_t so;
     const int32_t *x0;
     embed_models_t *m;
@@ -274,8 +280,10 @@ static inline int32_t *walk_next_ref(walk_t *w, uint8_t *cls, unsigned *e)
 
 /* What a pass codes: every bit of plane P in coding order (forms 0 to 2),
  * or (form 3) the significance of the coefficients not yet significant,
- * then the refinement of the others. */
-enum { PASS_ALL, PASS_SIG, PASS_REF };
+ * then the refinement of the others; or (form 4) that significance in the
+ * strips with a significant coefficient (OLD), the refinement, then the
+ * significance in the other strips (NEW). */
+enum { PASS_ALL, PASS_SIG, PASS_REF, PASS_SIG_OLD, PASS_SIG_NEW };
 
 /* One pass at plane P over the n coefficients from start, up to
  * coefficient `limit`; returns where it stopped (n: the whole pass). A
@@ -296,7 +304,9 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
             walk_seek(&w, s);
             at = s;
         }
-        if (what == PASS_REF && !any_sig) {
+        if (what == PASS_SIG_NEW && any_sig)
+            continue;
+        if ((what == PASS_REF || what == PASS_SIG_OLD) && !any_sig) {
             if (s % GROUP == 0u && !GROUP_SIG(c, gi))
                 s += GROUP - STRIP; /* nor any of its group */
             continue;
@@ -344,7 +354,7 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
             /* a refinement pass: those significant before plane b (not
              * those whose leading bit is b, found by this plane's first
              * half); a significance pass: the others */
-            if (what == PASS_REF ? !sig || a >> b == 1u : what == PASS_SIG && sig)
+            if (what == PASS_REF ? !sig || a >> b == 1u : what != PASS_ALL && sig)
                 continue;
             if (s + k >= limit || !room(c, enc))
                 return s + k;
@@ -375,32 +385,35 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
     return n;
 }
 
-/* pass() for each side and each kind of pass, its tests of both folded */
-static BW_NOINLINE size_t pass_enc(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
-                                   size_t limit, unsigned what)
-{
-    if (what == PASS_SIG)
-        return pass(c, start, n, P, limit, true, PASS_SIG);
-    if (what == PASS_REF)
-        return pass(c, start, n, P, limit, true, PASS_REF);
-    return pass(c, start, n, P, limit, true, PASS_ALL);
-}
+/* pass() for each side and each kind of pass, its tests of both folded,
+ * each out of line with a frame of its own */
+typedef size_t (*pass_fn)(embed_t *, const bw_iter_t *, size_t, unsigned, size_t);
+#define PASS_FN(name, enc, what)                                                                 \
+    static BW_NOINLINE size_t name(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,      \
+                                   size_t limit)                                                 \
+    {                                                                                            \
+        return pass(c, start, n, P, limit, enc, what);                                           \
+    }
+PASS_FN(dec_all, false, PASS_ALL)
+PASS_FN(dec_sig, false, PASS_SIG)
+PASS_FN(dec_ref, false, PASS_REF)
+PASS_FN(dec_old, false, PASS_SIG_OLD)
+PASS_FN(dec_new, false, PASS_SIG_NEW)
+PASS_FN(enc_all, true, PASS_ALL)
+PASS_FN(enc_sig, true, PASS_SIG)
+PASS_FN(enc_ref, true, PASS_REF)
+PASS_FN(enc_old, true, PASS_SIG_OLD)
+PASS_FN(enc_new, true, PASS_SIG_NEW)
+static const pass_fn pass_fns[2][5] = {{dec_all, dec_sig, dec_ref, dec_old, dec_new},
+                                       {enc_all, enc_sig, enc_ref, enc_old, enc_new}};
 
-static BW_NOINLINE size_t pass_dec(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
-                                   size_t limit, unsigned what)
-{
-    if (what == PASS_SIG)
-        return pass(c, start, n, P, limit, false, PASS_SIG);
-    if (what == PASS_REF)
-        return pass(c, start, n, P, limit, false, PASS_REF);
-    return pass(c, start, n, P, limit, false, PASS_ALL);
-}
-
-/* The positions of a plane: 0..n (forms 0 to 2), or 0..2n (form 3: its
- * significance half, then n + the refinement half's). */
+/* The positions of a plane: 0..n (forms 0 to 2), 0..2n (form 3: its
+ * significance half, then n + the refinement half's) or 0..3n (form 4: the
+ * significance in significant strips, n + the refinement's, 2n + the
+ * significance in the others'). */
 static inline size_t plane_end(const embed_t *c, size_t n)
 {
-    return c->split ? 2u * n : n;
+    return c->split3 ? 3u * n : c->split ? 2u * n : n;
 }
 
 /* Plane P up to position limit; returns where it stopped (plane_end: the
@@ -409,14 +422,18 @@ static inline size_t plane_end(const embed_t *c, size_t n)
 static BW_ALWAYS_INLINE size_t plane(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
                                      size_t limit, bool enc)
 {
-    size_t (*f)(embed_t *, const bw_iter_t *, size_t, unsigned, size_t, unsigned) =
-        enc ? pass_enc : pass_dec;
+    const pass_fn *f = pass_fns[enc];
     if (!c->split)
-        return f(c, start, n, P, limit, PASS_ALL);
-    size_t at = f(c, start, n, P, limit < n ? limit : n, PASS_SIG);
-    if (at < n || limit < n) /* (a malformed `at` may hold nothing to code) */
+        return f[PASS_ALL](c, start, n, P, limit);
+    /* each part up to the limit; a recorded stop in a part ends the plane
+     * there even with nothing left to code at it (a malformed segment) */
+    size_t at = f[c->split3 ? PASS_SIG_OLD : PASS_SIG](c, start, n, P, limit < n ? limit : n);
+    if (at < n || limit < n)
         return at;
-    return n + f(c, start, n, P, limit - n, PASS_REF);
+    at = f[PASS_REF](c, start, n, P, limit - n < n ? limit - n : n);
+    if (!c->split3 || at < n || limit < 2u * n)
+        return n + at;
+    return 2u * n + f[PASS_SIG_NEW](c, start, n, P, limit - 2u * n);
 }
 
 /* The encoder's passes of a segment: 1 + the highest plane any
@@ -492,6 +509,7 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, b
     c->groups_on = start->pl->embed >= 2u;
     c->inpar_on = start->pl->embed >= 3u;
     c->split = start->pl->embed >= 4u;
+    c->split3 = start->pl->embed >= 5u;
     spec_offsets(start->pl, c->weigh, &c->so);
     c->m = (embed_models_t *)(void *)m;
     models_init(c->m);
@@ -568,8 +586,8 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
     }
     /* stopped in pass t before position `stop`: a significant coefficient
      * whose planes below b are not known takes the middle of their span
-     * (form 3: those found in this pass, and in its refinement half those
-     * before the stop, know plane b; the others b + 1) */
+     * (forms 3 and 4: those found in this pass, and those its refinement
+     * part, positions n to 2n, reached, know plane b; the others b + 1) */
     unsigned P = np - 1u - t;
     walk_start(&w, start, &c.so, c.weigh, false);
     for (size_t k = 0; k < n; k++) {
@@ -580,7 +598,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         unsigned lo = k < stop ? P : P + 1u; /* its lowest plane known, + e */
         if (c.split) {
             bool found = P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u;
-            lo = found || (stop > n && k < stop - n) ? P : P + 1u;
+            lo = found || (stop > n && k < stop - n) ? P : P + 1u; /* (stop - n >= n: all) */
         }
         if (*p && lo > e && lo - e <= 30u) {
             uint32_t add = ((1u << (lo - e)) - 1u) >> 1;

@@ -101,6 +101,8 @@ static const golden_case_t golden_cases[] = {
      BW_BASIS_53, 4, GOLDEN_EMBED},
     {"full1x1x9_bytes600_97_embedded", BW_SHAPE_BRDF_FULL, 1, 1, 0, 9, BW_MODE_BYTES, BW_BASIS_97,
      600, GOLDEN_EMBED},
+    {"iso8x3x1_bytes1500_haar_embedded", BW_SHAPE_BRDF_ISO, 3, 0, 8, 1, BW_MODE_BYTES, BW_BASIS_HAAR,
+     1500, GOLDEN_EMBED},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)
