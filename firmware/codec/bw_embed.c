@@ -385,27 +385,24 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
     return n;
 }
 
-/* pass() for each side and each kind of pass, its tests of both folded,
- * each out of line with a frame of its own */
-typedef size_t (*pass_fn)(embed_t *, const bw_iter_t *, size_t, unsigned, size_t);
-#define PASS_FN(name, enc, what)                                                                 \
-    static BW_NOINLINE size_t name(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,      \
-                                   size_t limit)                                                 \
-    {                                                                                            \
-        return pass(c, start, n, P, limit, enc, what);                                           \
-    }
-PASS_FN(dec_all, false, PASS_ALL)
-PASS_FN(dec_sig, false, PASS_SIG)
-PASS_FN(dec_ref, false, PASS_REF)
-PASS_FN(dec_old, false, PASS_SIG_OLD)
-PASS_FN(dec_new, false, PASS_SIG_NEW)
-PASS_FN(enc_all, true, PASS_ALL)
-PASS_FN(enc_sig, true, PASS_SIG)
-PASS_FN(enc_ref, true, PASS_REF)
-PASS_FN(enc_old, true, PASS_SIG_OLD)
-PASS_FN(enc_new, true, PASS_SIG_NEW)
-static const pass_fn pass_fns[2][5] = {{dec_all, dec_sig, dec_ref, dec_old, dec_new},
-                                       {enc_all, enc_sig, enc_ref, enc_old, enc_new}};
+/* pass() for each side, its tests of the side folded, each out of line
+ * with a frame of its own: a refinement part, whose walk reads no
+ * neighbours, in a copy of its own; the others in one */
+static BW_NOINLINE size_t pass_dec(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                   size_t limit, unsigned what)
+{
+    if (what == PASS_REF)
+        return pass(c, start, n, P, limit, false, PASS_REF);
+    return pass(c, start, n, P, limit, false, what);
+}
+
+static BW_NOINLINE size_t pass_enc(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
+                                   size_t limit, unsigned what)
+{
+    if (what == PASS_REF)
+        return pass(c, start, n, P, limit, true, PASS_REF);
+    return pass(c, start, n, P, limit, true, what);
+}
 
 /* The positions of a plane: 0..n (forms 0 to 2), 0..2n (form 3: its
  * significance half, then n + the refinement half's) or 0..3n (form 4: the
@@ -422,18 +419,19 @@ static inline size_t plane_end(const embed_t *c, size_t n)
 static BW_ALWAYS_INLINE size_t plane(embed_t *c, const bw_iter_t *start, size_t n, unsigned P,
                                      size_t limit, bool enc)
 {
-    const pass_fn *f = pass_fns[enc];
+    size_t (*f)(embed_t *, const bw_iter_t *, size_t, unsigned, size_t, unsigned) =
+        enc ? pass_enc : pass_dec;
     if (!c->split)
-        return f[PASS_ALL](c, start, n, P, limit);
+        return f(c, start, n, P, limit, PASS_ALL);
     /* each part up to the limit; a recorded stop in a part ends the plane
      * there even with nothing left to code at it (a malformed segment) */
-    size_t at = f[c->split3 ? PASS_SIG_OLD : PASS_SIG](c, start, n, P, limit < n ? limit : n);
+    size_t at = f(c, start, n, P, limit < n ? limit : n, c->split3 ? PASS_SIG_OLD : PASS_SIG);
     if (at < n || limit < n)
         return at;
-    at = f[PASS_REF](c, start, n, P, limit - n < n ? limit - n : n);
+    at = f(c, start, n, P, limit - n < n ? limit - n : n, PASS_REF);
     if (!c->split3 || at < n || limit < 2u * n)
         return n + at;
-    return 2u * n + f[PASS_SIG_NEW](c, start, n, P, limit - 2u * n);
+    return 2u * n + f(c, start, n, P, limit - 2u * n, PASS_SIG_NEW);
 }
 
 /* The encoder's passes of a segment: 1 + the highest plane any
