@@ -235,16 +235,22 @@ static void walk_seek(walk_t *w, size_t c)
     walk_offsets(w);
 }
 
-/* The next coefficient: its place, class, neighbours and plane offset. */
-static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
-                                 const int32_t **prv, const int32_t **left, unsigned *e)
+/* The plane offset of the coefficient the walk is at. */
+static inline unsigned walk_offset(walk_t *w)
 {
     if (w->it.vi != w->vi)
         walk_offsets(w);
     while (w->it.k >= w->so->b.lo[w->sb + 1u])
         w->sb++;
+    return w->ed + w->so->e[w->sb];
+}
+
+/* The next coefficient: its place, class, neighbours and plane offset. */
+static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
+                                 const int32_t **prv, const int32_t **left, unsigned *e)
+{
+    *e = walk_offset(w);
     *left = w->last; /* the band before, or the vector before's last */
-    *e = w->ed + w->so->e[w->sb];
     /* form 2, one band: the same outgoing coefficient of the incoming
      * parent block stands for the band above (coded before, when not
      * before the segment) */
@@ -261,11 +267,7 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
 /* The same for a refinement pass, which needs no neighbours. */
 static inline int32_t *walk_next_ref(walk_t *w, uint8_t *cls, unsigned *e)
 {
-    if (w->it.vi != w->vi)
-        walk_offsets(w);
-    while (w->it.k >= w->so->b.lo[w->sb + 1u])
-        w->sb++;
-    *e = w->ed + w->so->e[w->sb];
+    *e = walk_offset(w);
     uint32_t k = w->it.k;
     int32_t *p = w->it.vec + k;
     *cls = (uint8_t)bw_coef_cls(w->it.pl->spec_cls[k], w->it.cls_dir);
@@ -593,11 +595,12 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         const int32_t *par, *prv, *left;
         unsigned e;
         int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
-        unsigned lo = k < stop ? P : P + 1u; /* its lowest plane known, + e */
-        if (c.split) {
-            bool found = P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u;
-            lo = found || (stop > n && k < stop - n) ? P : P + 1u; /* (stop - n >= n: all) */
-        }
+        /* forms 3 and 4: found in this pass (magnitude 2^b), or reached by
+         * its refinement part (stop - n >= n: all) */
+        bool at_b = !c.split ? k < stop
+                             : (P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u) ||
+                                   (stop > n && k < stop - n);
+        unsigned lo = at_b ? P : P + 1u; /* its lowest plane known, + e */
         if (*p && lo > e && lo - e <= 30u) {
             uint32_t add = ((1u << (lo - e)) - 1u) >> 1;
             *p = *p < 0 ? *p - (int32_t)add : *p + (int32_t)add;
