@@ -43,6 +43,7 @@
  *                      (bw_strip_coder.h; the state's types in bw_coder.h)
  *   bw_rc.c            the adaptive binary range coder
  *   bw_rice.c          the Rice strip coder (BW_FLAG_RICE)
+ *   bw_tab.c           the static-table coder (BW_FLAG_RICE | BW_FLAG_MS)
  *   bw_embed.c         embedded segments, bit plane by bit plane
  *                      (BW_EXT_EMBEDDED, bw_params_t.progressive)
  *   bw_header.c        the payload's header and its CRC
@@ -146,8 +147,8 @@ typedef enum {
 
 /* Which entropy coder codes the body (bw_params_t.coder). */
 typedef enum {
-    /* the one the flags name: BW_FLAG_RICE, BW_FLAG_MS, or neither (the
-     * binary range coder, the smallest payloads) */
+    /* the one the flags name: BW_FLAG_RICE, BW_FLAG_MS, both (the static
+     * tables), or neither (the binary range coder, the smallest payloads) */
     BW_CODER_BY_FLAGS = 0,
     /* the encoder chooses, for a device that must keep up with its sensor
      * (the flags then name no coder): Rice strips for prediction errors
@@ -155,8 +156,10 @@ typedef enum {
      * within 248/256 of an order-0 coding of them (errors close to
      * geometric: there Rice strips come within about 2 % of the range
      * coder's bytes in a fraction of its instructions; the statistics from
-     * every fourth error of a large measurement), else the multi-symbol
-     * range coder (the binary one in a core built without it,
+     * every fourth error of a large measurement); for a set of spectra
+     * transformed, coded in one body without a byte budget's rate ahead of
+     * the coder, the static tables (BW_CFG_CODER_TAB); else the
+     * multi-symbol range coder (the binary one in a core built without it,
      * BW_CFG_CODER_MS 0); the payload's flags name the coder chosen */
     BW_CODER_AUTO = 1
 } bw_coder_choice_t;
@@ -241,7 +244,10 @@ typedef struct {
 #define BW_FLAG_RECIPROCAL 0x20u
 /* MS: the body is coded with the multi-symbol range coder: an element's
  *   bit length as one adaptive symbol in place of the valid bit and the
- *   5-bit tree (fewer instructions per sample; not with RICE). Version 7. */
+ *   5-bit tree (fewer instructions per sample). Version 7. RICE | MS: the
+ *   body is coded with static tables sent ahead of it (BW_CFG_CODER_TAB,
+ *   docs/FORMAT.md, Body with TAB: fewer instructions still on sets of
+ *   spectra; not for the streaming encoder nor embedded segments). */
 #define BW_FLAG_MS 0x80u
 #define BW_FLAGS_KNOWN 0xBFu
 /* EXT (set by the encoder when params.ext_len > 0, version 7): extension

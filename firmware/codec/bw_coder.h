@@ -16,9 +16,9 @@
 #define BW_CODER_CLASSES 12u /* 3 * spectral class (0..3) + direction class (0..2) */
 #define BW_CODER_NB_CTX 8u
 
-/* the strip coders: the binary range coder, Rice strips (BW_FLAG_RICE), the
- * multi-symbol range coder (BW_FLAG_MS) */
-enum { BW_CODER_RANGE = 0, BW_CODER_RICE = 1, BW_CODER_MS = 2 };
+/* the body's coders: the binary range coder, Rice strips (BW_FLAG_RICE), the
+ * multi-symbol range coder (BW_FLAG_MS), the static-table coder (both flags) */
+enum { BW_CODER_RANGE = 0, BW_CODER_RICE = 1, BW_CODER_MS = 2, BW_CODER_TAB = 3 };
 
 /* The binary range coder's adaptive models, 7,302 bytes. */
 typedef struct {
@@ -39,9 +39,21 @@ typedef struct {
     bw_prob_t sign[27];
 } bw_ms_models_t;
 
+/* The static-table coder's tables (BW_FLAG_RICE | BW_FLAG_MS, bw_tab.c),
+ * 7,128 bytes: per class and neighbourhood (BW_TAB_BINS) the cumulative
+ * frequencies, in 1/4096, of its BW_TAB_SYMS symbols; in the encoder first
+ * its counts. */
+#define BW_TAB_BINS 11u
+#define BW_TAB_SYMS 26u
+#define BW_TAB_CTX (BW_CODER_CLASSES * BW_TAB_BINS)
+typedef struct {
+    uint16_t cum[BW_TAB_CTX][BW_TAB_SYMS + 1u];
+} bw_tab_models_t;
+
 typedef union {
     bw_rc_models_t rc;
     bw_ms_models_t ms;
+    bw_tab_models_t tab;
 } bw_models_t;
 
 /* What a strip leaves for the next one's contexts. */

@@ -61,6 +61,9 @@
  *                                      encoder and decoder (1.5 KiB of flash):
  *                                      such a build refuses an MS request or
  *                                      payload with BW_ERR_NOT_BUILT
+ *   BW_CFG_CODER_TAB          as MS    the static-table coder (flags RICE and
+ *                                      MS, format 7) both ways; 0 leaves it
+ *                                      out (BW_ERR_NOT_BUILT as for MS)
  *
  * Apart from that the decoder has no switch: every build decodes every
  * payload the format allows, prediction included, whatever its encoder
@@ -162,6 +165,10 @@
 
 #ifndef BW_CFG_CODER_MS
 #define BW_CFG_CODER_MS 1
+#endif
+
+#ifndef BW_CFG_CODER_TAB
+#define BW_CFG_CODER_TAB BW_CFG_CODER_MS
 #endif
 
 #ifndef BW_CFG_SPEED

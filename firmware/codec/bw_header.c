@@ -326,7 +326,9 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
     if ((!me && e > UINT32_MAX - BW_STEP_ONE_Q8) || (pc != BW_OK && pc != BW_ERR_NOT_BUILT) ||
         h->spectral_levels != bw_plan_spec_levels(h->basis, d->bands) ||
         (BW_CFG_EMBED && h->embedded &&
-         (h->basis == BW_BASIS_PRED || (h->flags & BW_FLAG_STREAM_ORDER))))
+         (h->basis == BW_BASIS_PRED || (h->flags & BW_FLAG_STREAM_ORDER) ||
+          (BW_CFG_CODER_TAB &&
+           (h->flags & (BW_FLAG_RICE | BW_FLAG_MS)) == (BW_FLAG_RICE | BW_FLAG_MS)))))
         return BW_ERR_HEADER;
     /* segments of V vectors, V at most their number (one encoding) */
     h->segments = 1u;

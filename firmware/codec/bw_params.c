@@ -46,8 +46,11 @@ bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, u
     }
     if (mode > BW_MODE_STEP || !basis_ok(d, mode, basis, flags, use) || (flags & refused) != 0u)
         return BW_ERR_ARG;
-    if ((flags & BW_FLAG_RICE) && (flags & BW_FLAG_MS))
-        return BW_ERR_ARG; /* one coder */
+    /* both coders' flags: the static-table coder, which counts the whole
+     * body before it codes (not for the streaming encoder) */
+    bool tab = (flags & BW_FLAG_RICE) && (flags & BW_FLAG_MS);
+    if (BW_CFG_CODER_TAB && tab && use == BW_FOR_STREAM)
+        return BW_ERR_ARG;
     if ((flags & BW_FLAG_STREAM_ORDER) && d->shape == BW_SHAPE_BRDF_FULL)
         return BW_ERR_SHAPE; /* the incoming transform needs every hemisphere at once */
     if ((flags & BW_FLAG_MIRROR) && d->shape == BW_SHAPE_SPECTRA)
@@ -60,7 +63,8 @@ bw_status_t bw_params_check(const bw_dims_t *d, unsigned mode, unsigned basis, u
     if (mode == BW_MODE_STEP && param < BW_STEP_ONE_Q8)
         return BW_ERR_ARG;
     /* last: a valid request or payload this build cannot code */
-    if (!BW_CFG_CODER_MS && (flags & BW_FLAG_MS))
+    if ((!BW_CFG_CODER_MS && (flags & BW_FLAG_MS)) ||
+        (BW_CFG_CODER_MS && !BW_CFG_CODER_TAB && tab)) /* (without MS, MS alone says it) */
         return BW_ERR_NOT_BUILT;
     return BW_OK;
 }

@@ -971,6 +971,10 @@ bw_status_t bw_decode_coefs(bw_iter_t *it, size_t n, const uint8_t *body, size_t
 {
     if (coder == BW_CODER_RICE)
         return decode_rice(it, n, body, len);
+#if BW_CFG_CODER_TAB
+    if (coder == BW_CODER_TAB)
+        return bw_tab_decode(it, n, body, len, &m->tab);
+#endif
     bw_models_init(m, coder);
     bw_rc_dec_t rc;
     bw_rc_dec_init(&rc, body, len);

@@ -24,8 +24,18 @@ void bw_strip_enc_init(bw_strip_enc_t *se, uint8_t *out, size_t cap, unsigned co
 /* The coder a payload's or a request's flags name. */
 static inline unsigned bw_coder_of(unsigned flags)
 {
+    if (BW_CFG_CODER_TAB && (flags & (BW_FLAG_RICE | BW_FLAG_MS)) == (BW_FLAG_RICE | BW_FLAG_MS))
+        return BW_CODER_TAB; /* (a core without it refuses both flags first) */
     return flags & BW_FLAG_RICE ? BW_CODER_RICE : flags & BW_FLAG_MS ? BW_CODER_MS : BW_CODER_RANGE;
 }
+/* The static-table coder (bw_tab.c): n coefficients from *it (left past
+ * them) into out[cap] (NULL: counts only), tables first; returns the bytes,
+ * *over when they passed cap. Decoding: n coefficients from in[len] into
+ * the iterator's array; BW_ERR_CORRUPT for a malformed body. */
+size_t bw_tab_encode(bw_iter_t *it, size_t n, bw_tab_models_t *m, uint8_t *out, size_t cap,
+                     bool *over);
+bw_status_t bw_tab_decode(bw_iter_t *it, size_t n, const uint8_t *in, size_t len,
+                          bw_tab_models_t *m);
 /* Codes the strip of the se->cnt coefficients put since the last one. */
 void bw_strip_enc_code(bw_strip_enc_t *se);
 /* Codes what is left; returns the body size. */

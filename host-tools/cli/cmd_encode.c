@@ -23,7 +23,7 @@ static const char encode_help[] =
     "                       [--max-rel-error R [--rel-floor F]]\n"
     "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
     "                       [--scale S] [--relative]\n"
-    "                       [--coder range|ms|rice|auto] [--segments N] [--progressive]\n"
+    "                       [--coder range|ms|tab|rice|auto] [--segments N] [--progressive]\n"
     "                       [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
@@ -101,10 +101,14 @@ static const char encode_help[] =
     "  --coder C         entropy coder: range (the default on the host: the smallest\n"
     "                    payload); ms (multi-symbol range coder, format 7: about a\n"
     "                    third fewer instructions per sample on the device, about\n"
-    "                    the same bytes); rice (adaptive Rice strips: several times\n"
-    "                    fewer instructions, more bytes where most coefficients are\n"
-    "                    zero); or auto (the default with --device): rice for\n"
-    "                    prediction errors of a bit or more a sample, else ms\n"
+    "                    the same bytes); tab (static tables, counted over part of\n"
+    "                    the body and sent ahead of it, format 7: fewer instructions\n"
+    "                    still on sets of spectra; not with --progressive, nor with\n"
+    "                    --stream on a device); rice (adaptive Rice strips: several\n"
+    "                    times fewer instructions, more bytes where most\n"
+    "                    coefficients are zero); or auto (the default with\n"
+    "                    --device): rice for prediction errors of a bit or more a\n"
+    "                    sample, tab for spectra transformed, else ms\n"
     "  --symmetry S      directional data: mirror codes the half y < 0 of each\n"
     "                    hemisphere as differences from its mirror image (x, -y, z),\n"
     "                    for BRDFs symmetric about the incidence plane x-z;\n"
@@ -346,7 +350,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"progressive", 0, CLI_FLAG, .dest = &progressive},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
-         .what = "--coder must be range, ms, rice or auto"},
+         .what = "--coder must be range, ms, tab, rice or auto"},
         {"symmetry", 0, CLI_CALL, .dest = &symmetry, .parse = parse_symmetry, .seen = &has_symmetry,
          .what = "--symmetry must be auto, mirror, reciprocal, both or none"},
         {"quiet", 'q', CLI_FLAG, .dest = &quiet},

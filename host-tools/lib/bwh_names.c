@@ -20,7 +20,7 @@ static const char *const shapes[] = {"spectra", "reflectance", "brdf-iso", "brdf
 static const char *const modes[] = {"lossless", "max-error", "bytes", "step"};
 static const char *const bases[] = {"haar", "53", "97", "pred"};
 static const char *const symmetries[] = {"none", "mirror", "reciprocal", "both"};
-static const char *const coders[] = {"range", "rice", "ms"};
+static const char *const coders[] = {"range", "rice", "ms", "tab"};
 
 #define COUNT(a) ((int)(sizeof a / sizeof *a))
 
@@ -54,12 +54,13 @@ int bwh_symmetry_from_name(const char *name)
 
 const char *bwh_coder_name(unsigned flags)
 {
-    return coders[flags & BW_FLAG_RICE ? 1 : flags & BW_FLAG_MS ? 2 : 0];
+    unsigned f = flags & (BW_FLAG_RICE | BW_FLAG_MS);
+    return coders[f == (BW_FLAG_RICE | BW_FLAG_MS) ? 3 : f == BW_FLAG_RICE ? 1 : f ? 2 : 0];
 }
 
 int bwh_coder_from_name(const char *name)
 {
     int k = find(coders, COUNT(coders), name);
-    static const unsigned flag[] = {0u, BW_FLAG_RICE, BW_FLAG_MS};
+    static const unsigned flag[] = {0u, BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_RICE | BW_FLAG_MS};
     return k < 0 ? -1 : (int)flag[k];
 }

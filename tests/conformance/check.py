@@ -74,7 +74,7 @@ for v in vectors:
 need = {"shape": {"spectra", "reflectance", "brdf-iso", "brdf-full"},
         "mode": {"lossless", "max-error", "bytes"},
         "basis": {"haar", "53", "97", "pred"},
-        "coder": {"range", "rice", "ms"},
+        "coder": {"range", "rice", "ms", "tab"},
         "order": {"coarse-to-fine", "streamed"},
         "symmetry": {"none", "mirror", "reciprocal", "both"},
         "values": {"offset + scale * sample", "exp(offset + scale * sample)"}}

@@ -76,6 +76,10 @@ iso_maxerr_embedded          -i $T/iso.f32 --bands 1 --level 2 --incoming 8 -- -
 spectra_bytes_97_embedded_segments -i $T/spectra.f32 --bands 37 -- --bytes 300 --basis 97 --progressive --segments 3
 full_maxerr_both_embedded    -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.001 --symmetry both --progressive
 spectra_lossless_53_embedded -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 53 --progressive
+spectra_lossless_97_tab      -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --basis 97 --coder tab
+spectra_maxerr_haar_stream_tab -i $T/spectra.f32 --bands 37 -- --max-error 0.001 --basis haar --stream --coder tab
+refl_maxerr_53_mirror_tab    -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis 53 --symmetry mirror --coder tab
+full_maxerr_both_segments_tab -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.005 --symmetry both --segments 5 --coder tab
 EOF2
 # version 7: the first vector with an ancillary extension record (type 0xC3,
 # unassigned: a decoder skips it) in front of the same body

@@ -168,7 +168,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (mirror)
         pa.flags = BW_FLAG_MIRROR;
     /* the coder (bits 5-6 of the mode byte): range, Rice, multi-symbol, or
-     * the encoder's choice (BW_CODER_AUTO) */
+     * the encoder's choice (BW_CODER_AUTO: the static tables for a set of
+     * spectra transformed) */
     static const uint8_t coder_flags[4] = {0u, BW_FLAG_RICE, BW_FLAG_MS, 0u};
     pa.flags |= coder_flags[(data[5] >> 5) & 3u];
     if (((data[5] >> 5) & 3u) == 3u)

@@ -45,7 +45,8 @@ typedef struct {
     uint32_t n_in, bands;
     uint8_t mode, basis;
     uint32_t param;
-    uint8_t flags; /* BW_FLAG_MIRROR, BW_FLAG_RICE, BW_FLAG_MS */
+    uint8_t flags; /* BW_FLAG_MIRROR, BW_FLAG_RICE, BW_FLAG_MS (both: the static tables, which
+                    * the round-trip input asks for as BW_CODER_AUTO) */
     uint32_t seg;  /* vectors per segment (0: one body); a name ending in
                     * _embed: embedded segments */
 } seed_t;
@@ -81,6 +82,11 @@ static const seed_t seeds[] = {
     {"spectra_4x40_lossless_53_embed", 0, 0, 0, 4, 40, 0, 1, 0, 0, 0},
     {"iso_3xl2x1_maxerr3_haar_seg7_embed", 2, 2, 0, 3, 1, 1, 0, 3, 0, 7},
     {"full_l1l1x2_mirror_bytes_97_embed", 3, 1, 1, 0, 2, 2, 2, 300, BW_FLAG_MIRROR, 0},
+    {"spectra_20x64_lossless_97_tab", 0, 0, 0, 20, 64, 0, 2, 0, BW_FLAG_RICE | BW_FLAG_MS, 0},
+    {"spectra_6x40_maxerr3_haar_tab", 0, 0, 0, 6, 40, 1, 0, 3, BW_FLAG_RICE | BW_FLAG_MS, 0},
+    {"refl_l2x3_maxerr2_53_tab_seg5", 1, 2, 0, 1, 3, 1, 1, 2, BW_FLAG_RICE | BW_FLAG_MS, 5},
+    {"iso_3xl2x5_mirror_lossless_haar_tab", 2, 2, 0, 3, 5, 0, 0, 0,
+     BW_FLAG_MIRROR | BW_FLAG_RICE | BW_FLAG_MS, 0},
 };
 
 int main(int argc, char **argv)
@@ -159,7 +165,11 @@ int main(int argc, char **argv)
         in[5] = (uint8_t)(sd->mode |
                           (sd->basis == BW_BASIS_PRED ? 0x10u
                                                       : (sd->basis == 255 ? 3u : sd->basis) << 2) |
-                          (sd->flags & BW_FLAG_RICE ? 0x20u : sd->flags & BW_FLAG_MS ? 0x40u : 0u));
+                          ((sd->flags & (BW_FLAG_RICE | BW_FLAG_MS)) == (BW_FLAG_RICE | BW_FLAG_MS)
+                               ? 0x60u
+                           : sd->flags & BW_FLAG_RICE ? 0x20u
+                           : sd->flags & BW_FLAG_MS   ? 0x40u
+                                                      : 0u));
         in[6] = (uint8_t)param;
         in[7] = (uint8_t)(param >> 8);
         in[8] = (uint8_t)(s % 4u);

@@ -20,7 +20,8 @@ typedef struct {
     uint8_t mode, basis;
     uint32_t param; /* max_error, byte_budget or step_q8 by mode */
     uint8_t flags;  /* BW_FLAG_STREAM_ORDER: the streaming encoder must match too;
-                     * BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL;
+                     * BW_FLAG_RICE, BW_FLAG_MS (both: the static tables),
+                     * BW_FLAG_MIRROR, BW_FLAG_RECIPROCAL;
                      * GOLDEN_EMBED: embedded segments (bw_params_t.progressive) */
 } golden_case_t;
 
@@ -103,6 +104,12 @@ static const golden_case_t golden_cases[] = {
      600, GOLDEN_EMBED},
     {"iso8x3x1_bytes1500_haar_embedded", BW_SHAPE_BRDF_ISO, 3, 0, 8, 1, BW_MODE_BYTES, BW_BASIS_HAAR,
      1500, GOLDEN_EMBED},
+    {"spectra8x1024_lossless_97_tab", BW_SHAPE_SPECTRA, 0, 0, 8, 1024, BW_MODE_LOSSLESS, BW_BASIS_97,
+     0, BW_FLAG_RICE | BW_FLAG_MS},
+    {"spectra6x300_maxerr7_haar_tab", BW_SHAPE_SPECTRA, 0, 0, 6, 300, BW_MODE_MAX_ERROR,
+     BW_BASIS_HAAR, 7, BW_FLAG_RICE | BW_FLAG_MS},
+    {"refl3x81_maxerr4_53_tab", BW_SHAPE_REFLECTANCE, 3, 0, 1, 81, BW_MODE_MAX_ERROR, BW_BASIS_53, 4,
+     BW_FLAG_RICE | BW_FLAG_MS},
 };
 
 #define GOLDEN_CASES (sizeof golden_cases / sizeof *golden_cases)

@@ -669,7 +669,9 @@ def every_mode_and_option_of_the_cli():
                      ({"max_error": 0.002, "coder": "rice", "stream": True, "basis": "53"},
                       ["--max-error", "0.002", "--coder", "rice", "--stream", "--basis", "53"]),
                      ({"nbytes": 600, "symmetry": "mirror"},
-                      ["--bytes", "600", "--symmetry", "mirror"])):
+                      ["--bytes", "600", "--symmetry", "mirror"]),
+                     ({"max_error": 0.001, "coder": "tab", "basis": "haar"},
+                      ["--max-error", "0.001", "--coder", "tab", "--basis", "haar"])):
         p = brdfwave.encode(x, level=3, incoming=True, **kw)
         bw("encode", "-i", tmp("opts.f32"), "-o", tmp("opts.bwv"), "--bands", "1", "--level",
            "3", "--incoming", "5", *opts)

@@ -3636,10 +3636,12 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
 
 /* BW_CODER_AUTO: Rice strips for prediction errors whose bit lengths
  * average at least 7/8 (and whose Rice payload is below an order-0 coding
- * of them), else the multi-symbol coder (the binary one in a core
- * without it); the payload names the coder it chose and decodes as any
- * other; a coder flag with it, or another choice, is refused. */
-static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **state)
+ * of them), the static tables for a set of spectra transformed (on the
+ * field spectra within 3 % of the binary range coder's bytes, as Rice
+ * strips where chosen), else the multi-symbol coder (the binary one in a
+ * core without it); the payload names the coder it chose and decodes as
+ * any other; a coder flag with it, or another choice, is refused. */
+static void coder_auto_picks_rice_or_static_tables_where_they_pay_else_ms(void **state)
 {
     (void)state;
     const unsigned ms = BW_CFG_CODER_MS ? BW_FLAG_MS : 0u;
@@ -3654,7 +3656,7 @@ static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **sta
         uint8_t basis, mode;
         uint32_t max_error;
         int32_t noise; /* -1: the 60 field spectra */
-        unsigned want; /* 1: Rice, 2: multi-symbol */
+        unsigned want; /* 1: Rice, 2: multi-symbol, 3: static tables (2 without them) */
     } cases[] = {
         {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, -1, 1},    /* errors of several bits */
         {BW_BASIS_PRED, BW_MODE_MAX_ERROR, 4, -1, 1},   /* still more than a bit */
@@ -3662,9 +3664,12 @@ static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **sta
         {BW_BASIS_PRED, BW_MODE_MAX_ERROR, 300, -1, 2}, /* mostly zeros */
         {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, 60, 2},    /* uniform noise: Rice codes it badly */
         {BW_BASIS_PRED, BW_MODE_LOSSLESS, 0, 0, 2},     /* smooth: mostly zeros */
-        {BW_BASIS_53, BW_MODE_LOSSLESS, 0, -1, 2},      /* a transform */
-        {BW_BASIS_97, BW_MODE_BYTES, 0, 60, 2},
+        {BW_BASIS_53, BW_MODE_LOSSLESS, 0, -1, 3},      /* a transform of spectra */
+        {BW_BASIS_97, BW_MODE_MAX_ERROR, 4, -1, 3},
+        {BW_BASIS_HAAR, BW_MODE_MAX_ERROR, 16, -1, 3},
+        {BW_BASIS_97, BW_MODE_BYTES, 0, 60, 3},
     };
+    const unsigned tab = BW_CFG_CODER_TAB ? BW_FLAG_RICE | BW_FLAG_MS : ms;
     for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
         if (cases[c].basis == BW_BASIS_PRED && !pred_built())
             continue;
@@ -3680,7 +3685,7 @@ static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **sta
         if (st != BW_OK)
             fail_msg("case %zu: %s", c, bw_strerror(st));
         assert_int_equal(decode_new(out, len, &y, &h), BW_OK);
-        unsigned want = cases[c].want == 1u ? BW_FLAG_RICE : ms;
+        unsigned want = cases[c].want == 1u ? BW_FLAG_RICE : cases[c].want == 3u ? tab : ms;
         if ((h.flags & (BW_FLAG_RICE | BW_FLAG_MS)) != want)
             fail_msg("case %zu: coder flags %#x, want %#x", c, h.flags & (BW_FLAG_RICE | BW_FLAG_MS),
                      want);
@@ -3690,12 +3695,14 @@ static void coder_auto_picks_rice_for_dense_prediction_errors_else_ms(void **sta
         assert_int_equal(encode_new(dc, &p, xc, true, &ref, &ref_len), BW_OK);
         assert_int_equal(len, ref_len);
         assert_memory_equal(out, ref, len);
-        if (cases[c].want == 1u) { /* Rice within 3 % of the binary range coder there */
+        if (cases[c].want != 2u && cases[c].noise < 0) {
+            /* Rice, the static tables within 3 % of the binary range coder there */
             free(ref);
             p.flags = 0;
             assert_int_equal(encode_new(dc, &p, xc, true, &ref, &ref_len), BW_OK);
+            print_message("case %zu: %zu bytes, range coder %zu\n", c, len, ref_len);
             if ((double)len > 1.03 * (double)ref_len)
-                fail_msg("case %zu: Rice %zu bytes, range coder %zu", c, len, ref_len);
+                fail_msg("case %zu: %zu bytes, range coder %zu", c, len, ref_len);
         }
         free(ref);
         free(out);
@@ -3833,82 +3840,156 @@ static void prediction_beats_the_transforms_on_field_spectra_within_a_bound(void
     }
 }
 
+/* One encode of x with the range coder and one with the coder of flag
+ * (built: the core has it, else BW_ERR_NOT_BUILT): both decode, the
+ * second in version 7 with the coder's flags; outside BYTES to the same
+ * samples, within the budget in BYTES; a payload of the second cut
+ * anywhere is refused. *la, *lb: the sizes (0: the range coder's rules
+ * refuse the request). */
+static void coder_against_range(const bw_dims_t *d, bw_params_t p, const int32_t *x,
+                                unsigned flag, bool built, const char *what, size_t *la,
+                                size_t *lb)
+{
+    size_t n = bw_dims_samples(d);
+    uint8_t *a, *b;
+    *la = *lb = 0;
+    if (encode_new(d, &p, x, true, &a, la) != BW_OK) {
+        free(a);
+        *la = 0;
+        return; /* not for this shape */
+    }
+    p.flags |= (uint8_t)flag;
+    bw_status_t st = encode_new(d, &p, x, true, &b, lb);
+    if (!built) {
+        assert_int_equal(st, BW_ERR_NOT_BUILT);
+        free(a);
+        free(b);
+        *lb = 0;
+        return;
+    }
+    if (st != BW_OK)
+        fail_msg("%s: %s", what, bw_strerror(st));
+    int32_t *ya, *yb;
+    bw_header_t ha, hb;
+    assert_int_equal(decode_new(a, *la, &ya, &ha), BW_OK);
+    assert_int_equal(decode_new(b, *lb, &yb, &hb), BW_OK);
+    assert_int_equal(hb.version, 7);
+    assert_int_equal(hb.flags & (BW_FLAG_MS | BW_FLAG_RICE), flag);
+    if (p.mode != BW_MODE_BYTES) { /* the same coefficients: the same samples */
+        size_t i = first_mismatch(ya, yb, n);
+        if (i < n)
+            fail_msg("%s: sample %zu decodes to %d, range coder %d", what, i, yb[i], ya[i]);
+    } else {
+        assert_true(*lb <= p.byte_budget);
+    }
+    for (size_t cut = hb.header_len; cut < *lb; cut += 1u + *lb / 7u) {
+        int32_t *yc;
+        bw_header_t hc;
+        assert_int_not_equal(decode_new(b, cut, &yc, &hc), BW_OK);
+        free(yc);
+    }
+    free(ya);
+    free(yb);
+    free(a);
+    free(b);
+}
+
+static const shape_case_t coder_cases[] = {
+    {BW_SHAPE_SPECTRA, 0, 0, 6, 300},  {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81},
+    {BW_SHAPE_BRDF_ISO, 3, 0, 8, 1},   {BW_SHAPE_BRDF_ISO, 2, 0, 3, 17},
+    {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},  {BW_SHAPE_REFLECTANCE, 4, 0, 1, 1},
+    {BW_SHAPE_SPECTRA, 0, 0, 40, 300}, {BW_SHAPE_SPECTRA, 0, 0, 1, 5},
+};
+static const unsigned coder_modes[] = {BW_MODE_LOSSLESS, BW_MODE_MAX_ERROR, BW_MODE_STEP,
+                                       BW_MODE_BYTES};
+
+/* Every case, mode and basis (bases up to last, orders and symmetries up
+ * to vars: the coarse-to-fine order, the streamed, the mirror) with the
+ * coder of flag against the range coder; returns the bytes of both, of
+ * the cases of shape `shape` only unless it is 0xFF, outside BYTES. */
+static void every_case_against_range(unsigned flag, bool built, unsigned last, unsigned vars,
+                                     unsigned shape, size_t *total_range, size_t *total)
+{
+    *total_range = *total = 0;
+    for (size_t c = 0; c < ARRAY_LEN(coder_cases); c++) {
+        const shape_case_t *k = &coder_cases[c];
+        bw_dims_t d = dims_of(k->shape, k->level_out, k->level_in, k->n_in, k->bands);
+        size_t n = bw_dims_samples(&d);
+        int32_t *x = xmalloc(n * sizeof *x);
+        fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9900u + c, 60);
+        for (size_t m = 0; m < ARRAY_LEN(coder_modes); m++)
+            for (unsigned basis = 0; basis <= last; basis++)
+                for (unsigned var = 0; var < vars; var++) {
+                    bw_params_t p = params_of(coder_modes[m], basis);
+                    p.max_error = 5;
+                    p.step_q8 = 2048;
+                    p.byte_budget = (uint32_t)(n / 2u + 64u);
+                    p.flags = var == 1 ? BW_FLAG_STREAM_ORDER : var == 2 ? BW_FLAG_MIRROR : 0u;
+                    char what[96];
+                    snprintf(what, sizeof what, "case %zu mode %u basis %u var %u", c,
+                             coder_modes[m], basis, var);
+                    size_t la, lb;
+                    coder_against_range(&d, p, x, flag, built, what, &la, &lb);
+                    if (lb && coder_modes[m] != BW_MODE_BYTES && !var &&
+                        (shape == 0xFFu || k->shape == shape)) {
+                        *total_range += la;
+                        *total += lb;
+                    }
+                }
+        free(x);
+    }
+}
+
 /* The multi-symbol coder (BW_FLAG_MS): every shape and mode decodes as the
  * range coder's payload does, in version 7, at about the same size; a build
  * without it refuses requests and payloads with BW_ERR_NOT_BUILT. */
 static void multi_symbol_coder_decodes_as_the_range_coder_at_about_its_size(void **state)
 {
     (void)state;
-    static const shape_case_t cases[] = {
-        {BW_SHAPE_SPECTRA, 0, 0, 6, 300},      {BW_SHAPE_REFLECTANCE, 3, 0, 1, 81},
-        {BW_SHAPE_BRDF_ISO, 3, 0, 8, 1},       {BW_SHAPE_BRDF_ISO, 2, 0, 3, 17},
-        {BW_SHAPE_BRDF_FULL, 2, 2, 0, 1},      {BW_SHAPE_REFLECTANCE, 4, 0, 1, 1},
-    };
-    static const unsigned modes[] = {BW_MODE_LOSSLESS, BW_MODE_MAX_ERROR, BW_MODE_STEP,
-                                     BW_MODE_BYTES};
-    size_t total_range = 0, total_ms = 0;
-    for (size_t c = 0; c < ARRAY_LEN(cases); c++) {
-        bw_dims_t d = dims_of(cases[c].shape, cases[c].level_out, cases[c].level_in,
-                              cases[c].n_in, cases[c].bands);
-        size_t n = bw_dims_samples(&d);
-        int32_t *x = xmalloc(n * sizeof *x);
-        fill_smooth(x, (size_t)d.n_in * d.n_out, d.bands, 9900u + c, 60);
-        for (size_t m = 0; m < ARRAY_LEN(modes); m++)
-            for (unsigned basis = 0; basis < BW_BASIS_COUNT; basis++) {
-                bw_params_t p = params_of(modes[m], basis);
-                p.max_error = 5;
-                p.step_q8 = 2048;
-                p.byte_budget = (uint32_t)(n / 2u + 64u);
-                uint8_t *a, *b;
-                size_t la, lb;
-                if (encode_new(&d, &p, x, true, &a, &la) != BW_OK)
-                    continue; /* not for this shape: the range coder's rules */
-                p.flags = BW_FLAG_MS;
-                bw_status_t st = encode_new(&d, &p, x, true, &b, &lb);
-                if (!BW_CFG_CODER_MS) {
-                    assert_int_equal(st, BW_ERR_NOT_BUILT);
-                    free(a);
-                    free(b);
-                    continue;
-                }
-                assert_int_equal(st, BW_OK);
-                int32_t *ya, *yb;
-                bw_header_t ha, hb;
-                assert_int_equal(decode_new(a, la, &ya, &ha), BW_OK);
-                assert_int_equal(decode_new(b, lb, &yb, &hb), BW_OK);
-                assert_int_equal(hb.version, 7);
-                assert_int_equal(hb.flags & (BW_FLAG_MS | BW_FLAG_RICE), BW_FLAG_MS);
-                if (modes[m] != BW_MODE_BYTES) {
-                    /* the same quantised coefficients: the same samples */
-                    size_t i = first_mismatch(ya, yb, n);
-                    if (i < n)
-                        fail_msg("case %zu mode %u basis %u: sample %zu decodes to %d, range "
-                                 "coder %d",
-                                 c, modes[m], basis, i, yb[i], ya[i]);
-                    total_range += la;
-                    total_ms += lb;
-                } else {
-                    assert_true(lb <= p.byte_budget);
-                }
-                free(ya);
-                free(yb);
-                free(a);
-                free(b);
-            }
-        free(x);
-    }
+    size_t total_range, total_ms;
+    every_case_against_range(BW_FLAG_MS, BW_CFG_CODER_MS, BW_BASIS_COUNT - 1u, 1u, 0xFFu,
+                             &total_range, &total_ms);
     if (BW_CFG_CODER_MS) {
         print_message("multi-symbol %zu bytes, range coder %zu\n", total_ms, total_range);
         assert_true(total_ms * 100u <= total_range * 103u);
     }
-    /* one coder per payload */
+}
+
+/* The static-table coder (BW_FLAG_RICE | BW_FLAG_MS): every shape, mode,
+ * basis, order and symmetry decodes as the range coder's payload does, in
+ * version 7 (whole; in segments: test_segments); the streaming encoder and
+ * embedded segments refuse it; a build without it refuses requests and
+ * payloads with BW_ERR_NOT_BUILT. On these synthetic spectra (a triangle and
+ * uniform noise; the field spectra: coder_auto_picks_..., the measured
+ * spectra: make bench-device) its payloads come to 1.06 x the range
+ * coder's. */
+static void static_table_coder_decodes_as_the_range_coder(void **state)
+{
+    (void)state;
+    const unsigned tab = BW_FLAG_RICE | BW_FLAG_MS;
+    size_t total_range, total_tab;
+    every_case_against_range(tab, BW_CFG_CODER_TAB, BW_BASIS_PRED, 3u, BW_SHAPE_SPECTRA,
+                             &total_range, &total_tab);
+    if (BW_CFG_CODER_TAB) {
+        print_message("static tables %zu bytes, range coder %zu (spectra)\n", total_tab,
+                      total_range);
+        assert_true(total_tab * 100u <= total_range * 110u);
+    }
+    /* not for the streaming encoder, nor with embedded segments */
     bw_dims_t d = dims_of(BW_SHAPE_SPECTRA, 0, 0, 2, 64);
     int32_t x[128] = {0};
     bw_params_t p = params_of(BW_MODE_LOSSLESS, BW_BASIS_HAAR);
-    p.flags = BW_FLAG_MS | BW_FLAG_RICE;
+    p.flags = (uint8_t)tab;
+    bw_stream_t s;
+    static int32_t mem[4096];
+    static uint8_t buf[4096];
+    assert_int_equal(bw_stream_init(&s, &d, &p, mem, sizeof mem / sizeof *mem, buf, sizeof buf),
+                     BW_CFG_CODER_TAB ? BW_ERR_ARG : BW_ERR_NOT_BUILT);
+    p.progressive = 1;
     uint8_t *out;
     size_t len;
-    assert_int_equal(encode_new(&d, &p, x, true, &out, &len), BW_ERR_ARG);
+    assert_int_equal(encode_new(&d, &p, x, true, &out, &len),
+                     BW_CFG_CODER_TAB && BW_CFG_EMBED ? BW_ERR_ARG : BW_ERR_NOT_BUILT);
     free(out);
 }
 
@@ -4052,11 +4133,12 @@ int main(void)
         cmocka_unit_test(fast_byte_budget_lands_on_spectra_in_runs),
         cmocka_unit_test(rate_quantiser_and_estimate_follow_the_chunks_on_one_band),
         cmocka_unit_test(prediction_codes_spectra_exactly_or_within_the_bound),
-        cmocka_unit_test(coder_auto_picks_rice_for_dense_prediction_errors_else_ms),
+        cmocka_unit_test(coder_auto_picks_rice_or_static_tables_where_they_pay_else_ms),
         cmocka_unit_test(every_decoder_decodes_prediction_payloads),
         cmocka_unit_test(prediction_beats_the_transforms_on_field_spectra_within_a_bound),
         cmocka_unit_test(prediction_is_refused_where_it_does_not_apply),
         cmocka_unit_test(multi_symbol_coder_decodes_as_the_range_coder_at_about_its_size),
+        cmocka_unit_test(static_table_coder_decodes_as_the_range_coder),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }

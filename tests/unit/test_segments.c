@@ -79,14 +79,21 @@ static unsigned for_each_case(case_fn fn)
         fill(x, &d);
         for (unsigned mode = 0; mode < 4; mode++)
             for (unsigned basis = 0; basis <= BW_BASIS_PRED; basis++)
-                for (unsigned coder = 0; coder < 3; coder++)
+                for (unsigned coder = 0; coder < 4; coder++)
                     for (unsigned var = 0; var < 3; var++) {
                         if (basis == BW_BASIS_PRED &&
                             (s->shape != BW_SHAPE_SPECTRA || mode > BW_MODE_MAX_ERROR || var))
                             continue;
                         if (mode == BW_MODE_BYTES && (coder || var == 2))
                             continue;
-                        unsigned flags = coder == 1 ? BW_FLAG_RICE : coder == 2 ? BW_FLAG_MS : 0u;
+                        if (coder == 3 && !BW_CFG_CODER_TAB)
+                            continue;
+                        /* the range coder, Rice strips, the multi-symbol coder, the
+                         * static tables */
+                        unsigned flags = coder == 1   ? BW_FLAG_RICE
+                                         : coder == 2 ? BW_FLAG_MS
+                                         : coder == 3 ? BW_FLAG_RICE | BW_FLAG_MS
+                                                      : 0u;
                         if (var == 1 && s->shape != BW_SHAPE_BRDF_FULL)
                             flags |= BW_FLAG_STREAM_ORDER;
                         if (var == 2 && s->shape != BW_SHAPE_SPECTRA)

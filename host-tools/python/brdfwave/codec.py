@@ -632,8 +632,9 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     budget searches its step) or "fast" (the wavelets ranked on an eighth of
     it, the first and prediction coded there, then the whole once with the
     best; the budget's step estimated and corrected by each encode's size); None: "best" on this host, "fast" with device;
-    coder: "range", "ms", "rice" or "auto" (rice for prediction errors of a
-    bit or more a sample, else ms); None: "range" on this host, "auto" with
+    coder: "range", "ms", "tab" (static tables, for sets of spectra), "rice"
+    or "auto" (rice for prediction errors of a bit or more a sample, tab for
+    spectra transformed, else ms); None: "range" on this host, "auto" with
     device; segments=N: the body in about N segments, each decodable alone,
     so that a payload damaged or cut on its way still decodes in part
     (decode(..., salvage=True)); progressive=True: embedded segments (bit
@@ -727,14 +728,16 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     o.basis = b
     if coder is None:
         coder = "range" if device is None else "auto"
-    if coder not in ("range", "rice", "ms", "auto"):
-        raise BrdfwaveError("coder must be range, ms, rice or auto")
+    if coder not in ("range", "rice", "ms", "tab", "auto"):
+        raise BrdfwaveError("coder must be range, ms, tab, rice or auto")
     if coder == "auto":
         o.coder = 1  # BW_CODER_AUTO
     elif coder == "rice":
         o.flags |= 0x04
     elif coder == "ms":
         o.flags |= 0x80
+    elif coder == "tab":
+        o.flags |= 0x84
     if scale is not None:
         if not scale > 0:
             raise BrdfwaveError("scale must be positive")

@@ -561,13 +561,19 @@ static const fast_mode_t fast_modes[] = {
     {"step8", BW_MODE_STEP, 0, 8},        {"step64", BW_MODE_STEP, 0, 64},
 };
 
-/* the coders: by their flag, or BW_CODER_AUTO (auto: prediction only, where
- * it chooses between Rice strips and the multi-symbol coder) */
+/* the coders: by their flag, or BW_CODER_AUTO (the device's: for
+ * prediction Rice strips or the multi-symbol coder, for a set of spectra
+ * transformed the static tables or the multi-symbol coder, else the
+ * multi-symbol coder) */
 static const struct {
     const char *name;
     uint8_t flag, automatic;
 } fast_coders[] = {
-    {"rice", BW_FLAG_RICE, 0}, {"ms", BW_FLAG_MS, 0}, {"range", 0, 0}, {"auto", 0, 1}};
+    {"rice", BW_FLAG_RICE, 0},
+    {"ms", BW_FLAG_MS, 0},
+    {"tab", BW_FLAG_RICE | BW_FLAG_MS, 0},
+    {"range", 0, 0},
+    {"auto", 0, 1}};
 
 static void run_fast(set_t *s)
 {
@@ -575,8 +581,6 @@ static void run_fast(set_t *s)
     bool pred = s->d.shape == BW_SHAPE_SPECTRA;
     for (size_t c = 0; c < sizeof fast_coders / sizeof *fast_coders; c++)
     for (unsigned basis = 0; basis <= BW_BASIS_PRED; basis++) {
-        if (basis < BW_BASIS_COUNT && fast_coders[c].automatic)
-            continue; /* auto: prediction's choice */
         if (basis < BW_BASIS_COUNT && !levels && basis != BW_BASIS_53)
             continue; /* no spectral axis: one row per mode */
         if (basis == BW_BASIS_PRED && !pred)
@@ -611,13 +615,15 @@ static void run_fast(set_t *s)
             uint32_t worst = st_d == BW_OK ? decoded_error(s, &sse) : 0u;
             unsigned got = h.flags & (BW_FLAG_RICE | BW_FLAG_MS);
             int ok = st_d == BW_OK && bound_held(m->mode, m->max_error, worst) &&
-                     (fast_coders[c].automatic ? got != (BW_FLAG_RICE | BW_FLAG_MS)
-                                               : got == fast_coders[c].flag);
+                     (fast_coders[c].automatic || got == fast_coders[c].flag);
             printf("FAST coder=%s basis=%u mode=%s samples=%lu bytes=%lu enc=%llu dec=%llu"
                    " worst=%lu sse=%llu chosen=%s status=%s\n",
                    fast_coders[c].name, basis, m->name, (unsigned long)s->n, (unsigned long)len,
                    t_enc, t_dec, (unsigned long)worst, sse,
-                   got == BW_FLAG_RICE ? "rice" : got == BW_FLAG_MS ? "ms" : "range",
+                   got == (BW_FLAG_RICE | BW_FLAG_MS) ? "tab"
+                   : got == BW_FLAG_RICE              ? "rice"
+                   : got == BW_FLAG_MS                ? "ms"
+                                                      : "range",
                    ok ? "ok" : "FAIL");
             if (!ok)
                 failures++;
@@ -813,12 +819,15 @@ static void profile(set_t *s)
         st = bw_encode_ctx(&ctx, &s->d, &pb, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop("encode_ratio8");
     }
-    /* the Rice and the multi-symbol coders, 5/3: lossless and max-error 4 */
+    /* the Rice, the multi-symbol and the static-table coders, 5/3: lossless
+     * and max-error 4 */
     static const char *const what[] = {"encode_rice_lossless", "encode_rice_maxerr4",
-                                       "encode_ms_lossless", "encode_ms_maxerr4"};
-    for (unsigned i = 0; i < 4u && st == BW_OK; i++) {
+                                       "encode_ms_lossless",   "encode_ms_maxerr4",
+                                       "encode_tab_lossless",  "encode_tab_maxerr4"};
+    static const uint8_t flag[] = {BW_FLAG_RICE, BW_FLAG_MS, BW_FLAG_RICE | BW_FLAG_MS};
+    for (unsigned i = 0; i < 6u && st == BW_OK; i++) {
         bw_params_t pr = params_of(&modes[i & 1u ? 2 : 0], s, BW_BASIS_53);
-        pr.flags = i < 2u ? BW_FLAG_RICE : BW_FLAG_MS;
+        pr.flags = flag[i / 2u];
         prof_start();
         st = bw_encode_ctx(&ctx, &s->d, &pr, s->x, s->work, NULL, s->out, s->out_cap, &len);
         prof_stop(what[i]);
@@ -871,18 +880,23 @@ int main(void)
         s.x[i] = s.raw[i];
     if (argc == 9) {
         run_fast(&s);
-        for (unsigned i = 0; i < 2u; i++) { /* where the one-pass coder spends them */
+        /* where the one-pass coders spend them: the multi-symbol and the
+         * static-table coder, 5/3 lossless, 9/7 lossless and step 8 */
+        static const char *const what[] = {"encode_ms_lossless",  "encode_ms_97_lossless",
+                                           "encode_ms_97_step8",  "encode_tab_lossless",
+                                           "encode_tab_97_lossless", "encode_tab_97_step8"};
+        for (unsigned i = 0; i < 6u; i++) {
             bw_params_t pm;
             memset(&pm, 0, sizeof pm);
-            pm.mode = i ? BW_MODE_STEP : BW_MODE_LOSSLESS;
+            pm.mode = i % 3u == 2u ? BW_MODE_STEP : BW_MODE_LOSSLESS;
             pm.step_q8 = 8u * 256u;
-            pm.basis = BW_BASIS_53;
-            pm.flags = BW_FLAG_MS;
+            pm.basis = i % 3u ? BW_BASIS_97 : BW_BASIS_53;
+            pm.flags = i < 3u ? BW_FLAG_MS : BW_FLAG_MS | BW_FLAG_RICE;
             pm.scale_bits = 0x3F800000u;
             size_t len = 0;
             prof_start();
             bw_encode_ctx(&ctx, &s.d, &pm, s.x, s.work, NULL, s.out, s.out_cap, &len);
-            prof_stop(i ? "encode_ms_step8" : "encode_ms_lossless");
+            prof_stop(what[i]);
         }
         printf("END status=%s failures=%u\n", failures ? "FAIL" : "ok", failures);
         return failures ? 1 : 0;

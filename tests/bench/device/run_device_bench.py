@@ -495,20 +495,25 @@ MS_BYTES_TARGET = 1.03
 
 
 def coders_section(A, sets, parsed):
-    """The three coders on the same one-pass encodes: bytes and instructions."""
+    """The coders on the same one-pass encodes: bytes and instructions."""
     A("## The coders side by side (measured)")
     A("")
-    A("The same one-pass encodes (basis fixed, no search) with each strip coder: the binary "
-      "range coder (the default), the multi-symbol range coder (`BW_FLAG_MS`, `--coder ms`) "
-      "and Rice strips. *encode* and *decode* in instructions per sample, every stage "
-      "included; every row is decoded on the device and checked. Target: the device's coder "
-      "within %g %% of the range coder's bytes for the same basis and mode, at no more than "
-      "%g instructions per sample." % ((MS_BYTES_TARGET - 1) * 100, MS_INSTR_TARGET))
+    A("The same one-pass encodes (basis fixed, no search) with each coder: the binary "
+      "range coder (the default), the multi-symbol range coder (`BW_FLAG_MS`, `--coder ms`), "
+      "the static-table coder (`BW_FLAG_RICE | BW_FLAG_MS`, `--coder tab`: tables counted "
+      "over part of the body and sent ahead of it, docs/FORMAT.md, Body with TAB), Rice "
+      "strips, and `BW_CODER_AUTO` (`--coder auto`, the device's default: for a set of "
+      "spectra transformed the static tables, unless they would take more than 6/256 of the "
+      "payload, else the multi-symbol coder). *encode* and *decode* in instructions per "
+      "sample, every stage included; every row is decoded on the device and checked. Target: "
+      "the device's coder within %g %% of the range coder's bytes for the same basis and "
+      "mode, at no more than %g instructions per sample." % (
+          (MS_BYTES_TARGET - 1) * 100, MS_INSTR_TARGET))
     A("")
-    A("| data set | basis | mode | range bytes | ms bytes | ms / range | range encode | "
-      "ms encode | ms decode | rice bytes | rice encode |")
-    A("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    worst_ratio, worst_enc, rows_n = 0.0, 0.0, 0
+    A("| data set | basis | mode | range bytes | range encode | ms bytes | ms / range | "
+      "ms encode | ms decode | tab bytes | tab / range | tab encode | tab decode | "
+      "rice bytes | rice encode | auto chose | auto encode |")
+    A("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|")
     for ds in sets:
         by = {}
         for d in parsed[ds.key]["fast"]:
@@ -516,29 +521,24 @@ def coders_section(A, sets, parsed):
         for (coder, basis, mode), r in by.items():
             if coder != "range" or ("ms", basis, mode) not in by:
                 continue
-            m = by[("ms", basis, mode)]
-            ri = by.get(("rice", basis, mode))
             n = int(r["samples"])
-            ratio = int(m["bytes"]) / int(r["bytes"])
-            worst_ratio = max(worst_ratio, ratio)
-            worst_enc = max(worst_enc, int(m["enc"]) / n)
-            rows_n += 1
-            A("| %s | %s | %s | %s | %s | %.4f | %.1f | %.1f | %.1f | %s | %s |" % (
+            cells = []
+            for c in ("ms", "tab"):
+                d = by.get((c, basis, mode))
+                cells += ([d["bytes"], "%.4f" % (int(d["bytes"]) / int(r["bytes"])),
+                           "%.1f" % (int(d["enc"]) / n), "%.1f" % (int(d["dec"]) / n)]
+                          if d else ["-"] * 4)
+                if d and d["status"] != "ok":
+                    failures.append("%s %s %s basis %s: guarantee failed" % (
+                        ds.key, c, mode, basis))
+            ri, au = by.get(("rice", basis, mode)), by.get(("auto", basis, mode))
+            cells += [ri["bytes"] if ri else "-", "%.1f" % (int(ri["enc"]) / n) if ri else "-",
+                      au.get("chosen", "-") if au else "-",
+                      "%.1f" % (int(au["enc"]) / n) if au else "-"]
+            A("| %s | %s | %s | %s | %.1f | %s |" % (
                 ds.key, BASIS_NAMES.get(int(basis), basis) if ds.bands > 1 else "-", mode,
-                r["bytes"], m["bytes"], ratio, int(r["enc"]) / n, int(m["enc"]) / n,
-                int(m["dec"]) / n, ri["bytes"] if ri else "-",
-                "%.1f" % (int(ri["enc"]) / n) if ri else "-"))
-            if m["status"] != "ok":
-                failures.append("%s ms %s basis %s: guarantee failed" % (ds.key, mode, basis))
+                r["bytes"], int(r["enc"]) / n, " | ".join(cells)))
     A("")
-    if rows_n:
-        A("Multi-symbol coder over %d rows: bytes at most %.4f x the range coder's (target "
-          "%.2f: %s); encode at most %.1f instructions per sample (target %g: %s)." % (
-              rows_n, worst_ratio, MS_BYTES_TARGET,
-              "met" if worst_ratio <= MS_BYTES_TARGET else "missed", worst_enc, MS_INSTR_TARGET,
-              "met" if worst_enc <= MS_INSTR_TARGET else "missed (%.2f x)" % (
-                  worst_enc / MS_INSTR_TARGET)))
-        A("")
 
 
 def pred_section(A, sets, parsed):
@@ -695,28 +695,32 @@ def device_targets_section(A, sets, parsed):
             choice_row(A, ds, r["rows"], "", "bytes", "basis", "enc", "enc_fixed")
             choice_row(A, ds, r["choice"], " with the device's coder (`--coder auto`)",
                        "bytes_every", "basis_every", "enc_every", "enc_quick_fixed")
-        # the device's coder: the multi-symbol one, every basis and mode of the
+        # the device's coder (auto), every transform basis and mode of the
         # one-pass rows
         by = {(d.get("coder", "rice"), d["basis"], d["mode"]): d for d in r["fast"]}
-        worst_x, worst_b = None, None
+        worst_x, worst_b, chose = None, None, collections.Counter()
         for (coder, basis, mode), d in by.items():
-            if coder != "ms" or ("range", basis, mode) not in by:
+            if coder != "auto" or ("range", basis, mode) not in by:
                 continue
             x = int(d["enc"]) / int(d["samples"])
             b = int(d["bytes"]) / int(by[("range", basis, mode)]["bytes"])
-            label = "%s %s" % (BASIS_NAMES.get(int(basis), "-") if ds.bands > 1 else "-", mode)
+            label = "%s %s, %s" % (BASIS_NAMES.get(int(basis), "-") if ds.bands > 1 else "-",
+                                   mode, d.get("chosen", "-"))
+            chose[d.get("chosen", "-")] += 1
             if worst_x is None or x > worst_x[0]:
                 worst_x = (x, label)
             if worst_b is None or b > worst_b[0]:
                 worst_b = (b, label)
         if worst_x:
-            A("| %s | the device's coder (multi-symbol) <= %g instr/sample, within %g %% of the "
+            A("| %s | the device's coder (auto) <= %g instr/sample, within %g %% of the "
               "range coder's bytes, every basis and mode | %.1f instr/sample at most (%s); "
-              "bytes %.4f x at most (%s) | %s |" % (
+              "bytes %.4f x at most (%s); chose %s | %s |" % (
                   ds.key, MS_INSTR_TARGET, (MS_BYTES_TARGET - 1) * 100, worst_x[0], worst_x[1],
                   worst_b[0], worst_b[1],
+                  ", ".join("%s %d" % kv for kv in sorted(chose.items())),
                   "yes" if worst_x[0] <= MS_INSTR_TARGET and worst_b[0] <= MS_BYTES_TARGET
-                  else "no (%.2f x the instructions)" % (worst_x[0] / MS_INSTR_TARGET)))
+                  else "no (%.2f x the instructions, %.4f x the bytes)" % (
+                      worst_x[0] / MS_INSTR_TARGET, worst_b[0])))
         # prediction with the device's coder (auto), every mode of 'Prediction
         # with each coder'
         by = {(d["coder"], d["mode"]): d for d in r["pred"]}
