@@ -116,7 +116,13 @@ static bool auto_rice(const bw_plan_t *pl, bw_params_t *chosen, unsigned mode, i
  * a rate ahead of the coder: the static-table coder (make bench-device: on
  * its spectra within 3 % of the binary range coder's bytes in less than
  * half the multi-symbol coder's instructions; on directional sets, whose
- * strips of zeros the strip coders code in a bit, 1 to 42 % more bytes). */
+ * strips of zeros the strip coders code in a bit, 1 to 40 % more bytes),
+ * unless its counts put the body below BW_AUTO_TAB_MIN_Q8 / 256 bits a
+ * coefficient: there too the strips of zeros win (the Spectralon set within
+ * 0.0005: 0.12 bits a sample, the static tables 1.035 x the multi-symbol
+ * coder's bytes), and the multi-symbol coder is cheap (the sparsest rows of
+ * make bench-device: 0.8 bits a sample and more). */
+#define BW_AUTO_TAB_MIN_Q8 128u
 static bool auto_tab(const bw_plan_t *pl)
 {
 #if BW_RATE
@@ -211,7 +217,7 @@ static size_t code_segments(const bw_plan_t *pl, int32_t *x, bw_strip_enc_t *se,
 #if BW_CFG_CODER_TAB
             if (coder == BW_CODER_TAB) {
             sl = bw_tab_encode(&it, nvec * pl->dims.bands, &se->m.tab, body ? body + at : NULL,
-                               cap - at, &so);
+                               cap - at, 0u, &so);
         } else
 #endif
         {
@@ -235,6 +241,9 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
                            int32_t *work, bw_ctx_t *ctx, uint8_t *out, size_t cap, size_t *len)
 {
     bw_params_t chosen;
+#if BW_CFG_CODER_TAB
+    unsigned tab_min_q8 = 0;
+#endif
     if ((BW_CFG_ENCODE_PRED || BW_AUTO_CODER != 0u) && pa->coder == BW_CODER_AUTO) {
         /* (a core without prediction's encoder and the multi-symbol coder
          * codes AUTO with the binary coder: the flags as they are) */
@@ -246,8 +255,10 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
         chosen.flags |= (uint8_t)BW_AUTO_CODER;
         pa = &chosen;
 #if BW_CFG_CODER_TAB
-        if (auto_tab(pl))
+        if (auto_tab(pl)) {
             chosen.flags |= BW_FLAG_RICE | BW_FLAG_MS;
+            tab_min_q8 = BW_AUTO_TAB_MIN_Q8;
+        }
 #endif
     }
     bw_strip_enc_t *se = &ctx->enc;
@@ -268,7 +279,12 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
     } else if (bw_coder_of(pa->flags) == BW_CODER_TAB) {
         bw_iter_t it;
         bw_iter_init(&it, pl, work);
-        body = bw_tab_encode(&it, pl->n, &se->m.tab, counting ? NULL : out + hl, body_cap, &over);
+        body = bw_tab_encode(&it, pl->n, &se->m.tab, counting ? NULL : out + hl, body_cap,
+                             tab_min_q8, &over);
+        if (body == SIZE_MAX) { /* AUTO, a sparse body: the multi-symbol coder */
+            chosen.flags &= (uint8_t)~BW_FLAG_RICE;
+            return bw_encode_code(pl, &chosen, mode, work, ctx, out, cap, len);
+        }
 #endif
     } else {
         bw_strip_enc_init(se, counting ? NULL : out + hl, body_cap, bw_coder_of(pa->flags));

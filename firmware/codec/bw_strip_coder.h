@@ -30,10 +30,12 @@ static inline unsigned bw_coder_of(unsigned flags)
 }
 /* The static-table coder (bw_tab.c): n coefficients from *it (left past
  * them) into out[cap] (NULL: counts only), tables first; returns the bytes,
- * *over when they passed cap. Decoding: n coefficients from in[len] into
- * the iterator's array; BW_ERR_CORRUPT for a malformed body. */
+ * *over when they passed cap; with min_q8 not 0, SIZE_MAX (nothing coded)
+ * where the counts put the code below min_q8 / 256 bits a coefficient.
+ * Decoding: n coefficients from in[len] into the iterator's array;
+ * BW_ERR_CORRUPT for a malformed body. */
 size_t bw_tab_encode(bw_iter_t *it, size_t n, bw_tab_models_t *m, uint8_t *out, size_t cap,
-                     bool *over);
+                     unsigned min_q8, bool *over);
 bw_status_t bw_tab_decode(bw_iter_t *it, size_t n, const uint8_t *in, size_t len,
                           bw_tab_models_t *m);
 /* Codes the strip of the se->cnt coefficients put since the last one. */

@@ -501,10 +501,25 @@ static unsigned split_of(uint32_t a, uint32_t t)
     return p > (1u << SPLIT_BITS) - 1u ? (1u << SPLIT_BITS) - 1u : p;
 }
 
+/* The bits (Q16) of the symbols counted in cnt[] coded with the table cum,
+ * with the bits below their leading ones (escapes as 16 of them); *counted
+ * adds their number. */
+static uint64_t code_bits(const uint16_t *cnt, const uint16_t *cum, uint64_t *counted)
+{
+    uint64_t bits = 0;
+    for (unsigned j = 0; j < BW_TAB_SYMS; j++) {
+        unsigned e = j >> 1, raw = e < 2u ? 0u : e < E_ESC ? e - 1u : 16u + ESC_BITS;
+        bits += (uint64_t)cnt[j] * (((TAB_BITS + raw) << 16) - bw_log2_q16(cum[j + 1u] - cum[j]));
+        *counted += cnt[j];
+    }
+    return bits;
+}
+
 size_t bw_tab_encode(bw_iter_t *it, size_t n, bw_tab_models_t *m, uint8_t *out, size_t cap,
-                     bool *over)
+                     unsigned min_q8, bool *over)
 {
     tab_state_t st = {out, 0u, out ? cap : 0u, 0u, 0xFFFFFFFFu, 0u, 0u, 1u};
+    uint64_t est = 0, counted = 0; /* the code's bits (Q16) of the symbols counted, their number */
     bw_iter_t first = *it;
     memset(m, 0, sizeof *m);
     tab_count(m, &st, &first, n);
@@ -537,7 +552,10 @@ size_t bw_tab_encode(bw_iter_t *it, size_t n, bw_tab_models_t *m, uint8_t *out, 
         if (classes >> (c / BW_TAB_BINS) & 1u)
             T_BITS(st, hi != 0u, 1u);
         if (!hi) { /* the table of the bin before in its class, or one alike */
-            memcpy(h, c % BW_TAB_BINS ? m->cum[c - 1u] : none, sizeof none);
+            const uint16_t *from = c % BW_TAB_BINS ? m->cum[c - 1u] : none;
+            if (min_q8 && all)
+                est += code_bits(h, from, &counted);
+            memcpy(h, from, sizeof none);
             continue;
         }
         hi--;
@@ -563,8 +581,18 @@ size_t bw_tab_encode(bw_iter_t *it, size_t n, bw_tab_models_t *m, uint8_t *out, 
         unsigned pm = split_of(a1, t1);
         if (hi)
             T_BITS(st, pm, SPLIT_BITS);
-        tab_build(h, q, hi, pm);
+        uint16_t cum[ROW];
+        tab_build(cum, q, hi, pm);
+        if (min_q8)
+            est += code_bits(h, cum, &counted);
+        memcpy(h, cum, sizeof cum);
     }
+    /* fewer than min_q8 / 256 bits a coefficient as the counts estimate
+     * them, tables included: declined */
+    if (min_q8 && counted &&
+        ((est >> 16) * 256u + (uint64_t)st.pos * 8u * 256u * counted / (n ? n : 1u)) <
+            (uint64_t)min_q8 * counted)
+        return SIZE_MAX;
     /* pass 2: the code */
     st.el = st.ln = 0;
     tab_code(m, &st, it, n);

@@ -3636,11 +3636,12 @@ static void prediction_codes_spectra_exactly_or_within_the_bound(void **state)
 
 /* BW_CODER_AUTO: Rice strips for prediction errors whose bit lengths
  * average at least 7/8 (and whose Rice payload is below an order-0 coding
- * of them), the static tables for a set of spectra transformed (on the
- * field spectra within 3 % of the binary range coder's bytes, as Rice
- * strips where chosen), else the multi-symbol coder (the binary one in a
- * core without it); the payload names the coder it chose and decodes as
- * any other; a coder flag with it, or another choice, is refused. */
+ * of them), the static tables for a set of spectra transformed that they
+ * code in half a bit a coefficient or more (on the field spectra within
+ * 3 % of the binary range coder's bytes, as Rice strips where chosen),
+ * else the multi-symbol coder (the binary one in a core without it); the
+ * payload names the coder it chose and decodes as any other; a coder flag
+ * with it, or another choice, is refused. */
 static void coder_auto_picks_rice_or_static_tables_where_they_pay_else_ms(void **state)
 {
     (void)state;
@@ -3667,6 +3668,7 @@ static void coder_auto_picks_rice_or_static_tables_where_they_pay_else_ms(void *
         {BW_BASIS_53, BW_MODE_LOSSLESS, 0, -1, 3},      /* a transform of spectra */
         {BW_BASIS_97, BW_MODE_MAX_ERROR, 4, -1, 3},
         {BW_BASIS_HAAR, BW_MODE_MAX_ERROR, 16, -1, 3},
+        {BW_BASIS_53, BW_MODE_MAX_ERROR, 10000, -1, 2}, /* sparse: under half a bit a sample */
         {BW_BASIS_97, BW_MODE_BYTES, 0, 60, 3},
     };
     const unsigned tab = BW_CFG_CODER_TAB ? BW_FLAG_RICE | BW_FLAG_MS : ms;

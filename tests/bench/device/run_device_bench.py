@@ -503,8 +503,8 @@ def coders_section(A, sets, parsed):
       "the static-table coder (`BW_FLAG_RICE | BW_FLAG_MS`, `--coder tab`: tables counted "
       "over part of the body and sent ahead of it, docs/FORMAT.md, Body with TAB), Rice "
       "strips, and `BW_CODER_AUTO` (`--coder auto`, the device's default: for a set of "
-      "spectra transformed the static tables, unless they would take more than 6/256 of the "
-      "payload, else the multi-symbol coder). *encode* and *decode* in instructions per "
+      "spectra transformed the static tables, unless their counts put the body under half a "
+      "bit a coefficient, else the multi-symbol coder). *encode* and *decode* in instructions per "
       "sample, every stage included; every row is decoded on the device and checked. Target: "
       "the device's coder within %g %% of the range coder's bytes for the same basis and "
       "mode, at no more than %g instructions per sample." % (
