@@ -245,6 +245,22 @@ static BW_ALWAYS_INLINE unsigned pred_of(int32_t ya, unsigned ln)
     return ya ? (uint32_t)ya >> 31 : ln;
 }
 
+/* The context (table) of band k of vector v, element by element: its
+ * class from sc (spec_cls[k]) and cd, the bin of e_left el, of the value
+ * above ya (if has_prev, else el again) and of its parent (in par if
+ * has_par, else its spectral parent in v, if any). Encoder and decoder. */
+static BW_ALWAYS_INLINE unsigned elem_ctx(const int32_t *v, uint32_t k, int32_t sc, unsigned el,
+                                          unsigned cd, const int32_t *par, int32_t ya,
+                                          bool has_par, bool has_prev)
+{
+    unsigned s = el + (has_prev ? len_of(ya) : el);
+    if (has_par || BW_SPEC_PAR(sc) >= 0)
+        s += 2u * len_of(has_par ? par[k] : v[BW_SPEC_PAR(sc)]);
+    else
+        s *= 2u;
+    return (BW_SPEC_CLS(sc) * 3u + cd) * BW_TAB_BINS + bin_of[s];
+}
+
 /* Bands k0..k1-1 of vector v, element by element: their classes and
  * spectral parents from spec_cls, the parent vector par (if has_par), the
  * vector above prv (if has_prev). The callers pass constants for the flags,
@@ -256,14 +272,8 @@ static BW_ALWAYS_INLINE void tab_elems(bw_tab_models_t *m, tab_state_t *st, cons
 {
     tab_state_t g = *st;
     for (uint32_t k = k0; k < k1; k++) {
-        unsigned el = g.el;
-        int32_t sc = spec_cls[k], ya = has_prev ? prv[k] : 0;
-        unsigned s = el + (has_prev ? len_of(ya) : el);
-        if (has_par || BW_SPEC_PAR(sc) >= 0)
-            s += 2u * len_of(has_par ? par[k] : v[BW_SPEC_PAR(sc)]);
-        else
-            s *= 2u;
-        uint16_t *row = m->cum[(BW_SPEC_CLS(sc) * 3u + cd) * BW_TAB_BINS + bin_of[s]];
+        int32_t ya = has_prev ? prv[k] : 0;
+        uint16_t *row = m->cum[elem_ctx(v, k, spec_cls[k], g.el, cd, par, ya, has_par, has_prev)];
         tab_coef(&g, row, v[k], pred_of(ya, g.ln), code);
     }
     *st = g;
@@ -620,13 +630,9 @@ static BW_ALWAYS_INLINE bool tab_vector_dec(const bw_tab_models_t *m, bw_rc_dec_
 {
     unsigned el = *el_, ln = *ln_;
     for (uint32_t k = k0; k < k1; k++) {
-        int32_t sc = spec_cls[k], ya = has_prev ? prv[k] : 0;
-        unsigned s = el + (has_prev ? len_of(ya) : el);
-        if (has_par || BW_SPEC_PAR(sc) >= 0)
-            s += 2u * len_of(has_par ? par[k] : v[BW_SPEC_PAR(sc)]);
-        else
-            s *= 2u;
-        const uint16_t *cum = m->cum[(BW_SPEC_CLS(sc) * 3u + cd) * BW_TAB_BINS + bin_of[s]];
+        int32_t ya = has_prev ? prv[k] : 0;
+        const uint16_t *cum =
+            m->cum[elem_ctx(v, k, spec_cls[k], el, cd, par, ya, has_par, has_prev)];
         uint32_t r = d->range >> TAB_BITS, c = d->code / r;
         if (c >= TAB_ONE)
             return false; /* past the total */
