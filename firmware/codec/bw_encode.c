@@ -560,7 +560,7 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
     /* embedded: transform bases, coarse-to-fine order, the embedded coder */
     if (BW_CFG_EMBED && pa->progressive &&
         (pa->basis == BW_BASIS_PRED || (pa->flags & BW_FLAG_STREAM_ORDER) ||
-         (BW_CFG_CODER_TAB && bw_coder_of(pa->flags) == BW_CODER_TAB)))
+         bw_coder_of(pa->flags) == BW_CODER_TAB))
         return BW_ERR_ARG;
     bool pred = BW_CFG_ENCODE_PRED && !(BW_CFG_EMBED && pa->progressive) &&
                 bw_pred_applies(dims, pa->mode, pa->flags);

@@ -198,10 +198,9 @@ static BW_ALWAYS_INLINE void pair_at(const uint16_t *p, uint32_t *lo, uint32_t *
 
 /* One coefficient x with the table row (class and bin) found and pn, the
  * sign its neighbours predict: counted (pass 1, code false: its symbol in
- * row, counts halved where one reaches 2^16 - 1) or coded (pass 2).
- * Returns its bit length and its sign above it (e + 32 neg, 0 for a zero). */
-static BW_ALWAYS_INLINE unsigned tab_coef(tab_state_t *g, uint16_t *row, int32_t x, unsigned pn,
-                                          bool code)
+ * row, counts halved where one reaches 2^16 - 1) or coded (pass 2). */
+static BW_ALWAYS_INLINE void tab_coef(tab_state_t *g, uint16_t *row, int32_t x, unsigned pn,
+                                      bool code)
 {
     uint32_t sx = (uint32_t)(x >> 31), a = ((uint32_t)x ^ sx) - sx;
     unsigned c = clz_of(a), e = 32u - c;
@@ -216,7 +215,7 @@ static BW_ALWAYS_INLINE unsigned tab_coef(tab_state_t *g, uint16_t *row, int32_t
             t = row[j] + g->w;
         }
         row[j] = (uint16_t)t;
-        return 0;
+        return;
     }
     uint32_t r = g->range >> TAB_BITS, lo, hi;
     pair_at(row + j, &lo, &hi);
@@ -235,7 +234,6 @@ static BW_ALWAYS_INLINE unsigned tab_coef(tab_state_t *g, uint16_t *row, int32_t
         }
         T_BITS(*g, a & ((1u << nb) - 1u), nb);
     }
-    return e | (sx & 32u);
 }
 
 /* The sign predicted (1: negative): that of the value above ya, else that
