@@ -18,7 +18,10 @@
  * order). Form 4 (the encoder's for one band, where a strip holds
  * neighbouring directions) in three: the significance in the strips
  * already significant, the refinement, then the strips not yet
- * significant, whose values are more often isolated and small.
+ * significant, whose values are more often isolated and small. Form 5
+ * (the encoder's for several bands) is form 3 subband by subband: each
+ * spectral subband over the segment's vectors, those a pass weighs most
+ * (the highest quarter of a plane above their offset) first.
  */
 #include <string.h>
 
@@ -44,27 +47,43 @@ typedef struct {
  * segment): off the stack of a device */
 _Static_assert(sizeof(embed_models_t) <= sizeof(bw_models_t), "embedded models in bw_models_t");
 
-/* The spectral subbands (bw_spec_bands) and the plane offset of each. */
+/* The spectral subbands (bw_spec_bands), the plane offset of each and
+ * (form 5) the order the walk visits them in. */
 typedef struct {
     spec_bands_t b;
     uint8_t e[BW_SPEC_MAX_LEVELS + 1u];
+    uint8_t ord[BW_SPEC_MAX_LEVELS + 1u];
+    bool sub; /* form 5: subband by subband */
 } spec_off_t;
 
-/* floor(log2(1.414 / g)), g an inverse gain in Q16: 0 for g near 1, L for
- * 2^-L (a Bio-Haar scaling coefficient), L - j - 1 for a detail. */
-static unsigned gain_planes(uint32_t g_q16)
+/* floor(4 log2(1.414 / g)), g an inverse gain in Q16: the plane offset in
+ * quarters of a plane (its floor / 4: 0 for g near 1, L for 2^-L, a
+ * Bio-Haar scaling coefficient, L - j - 1 for a detail). */
+static unsigned gain_quarters(uint32_t g_q16)
 {
+    static const uint32_t q16[4] = {65536u, 77936u, 92682u, 110218u}; /* 2^(r/4) */
     unsigned e = 0;
-    while (g_q16 && (uint64_t)g_q16 << (e + 1u) <= 92681u)
+    while (g_q16 && ((((uint64_t)g_q16 << ((e + 1u) >> 2)) * q16[(e + 1u) & 3u]) >> 16) <= 92681u)
         e++;
     return e;
 }
 
-static void spec_offsets(const bw_plan_t *pl, bool weigh, spec_off_t *so)
+/* The offsets; form 5 (sub) visits the subbands by the quarter of a plane
+ * above their offset, the most first (the highest weight of a pass), then
+ * coarse to fine. */
+static BW_NOINLINE void spec_offsets(const bw_plan_t *pl, bool weigh, bool sub, spec_off_t *so)
 {
     bw_spec_bands(pl, &so->b);
-    for (unsigned i = 0; i < so->b.count; i++)
-        so->e[i] = (uint8_t)(weigh && pl->spec_levels ? gain_planes(so->b.gain_q16[i]) : 0u);
+    unsigned q[BW_SPEC_MAX_LEVELS + 1u], n = 0;
+    for (unsigned i = 0; i < so->b.count; i++) {
+        q[i] = weigh && pl->spec_levels ? gain_quarters(so->b.gain_q16[i]) : 0u;
+        so->e[i] = (uint8_t)(q[i] >> 2);
+    }
+    for (unsigned r = 4; r-- > 0;)
+        for (unsigned i = 0; i < so->b.count; i++)
+            if ((q[i] & 3u) == r)
+                so->ord[n++] = (uint8_t)i;
+    so->sub = sub;
 }
 
 /* The plane offset of the incoming block of the iterator, and of its
@@ -106,7 +125,7 @@ typedef struct {
     bool split;     /* form 3: each pass significance first, then refinement */
     bool split3;    /* form 4: significance in significant strips, refinement,
                      * then the other strips */
-    spec_off_t so;
+    spec_off_t so;  /* form 5 (so.sub): form 3 subband by subband */
     const int32_t *x0;
     embed_models_t *m;
     bool stopped;
@@ -168,7 +187,8 @@ static BW_ALWAYS_INLINE unsigned sgn(const embed_t *c, const int32_t *p, bool en
 }
 
 /* A walk over a segment's coefficients in coding order with each one's
- * plane offset. */
+ * plane offset; form 5 takes the segment's spectral subbands in turn
+ * (so->ord), each over the segment's vectors in coding order. */
 typedef struct {
     bw_iter_t it;
     const spec_off_t *so;
@@ -181,6 +201,9 @@ typedef struct {
     bool ip;             /* the block has one: ... */
     uint32_t ipcf;       /* its coarse-to-fine index, */
     size_t ipbase;       /* its first vector in place */
+    unsigned oi;         /* form 5: the subband's place in so->ord, */
+    size_t vr, nv;       /* the vector in the segment, of nv, */
+    uint32_t khi;        /* the subband's end */
 } walk_t;
 
 /* The incoming parent block of the walk's block (form 2, full BRDF). */
@@ -207,11 +230,40 @@ static void walk_offsets(walk_t *w)
         walk_block(w);
     }
     w->ed = w->ei + out_offset(&w->it, w->weigh);
-    w->sb = 0;
+    w->sb = w->so->sub ? w->so->ord[w->oi] : 0u;
+    w->khi = w->so->b.lo[w->sb + 1u];
 }
 
-static void walk_start(walk_t *w, const bw_iter_t *start, const spec_off_t *so, bool weigh,
-                       bool inpar)
+/* Form 5: the walk at band k of vector vr of the segment in the subband
+ * at place oi (past the last: the walk is over). */
+static void walk_sub_at(walk_t *w, unsigned oi, size_t vr, uint32_t k)
+{
+    w->oi = oi;
+    w->vr = vr;
+    if (oi >= w->so->b.count)
+        return;
+    bw_iter_seek(&w->it, w->v0 + vr);
+    walk_offsets(w);
+    w->it.k = w->so->b.lo[w->sb] + k;
+}
+
+/* Form 5: past the subband's last band of a vector (the iterator at
+ * its end, or past it: k = 0 at the next vector). */
+static void walk_sub_next(walk_t *w)
+{
+    if (w->vr + 1u >= w->nv) {
+        walk_sub_at(w, w->oi + 1u, 0, 0);
+        return;
+    }
+    w->vr++;
+    if (w->it.k)
+        bw_iter_next_vec(&w->it);
+    walk_offsets(w);
+    w->it.k = w->so->b.lo[w->sb];
+}
+
+static void walk_start(walk_t *w, const bw_iter_t *start, size_t n, const spec_off_t *so,
+                       bool weigh, bool inpar)
 {
     w->it = *start;
     w->so = so;
@@ -221,17 +273,35 @@ static void walk_start(walk_t *w, const bw_iter_t *start, const spec_off_t *so, 
     w->ei = in_offset(start, weigh);
     w->v0 = start->vi;
     w->last = NULL;
+    w->oi = 0;
+    w->vr = 0;
+    w->nv = n / start->pl->dims.bands;
     walk_block(w);
     walk_offsets(w);
+    if (so->sub)
+        w->it.k = so->b.lo[w->sb];
 }
 
 /* The walk at coefficient c of the segment. */
 static void walk_seek(walk_t *w, size_t c)
 {
     uint32_t b = w->it.pl->dims.bands;
+    w->last = NULL;
+    if (w->so->sub) {
+        unsigned oi = 0;
+        uint32_t len = 0;
+        for (; oi < w->so->b.count; oi++) {
+            unsigned sb = w->so->ord[oi];
+            len = w->so->b.lo[sb + 1u] - w->so->b.lo[sb];
+            if (c < (size_t)len * w->nv)
+                break;
+            c -= (size_t)len * w->nv;
+        }
+        walk_sub_at(w, oi, len ? c / len : 0u, len ? (uint32_t)(c % len) : 0u);
+        return;
+    }
     bw_iter_seek(&w->it, w->v0 + c / b);
     w->it.k = (uint32_t)(c % b);
-    w->last = NULL;
     walk_offsets(w);
 }
 
@@ -246,8 +316,8 @@ static inline unsigned walk_offset(walk_t *w)
 }
 
 /* The next coefficient: its place, class, neighbours and plane offset. */
-static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
-                                 const int32_t **prv, const int32_t **left, unsigned *e)
+static BW_ALWAYS_INLINE int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
+                                           const int32_t **prv, const int32_t **left, unsigned *e)
 {
     *e = walk_offset(w);
     *left = w->last; /* the band before, or the vector before's last */
@@ -261,6 +331,8 @@ static inline int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_t **par,
     if (!*prv)
         *prv = up;
     w->last = p;
+    if (w->so->sub && (w->it.k == w->khi || !w->it.k))
+        walk_sub_next(w);
     return p;
 }
 
@@ -274,6 +346,8 @@ static inline int32_t *walk_next_ref(walk_t *w, uint8_t *cls, unsigned *e)
     if (++w->it.k == w->it.pl->dims.bands)
         bw_iter_next_vec(&w->it);
     w->last = p;
+    if (w->so->sub && (w->it.k == w->khi || !w->it.k))
+        walk_sub_next(w);
     return p;
 }
 
@@ -297,7 +371,7 @@ static BW_ALWAYS_INLINE size_t pass(embed_t *c, const bw_iter_t *start, size_t n
                                     size_t limit, bool enc, unsigned what)
 {
     walk_t w;
-    walk_start(&w, start, &c->so, c->weigh, c->inpar_on);
+    walk_start(&w, start, n, &c->so, c->weigh, c->inpar_on);
     size_t at = 0; /* the coefficient the walk is at */
     for (size_t s = 0; s < n; s += STRIP) {
         size_t cnt = n - s < STRIP ? n - s : STRIP, si = s / STRIP, gi = s / GROUP;
@@ -441,10 +515,10 @@ static BW_ALWAYS_INLINE size_t plane(embed_t *c, const bw_iter_t *start, size_t 
  * pass each becomes significant in: an insignificant strip's or group's
  * flag is whether that pass is now); its coefficients' significance
  * cleared. */
-static unsigned passes_of(embed_t *c, const bw_iter_t *start, size_t n)
+static BW_NOINLINE unsigned passes_of(embed_t *c, const bw_iter_t *start, size_t n)
 {
     walk_t w;
-    walk_start(&w, start, &c->so, c->weigh, false);
+    walk_start(&w, start, n, &c->so, c->weigh, false);
     unsigned top = 0;
     for (size_t k = 0; k < n; k++) {
         uint8_t cls;
@@ -509,8 +583,8 @@ static void embed_init(embed_t *c, bool enc, const bw_iter_t *start, size_t n, b
     c->groups_on = start->pl->embed >= 2u;
     c->inpar_on = start->pl->embed >= 3u;
     c->split = start->pl->embed >= 4u;
-    c->split3 = start->pl->embed >= 5u;
-    spec_offsets(start->pl, c->weigh, &c->so);
+    c->split3 = start->pl->embed == 5u;
+    spec_offsets(start->pl, c->weigh, start->pl->embed >= 6u, &c->so);
     c->m = (embed_models_t *)(void *)m;
     models_init(c->m);
 }
@@ -542,19 +616,45 @@ size_t bw_embed_encode(const bw_iter_t *start, size_t n, uint8_t *out, size_t ca
     return EMBED_HEAD + len;
 }
 
+/* Each coefficient of the segment, in a frame of its own (not below the
+ * passes'): to zero (zero), or, the decoding stopped in pass P before
+ * position `stop`, a significant coefficient whose planes below b are not
+ * known to the middle of their span (forms 3 to 5: those found in this
+ * pass, and those its refinement part, positions n to 2n, reached, know
+ * plane b; the others b + 1). */
+static BW_NOINLINE void settle(embed_t *c, const bw_iter_t *start, size_t n, bool zero,
+                               unsigned P, size_t stop)
+{
+    walk_t w;
+    walk_start(&w, start, n, &c->so, c->weigh, false);
+    for (size_t k = 0; k < n; k++) {
+        uint8_t cls;
+        const int32_t *par, *prv, *left;
+        unsigned e;
+        int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
+        if (zero) {
+            *p = 0;
+            continue;
+        }
+        /* forms 3 to 5: found in this pass (magnitude 2^b), or reached by
+         * its refinement part (stop - n >= n: all) */
+        bool at_b = !c->split ? k < stop
+                              : (P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u) ||
+                                    (stop > n && k < stop - n);
+        unsigned lo = at_b ? P : P + 1u; /* its lowest plane known, + e */
+        if (*p && lo > e && lo - e <= 30u) {
+            uint32_t add = ((1u << (lo - e)) - 1u) >> 1;
+            *p = *p < 0 ? *p - (int32_t)add : *p + (int32_t)add;
+        }
+    }
+}
+
 bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in, size_t len,
                             bool cut, bw_models_t *m, bool *inexact)
 {
     embed_t c;
     embed_init(&c, false, start, n, m);
-    walk_t w;
-    walk_start(&w, start, &c.so, c.weigh, false);
-    for (size_t k = 0; k < n; k++) { /* the coefficients start at zero */
-        uint8_t cls;
-        const int32_t *par, *prv, *left;
-        unsigned e;
-        *walk_next(&w, &cls, &par, &prv, &left, &e) = 0;
-    }
+    settle(&c, start, n, true, 0, 0); /* the coefficients start at zero */
     *inexact = true;
     if (len < EMBED_HEAD)
         return cut ? BW_OK : BW_ERR_CORRUPT;
@@ -584,28 +684,7 @@ bw_status_t bw_embed_decode(const bw_iter_t *start, size_t n, const uint8_t *in,
         *inexact = false;
         return BW_OK;
     }
-    /* stopped in pass t before position `stop`: a significant coefficient
-     * whose planes below b are not known takes the middle of their span
-     * (forms 3 and 4: those found in this pass, and those its refinement
-     * part, positions n to 2n, reached, know plane b; the others b + 1) */
-    unsigned P = np - 1u - t;
-    walk_start(&w, start, &c.so, c.weigh, false);
-    for (size_t k = 0; k < n; k++) {
-        uint8_t cls;
-        const int32_t *par, *prv, *left;
-        unsigned e;
-        int32_t *p = walk_next(&w, &cls, &par, &prv, &left, &e);
-        /* forms 3 and 4: found in this pass (magnitude 2^b), or reached by
-         * its refinement part (stop - n >= n: all) */
-        bool at_b = !c.split ? k < stop
-                             : (P >= e && P - e <= 30u && (uint32_t)bw_abs32(*p) >> (P - e) == 1u) ||
-                                   (stop > n && k < stop - n);
-        unsigned lo = at_b ? P : P + 1u; /* its lowest plane known, + e */
-        if (*p && lo > e && lo - e <= 30u) {
-            uint32_t add = ((1u << (lo - e)) - 1u) >> 1;
-            *p = *p < 0 ? *p - (int32_t)add : *p + (int32_t)add;
-        }
-    }
+    settle(&c, start, n, false, np - 1u - t, stop);
     return BW_OK;
 }
 

@@ -353,8 +353,8 @@ static void plan_for(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, const
     pl->seg_vec = !BW_CFG_SEGMENTS ? 0u : pa->segment_vectors < nv ? pa->segment_vectors : nv;
     /* embedded: in segments, one without them */
     if (BW_CFG_EMBED) {
-        /* the current forms: 4 for one band, else 3 */
-        pl->embed = !pa->progressive ? 0u : dims->bands == 1u ? 5u : 4u;
+        /* the current forms: 4 for one band, else 5 */
+        pl->embed = !pa->progressive ? 0u : dims->bands == 1u ? 5u : 6u;
         if (pl->embed && !pl->seg_vec)
             pl->seg_vec = nv;
     }

@@ -179,7 +179,7 @@ static int32_t ext_scan(const uint8_t *area, size_t len, bw_header_t *h, uint32_
              * or the form, one byte (1: with groups of strips, 2: and the
              * incoming parent block as a neighbour, 3: and each pass
              * significance first, 4: in three parts) */
-            if (h->embedded || dl > 1u || (dl && d[0] > 4u) || !h->segment_vectors)
+            if (h->embedded || dl > 1u || (dl && d[0] > 5u) || !h->segment_vectors)
                 return BW_ERR_HEADER;
             h->embedded = 1u + (dl ? d[0] : 0u);
 #if BW_CFG_CHUNK_STEPS

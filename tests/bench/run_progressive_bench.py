@@ -705,6 +705,15 @@ def main():
         else:
             md.append("| %s | 100 %% | %d | %.4g %% | %.4g | %s | | | | |" % (
                 r["set"], r["bytes"], r["rel"], r["rmse"], r["monotone"]))
+    cut = [r for r in emb_prefix if r["fraction"] < 1.0]
+    within = [r for r in cut if r["decoded"] == "yes" and r["budget_bytes"] and
+              r["bytes"] / r["budget_bytes"] <= 1.05]
+    mono = all(r.get("monotone") == "yes" for r in emb_prefix)
+    md += ["", "Target: errors that never rise with more bytes, and every fraction within "
+           "1.05 x in bytes of the byte-budget encode at the same error: %s (monotone: %s; "
+           "within 1.05 x: %d of %d)." % ("met" if mono and len(within) == len(cut) else
+                                         "not met", "yes" if mono else "no", len(within),
+                                         len(cut))]
     md += ["", "## Decoding one incoming direction, a region, a coarser level", "",
            "One incoming direction of a BRDF (one spectrum of a set) decoded alone "
            "(`bwh_decode_incoming`, `decode --incoming K`, `decode(..., incoming=K)`) against "

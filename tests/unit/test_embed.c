@@ -107,8 +107,8 @@ static void embedded_payloads_decode_to_the_samples_of_the_strip_coder(void **st
                         assert_memory_equal(a, x, n * 4);
                     bw_header_t h;
                     assert_int_equal(bw_header_read(pe, le, &h), BW_OK);
-                    /* the current forms: 4 for one band, else 3 */
-                    assert_int_equal(h.embedded, d.bands == 1u ? 5 : 4);
+                    /* the current forms: 4 for one band, else 5 */
+                    assert_int_equal(h.embedded, d.bands == 1u ? 5 : 6);
                     assert_true(h.segment_vectors > 0);
                     free(pe);
                     free(ps);
@@ -279,19 +279,20 @@ static void what_does_not_embed_is_refused(void **state)
     pa.flags = 0;
     size_t len = encode(&d, &pa, x, &p, &st);
     assert_int_equal(st, BW_OK);
-    /* the records end with 0x03 V, then 0x04 and its form (3: groups of
-     * strips, the incoming parent block, passes split); changed, the
-     * fields are refused (the header's CRC is not read for them) */
+    /* the records end with 0x03 V, then 0x04 and its form (5: groups of
+     * strips, the incoming parent block, passes split, subband by
+     * subband); changed, the fields are refused (the header's CRC is not
+     * read for them) */
     bw_header_t h;
     assert_int_equal(bw_header_read(p, len, &h), BW_OK);
-    assert_int_equal(h.embedded, 4);
+    assert_int_equal(h.embedded, 6);
     uint8_t *q = p + h.ext_off + h.ext_len - 3u;
     assert_int_equal(q[0], BW_EXT_EMBEDDED);
     assert_int_equal(q[1], 1);
-    assert_int_equal(q[2], 3);
-    q[2] = 5; /* a form this decoder does not know */
+    assert_int_equal(q[2], 5);
+    q[2] = 6; /* a form this decoder does not know */
     assert_int_equal(bw_header_parse_fields(p, len, &h), BW_ERR_HEADER);
-    q[2] = 3;
+    q[2] = 5;
     q[0] = 0x06; /* an unknown critical record */
     assert_int_equal(bw_header_parse_fields(p, len, &h), BW_ERR_EXTENSION);
     q[0] = BW_EXT_SEGMENTS; /* a second segments record */
