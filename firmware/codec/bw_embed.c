@@ -297,12 +297,21 @@ static void walk_seek(walk_t *w, size_t c)
                 break;
             c -= (size_t)len * w->nv;
         }
-        walk_sub_at(w, oi, len ? c / len : 0u, len ? (uint32_t)(c % len) : 0u);
+        walk_sub_at(w, oi, c / len, (uint32_t)(c % len)); /* no subband is empty */
         return;
     }
     bw_iter_seek(&w->it, w->v0 + c / b);
     w->it.k = (uint32_t)(c % b);
     walk_offsets(w);
+}
+
+/* Form 5: after a coefficient, past its subband's end in the vector (at k
+ * = khi, or at the next vector when the subband ends the vector): on to the
+ * next vector or subband. */
+static inline void walk_sub_end(walk_t *w)
+{
+    if (w->so->sub && (w->it.k == w->khi || !w->it.k))
+        walk_sub_next(w);
 }
 
 /* The plane offset of the coefficient the walk is at. */
@@ -331,8 +340,7 @@ static BW_ALWAYS_INLINE int32_t *walk_next(walk_t *w, uint8_t *cls, const int32_
     if (!*prv)
         *prv = up;
     w->last = p;
-    if (w->so->sub && (w->it.k == w->khi || !w->it.k))
-        walk_sub_next(w);
+    walk_sub_end(w);
     return p;
 }
 
@@ -346,8 +354,7 @@ static inline int32_t *walk_next_ref(walk_t *w, uint8_t *cls, unsigned *e)
     if (++w->it.k == w->it.pl->dims.bands)
         bw_iter_next_vec(&w->it);
     w->last = p;
-    if (w->so->sub && (w->it.k == w->khi || !w->it.k))
-        walk_sub_next(w);
+    walk_sub_end(w);
     return p;
 }
 

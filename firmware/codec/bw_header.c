@@ -178,7 +178,8 @@ static int32_t ext_scan(const uint8_t *area, size_t len, bw_header_t *h, uint32_
             /* one record after the segments': no data (form 0, the first),
              * or the form, one byte (1: with groups of strips, 2: and the
              * incoming parent block as a neighbour, 3: and each pass
-             * significance first, 4: in three parts) */
+             * significance first, 4: in three parts, 5: as 3 subband by
+             * subband) */
             if (h->embedded || dl > 1u || (dl && d[0] > 5u) || !h->segment_vectors)
                 return BW_ERR_HEADER;
             h->embedded = 1u + (dl ? d[0] : 0u);
