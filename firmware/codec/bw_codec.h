@@ -46,6 +46,8 @@
  *   bw_tab.c           the static-table coder (BW_FLAG_RICE | BW_FLAG_MS)
  *   bw_embed.c         embedded segments, bit plane by bit plane
  *                      (BW_EXT_EMBEDDED, bw_params_t.progressive)
+ *   bw_bands.c         band access: spectra predicted along the bands and
+ *                      coded by columns (BW_EXT_BANDS, bw_decode_band_range)
  *   bw_header.c        the payload's header and its CRC
  *   bw_encode.c        bw_encode: one pass, the choice of basis, self-check
  *   bw_budget.c        the byte budget's searches (BW_MODE_BYTES)
@@ -204,6 +206,14 @@ typedef struct {
      * exact coding cut at the budget (no search). Transform bases only, not
      * in stream order. */
     uint32_t progressive;
+    /* Band access (docs/FORMAT.md, Band access): nonzero codes a set of
+     * spectra (LOSSLESS or MAX_ERROR, basis BW_BASIS_PRED or AUTO, no
+     * segments, the flags naming no coder) so that any band or range of
+     * bands decodes from the few columns of errors it depends on
+     * (bw_decode_band_range), at a cost that follows the bands asked for.
+     * A payload with it is version 7 and BW_BANDS_OVERHEAD bytes larger at
+     * most (its codes' tables): add that to BW_PAYLOAD_BOUND. */
+    uint32_t band_access;
 } bw_params_t;
 
 /* Header flags.
@@ -274,6 +284,10 @@ typedef struct {
 #define BW_WORK_BOUND(n, bands) \
     ((size_t)(n) + ((size_t)(n) >> 4) + 2u * (size_t)(bands) + 24u)
 
+/* What band access (bw_params_t.band_access) may add to the bound: its
+ * record and the code tables of up to 18 levels. */
+#define BW_BANDS_OVERHEAD 640u
+
 size_t bw_payload_bound(size_t n);
 size_t bw_work_bound(size_t n, size_t bands);
 
@@ -340,6 +354,8 @@ bw_status_t bw_encode(const bw_dims_t *dims, const bw_params_t *params, const in
 
 typedef struct {
     uint8_t version;
+    /* record BW_EXT_BANDS: 1, the body codes spectra for band access */
+    uint8_t band_access;
     bw_dims_t dims;
     uint8_t basis;
     uint8_t spectral_levels;
@@ -389,6 +405,7 @@ typedef struct {
 #define BW_EXT_SEGMENTS 0x03u    /* the body is split into segments (the core's) */
 #define BW_EXT_EMBEDDED 0x04u    /* the segments are coded bit plane by bit plane */
 #define BW_EXT_CHUNK_STEPS 0x05u /* a quantiser step per chunk of vectors (the core's) */
+#define BW_EXT_BANDS 0x06u       /* spectra coded for band access (the core's) */
 #define BW_EXT_METADATA 0x81u  /* the measurement's axes and context (host-tools) */
 #define BW_EXT_GUARANTEE 0x82u /* the bound the encoder guarantees, in value units */
 #define BW_EXT_MAX (1u << 20)  /* bytes of records at most */
@@ -522,6 +539,22 @@ bw_status_t bw_decode_level(bw_ctx_t *ctx, const uint8_t *payload, size_t len, u
 bw_status_t bw_decode_lod(bw_ctx_t *ctx, const uint8_t *payload, size_t len, unsigned level,
                           unsigned level_in, int32_t *samples, size_t samples_cap, int32_t *work,
                           size_t work_cap, bw_header_t *hdr_out);
+
+/* Bands b0 .. b1 - 1 of every spectrum of a payload with band access
+ * (BW_EXT_BANDS; else BW_ERR_ARG) into samples[n_in][b1 - b0]: only the
+ * columns of errors those bands depend on are decoded (at each prediction
+ * level about one per band, and two), and only the CRC-32s of the tables
+ * (which cover the header) and of the groups of columns read are checked,
+ * not the whole payload's. The samples equal those of the whole decode.
+ * work holds bw_band_range_work(n_in, b1 - b0) int32. */
+size_t bw_band_range_work(uint32_t n_in, uint32_t bands);
+/* The bytes of such a payload's tables after its header, before their
+ * CRC-32, which covers the header and them (a writer that changes the
+ * header's records rewrites it), or 0 if they do not fit the body. */
+size_t bw_bands_tables(const bw_header_t *h, const uint8_t *payload);
+bw_status_t bw_decode_band_range(const uint8_t *payload, size_t len, uint32_t b0, uint32_t b1,
+                                 int32_t *samples, size_t samples_cap, int32_t *work,
+                                 size_t work_cap, bw_header_t *hdr_out);
 
 /* What bw_decode_salvage rebuilt, per direction pair (every band alike):
  * exact (as the whole payload decodes), approximate (rebuilt from the

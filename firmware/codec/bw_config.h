@@ -25,6 +25,11 @@
  *                                      its step and corrects it by the size of
  *                                      each encode (bw_budget.c); 0: it
  *                                      searches as BW_EFFORT_BEST
+ *   BW_CFG_BANDS              1        sets of spectra with band access
+ *                                      (BW_EXT_BANDS): encoder, decoders and
+ *                                      bw_decode_band_range; 0: the encoder
+ *                                      refuses it as not built, the decoders
+ *                                      as an extension they do not know
  *   BW_CFG_SEGMENTS           1        bodies in segments (BW_EXT_SEGMENTS):
  *                                      bw_encode splits a body so when asked
  *                                      (bw_params_t.segment_vectors), the
@@ -157,6 +162,10 @@
 #endif
 #ifndef BW_CFG_EMBED
 #define BW_CFG_EMBED BW_CFG_SEGMENTS
+#endif
+
+#ifndef BW_CFG_BANDS
+#define BW_CFG_BANDS 1
 #endif
 
 #ifndef BW_CFG_STATUS_TEXT

@@ -152,13 +152,17 @@ static bw_status_t decode_checked(bw_ctx_t *ctx, const uint8_t *p, size_t len,
     size_t n = bw_dims_samples(d);
     if (samples_cap < n || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
-    bw_plan_t pl;
-    PLAN_OF(&pl, h, p, work, n);
     seg_out_t strict = {false, NULL, 0, NULL, 0};
     if (!so)
         so = &strict;
     if (BW_CFG_SALVAGE && so->vec_lost)
         memset(so->vec_lost, 0, (size_t)d->n_in * d->n_out);
+#if BW_CFG_BANDS
+    if (h->band_access) /* (no segments: whole, or lost whole) */
+        return bw_bands_decode(h, p, samples);
+#endif
+    bw_plan_t pl;
+    PLAN_OF(&pl, h, p, work, n);
     bw_status_t st = BW_CFG_SEGMENTS && pl.seg_vec ? decode_segments(&pl, work, p, len, h, &ctx->models, so)
                                 : bw_decode_body(&pl, work, p + h->header_len, h->body_len,
                                                  bw_coder_of(h->flags), &ctx->models);
@@ -450,6 +454,17 @@ static bw_status_t decode_rows(bw_ctx_t *ctx, const uint8_t *payload, size_t len
         nr += rows[t] != 0u;
     if (samples_cap < nr * row || work_cap < bw_work_bound(n, d->bands))
         return BW_ERR_WORK;
+#if BW_CFG_BANDS
+    if (h.band_access) { /* every spectrum, then the rows marked */
+        st = bw_bands_decode(&h, payload, work);
+        for (uint32_t t = 0; st == BW_OK && t < d->n_in; t++)
+            if (rows ? rows[t] != 0u : t == one) {
+                memcpy(samples, work + (size_t)t * row, row * sizeof *samples);
+                samples += row;
+            }
+        return st;
+    }
+#endif
     bw_plan_t pl;
     PLAN_OF(&pl, &h, payload, work, n);
     want_t w = {.by_rows = true, .rows = rows, .one = one, .pl = &pl};

@@ -308,9 +308,10 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
 
 /* Decodes the payload into verify and checks the mode's guarantee; *sse
  * (may be NULL): the squared error. */
-static bw_status_t verify_payload(bw_ctx_t *ctx, const bw_plan_t *pl, const bw_params_t *pa,
-                                  uint32_t mode, const int32_t *samples, const uint8_t *out,
-                                  size_t len, int32_t *verify, uint64_t *sse)
+static bw_status_t verify_payload(bw_ctx_t *ctx, const bw_plan_t *pl,
+                                                   const bw_params_t *pa, uint32_t mode,
+                                                   const int32_t *samples, const uint8_t *out,
+                                                   size_t len, int32_t *verify, uint64_t *sse)
 {
     size_t wb = bw_work_bound(pl->n, pl->dims.bands);
     bw_status_t st = bw_decode_ctx(ctx, out, len, verify, wb, verify, wb, NULL);
@@ -541,10 +542,54 @@ static bool quick_choice(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t
     return best_sz != SIZE_MAX;
 }
 
+#if BW_CFG_BANDS
+/* A set of spectra with band access: prediction along the bands, coded by
+ * columns (bw_bands.c); then the self-check. */
+static BW_NOINLINE bw_status_t encode_bands(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
+                                const int32_t *samples, int32_t *work, int32_t *verify,
+                                uint8_t *out, size_t out_cap, size_t *out_len)
+{
+    if (!ctx || !dims || !samples || !work || !out || !out_len)
+        return BW_ERR_ARG;
+    *out_len = 0;
+    bw_status_t st = bw_params_check(dims, pa->mode, BW_BASIS_PRED, pa->flags, mode_param(pa),
+                                     BW_FOR_ENCODE);
+    if (st != BW_OK)
+        return st;
+    if (!bw_ext_valid(pa->ext, pa->ext_len) || pa->effort > BW_EFFORT_FAST ||
+        dims->shape != BW_SHAPE_SPECTRA ||
+        (pa->mode != BW_MODE_LOSSLESS && pa->mode != BW_MODE_MAX_ERROR) ||
+        (pa->basis != BW_BASIS_PRED && pa->basis != BW_BASIS_AUTO) || pa->segment_vectors ||
+        pa->progressive || pa->coder != BW_CODER_BY_FLAGS ||
+        (pa->flags & (BW_FLAG_RICE | BW_FLAG_MS | BW_FLAG_STREAM_ORDER)))
+        return BW_ERR_ARG;
+    bw_plan_t pl;
+    plan_for(&pl, dims, BW_BASIS_PRED, pa, work);
+    pl.bands = true;
+    st = bw_bands_encode(&pl, pa, samples, work, out, out_cap, out_len);
+    if (st != BW_OK || !verify)
+        return st;
+    /* the self-check: every sample back, exactly or within E */
+    size_t wb = bw_work_bound(pl.n, dims->bands);
+    if (bw_decode_ctx(ctx, out, *out_len, verify, wb, verify, wb, NULL) != BW_OK)
+        return BW_ERR_VERIFY;
+    for (size_t i = 0; i < pl.n; i++) {
+        int64_t e = (int64_t)verify[i] - samples[i];
+        if (e > (int64_t)pa->max_error || -e > (int64_t)pa->max_error)
+            return BW_ERR_VERIFY;
+    }
+    return BW_OK;
+}
+#endif
+
 bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_t *pa,
                           const int32_t *samples, int32_t *work, int32_t *verify, uint8_t *out,
                           size_t out_cap, size_t *out_len)
 {
+#if BW_CFG_BANDS
+    if (pa && pa->band_access) /* (first: a call in the caller's frame) */
+        return encode_bands(ctx, dims, pa, samples, work, verify, out, out_cap, out_len);
+#endif
     if (!ctx || !dims || !pa || !samples || !work || !out || !out_len)
         return BW_ERR_ARG;
     *out_len = 0;
@@ -555,7 +600,8 @@ bw_status_t bw_encode_ctx(bw_ctx_t *ctx, const bw_dims_t *dims, const bw_params_
     if (!bw_ext_valid(pa->ext, pa->ext_len) || pa->effort > BW_EFFORT_FAST ||
         !bw_coder_choice_ok(pa))
         return BW_ERR_ARG;
-    if ((!BW_CFG_SEGMENTS && pa->segment_vectors) || (!BW_CFG_EMBED && pa->progressive))
+    if ((!BW_CFG_SEGMENTS && pa->segment_vectors) || (!BW_CFG_EMBED && pa->progressive) ||
+        (!BW_CFG_BANDS && pa->band_access))
         return BW_ERR_NOT_BUILT;
     /* embedded: transform bases, coarse-to-fine order, the embedded coder */
     if (BW_CFG_EMBED && pa->progressive &&

@@ -68,7 +68,8 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
     }
     h[0] = BW_MAGIC0;
     h[1] = BW_MAGIC1;
-    /* the segments' record after the caller's: type, length, V */
+    /* the segments' record after the caller's: type, length, V (or band
+     * access's) */
     uint8_t seg[10];
     size_t sl = 0;
     if (BW_CFG_SEGMENTS && pl->seg_vec) {
@@ -81,6 +82,10 @@ size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa,
             seg[sl++] = 1u;
             seg[sl++] = (uint8_t)(pl->embed - 1u);
         }
+    }
+    if (BW_CFG_BANDS && pl->bands) { /* band access: no data */
+        seg[sl++] = BW_EXT_BANDS;
+        seg[sl++] = 0u;
     }
     /* then the chunks' steps: type, length, K, a byte per chunk */
     size_t cl = 0, cn = 0;
@@ -153,6 +158,8 @@ static int32_t ext_scan(const uint8_t *area, size_t len, bw_header_t *h, uint32_
     uint32_t dl, tail = 0;
     int32_t st = 0;
     h->segment_vectors = 0;
+    if (BW_CFG_BANDS)
+        h->band_access = 0;
     if (BW_CFG_EMBED)
         h->embedded = 0;
 #if BW_CFG_CHUNK_STEPS
@@ -172,6 +179,11 @@ static int32_t ext_scan(const uint8_t *area, size_t len, bw_header_t *h, uint32_
             if (h->segment_vectors || get_varint(d, d + dl, &h->segment_vectors) != d + dl ||
                 !h->segment_vectors)
                 return BW_ERR_HEADER;
+        } else if (BW_CFG_BANDS && type == BW_EXT_BANDS) {
+            /* one record, no data */
+            if (h->band_access || dl)
+                return BW_ERR_HEADER;
+            h->band_access = 1u;
         } else if (type == BW_EXT_EMBEDDED && !BW_CFG_EMBED) {
             st = BW_ERR_NOT_BUILT;
         } else if (type == BW_EXT_EMBEDDED) {
@@ -226,7 +238,8 @@ bool bw_ext_valid(const uint8_t *area, size_t len)
     bw_header_t h;
     uint32_t chunk[2] = {0, 0};
     return len <= BW_EXT_MAX && (!len || area) && ext_scan(area, len, &h, chunk) == 0 &&
-           !h.segment_vectors && !(BW_CFG_CHUNK_STEPS && chunk[0]);
+           !h.segment_vectors && !(BW_CFG_BANDS && h.band_access) &&
+           !(BW_CFG_CHUNK_STEPS && chunk[0]);
 }
 
 bw_status_t bw_header_read(const uint8_t *p, size_t len, bw_header_t *h)
@@ -260,6 +273,8 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
     h->version = p[2];
     h->segment_vectors = 0;
     h->embedded = 0;
+    if (BW_CFG_BANDS)
+        h->band_access = 0;
     uint32_t chunk[2] = {0, 0}; /* record BW_EXT_CHUNK_STEPS: K, its steps' count */
     d->shape = p[3] & 3u;
     h->mode = (uint8_t)(p[3] >> 2 & 3u);
@@ -330,6 +345,11 @@ static bw_status_t parse_fields(const uint8_t *p, size_t len, bw_header_t *h, bo
          (h->basis == BW_BASIS_PRED || (h->flags & BW_FLAG_STREAM_ORDER) ||
           (BW_CFG_CODER_TAB &&
            (h->flags & (BW_FLAG_RICE | BW_FLAG_MS)) == (BW_FLAG_RICE | BW_FLAG_MS)))))
+        return BW_ERR_HEADER;
+    /* band access: prediction of a set of spectra, in one body of its own */
+    if (BW_CFG_BANDS && h->band_access &&
+        (h->basis != BW_BASIS_PRED || d->shape != BW_SHAPE_SPECTRA || h->segment_vectors ||
+         chunk[0] || (h->flags & (BW_FLAG_RICE | BW_FLAG_MS | BW_FLAG_STREAM_ORDER))))
         return BW_ERR_HEADER;
     /* segments of V vectors, V at most their number (one encoding) */
     h->segments = 1u;

@@ -45,6 +45,7 @@ typedef struct {
     bool stream;            /* coding order: streamed (post-order) instead of coarse-to-fine */
     uint32_t seg_vec;       /* vectors per segment (BW_EXT_SEGMENTS), 0: one body */
     uint8_t embed;          /* embedded segments (BW_EXT_EMBEDDED): 0 none, 1 + the form */
+    bool bands;             /* band access (BW_EXT_BANDS) */
 #if BW_CFG_CHUNK_STEPS
     uint32_t chunk_vec;     /* vectors per chunk (BW_EXT_CHUNK_STEPS), 0: one step */
     const int8_t *chunk_d;  /* [chunks] each chunk's step change (bw_chunk_step) */
@@ -410,6 +411,18 @@ static inline int32_t *bw_iter_next(bw_iter_t *it, uint8_t *cls, const int32_t *
 /* Writes the header of the plan at out (NULL: only counts); returns its
  * length (at most BW_HEADER_MAX). */
 size_t bw_header_write(uint8_t *out, const bw_plan_t *pl, const bw_params_t *pa, unsigned mode);
+
+/* ---- band access (bw_bands.c) -------------------------------------------- */
+
+/* A set of spectra with band access (BW_EXT_BANDS) from the plan pl (dims,
+ * basis BW_BASIS_PRED, pl->bands) of LOSSLESS or MAX_ERROR: work holds
+ * bw_work_bound(n, bands). */
+bw_status_t bw_bands_encode(const bw_plan_t *pl, const bw_params_t *pa, const int32_t *x,
+                            int32_t *work, uint8_t *out, size_t out_cap, size_t *out_len);
+/* The whole of such a payload (its header read) into x[n]: the tables'
+ * CRC and every group's checked. */
+bw_status_t bw_bands_decode(const bw_header_t *h, const uint8_t *p, int32_t *x);
+
 /* Extension records well formed, of known critical types only, without a
  * tail (an encoder codes none), at most BW_EXT_MAX bytes. */
 bool bw_ext_valid(const uint8_t *area, size_t len);

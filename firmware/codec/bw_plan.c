@@ -25,6 +25,8 @@ void bw_plan_make(bw_plan_t *pl, const bw_dims_t *dims, unsigned basis, unsigned
     pl->recip = (flags & BW_FLAG_RECIPROCAL) != 0u;
     pl->stream = (flags & BW_FLAG_STREAM_ORDER) != 0u;
     pl->seg_vec = 0;
+    if (BW_CFG_BANDS)
+        pl->bands = false;
     if (BW_CFG_EMBED)
         pl->embed = 0u;
 #if BW_CFG_CHUNK_STEPS

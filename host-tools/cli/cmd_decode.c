@@ -156,6 +156,35 @@ static void print_rows(FILE *f, const uint8_t *rows, uint32_t n)
     }
 }
 
+/* Marks in marks[bands] the bands --bands lists (list) or whose
+ * wavelengths (meta's) lie in wl[2]. 0, or an exit status. */
+static int band_marks(const char *inp, const char *list, const double *wl, uint32_t bands,
+                      const bwh_meta_t *meta, uint8_t *marks)
+{
+    if (list)
+        return parse_marks("bands", "band", list, bands, marks);
+    int k = bwh_bands_of_wavelengths(meta, bands, wl[0], wl[1], marks);
+    if (k < 0)
+        return cli_fail("%s: %s", inp, bwh_last_error());
+    if (!k)
+        return cli_fail("%s: no band's wavelength lies in [%g, %g] %s", inp, wl[0], wl[1],
+                        bwh_wl_unit_name(meta->wl_unit));
+    return 0;
+}
+
+/* Keeps the bands marked in marks[] (those of the payload, whose dimensions
+ * are *full; the samples hold bands from `first` on) of the decoded samples
+ * s, values v and mask (any NULL) of dimensions *d, and of the metadata.
+ * 0, or an exit status. */
+static int keep_marked(const char *inp, const uint8_t *marks, const bw_dims_t *full,
+                       uint32_t first, bw_dims_t *d, bwh_meta_t *meta, int32_t *s, float *v,
+                       uint8_t *mask)
+{
+    if (bwh_meta_bands(meta, full, marks) != 0 || bwh_keep_bands(d, marks + first, s, v, mask) != 0)
+        return cli_fail("%s: %s", inp, bwh_last_error());
+    return 0;
+}
+
 /* Keeps the bands --bands lists (list) or whose wavelengths lie in wl[2]
  * of the decoded samples s, values v and mask (any NULL) of dimensions *d,
  * and of the metadata. 0, or an exit status. */
@@ -165,19 +194,10 @@ static int keep_bands(const char *inp, const char *list, const double *wl, bw_di
     uint8_t *marks = malloc(d->bands);
     if (!marks)
         return cli_fail("out of memory");
-    int bad = 0;
-    if (list) {
-        bad = parse_marks("bands", "band", list, d->bands, marks);
-    } else {
-        int k = bwh_bands_of_wavelengths(meta, d->bands, wl[0], wl[1], marks);
-        if (k < 0)
-            bad = cli_fail("%s: %s", inp, bwh_last_error());
-        else if (!k)
-            bad = cli_fail("%s: no band's wavelength lies in [%g, %g] %s", inp, wl[0], wl[1],
-                           bwh_wl_unit_name(meta->wl_unit));
-    }
-    if (!bad && (bwh_meta_bands(meta, d, marks) != 0 || bwh_keep_bands(d, marks, s, v, mask) != 0))
-        bad = cli_fail("%s: %s", inp, bwh_last_error());
+    bw_dims_t full = *d;
+    int bad = band_marks(inp, list, wl, d->bands, meta, marks);
+    if (!bad)
+        bad = keep_marked(inp, marks, &full, 0, d, meta, s, v, mask);
     free(marks);
     return bad;
 }
@@ -289,7 +309,35 @@ int bw_cmd_decode(int argc, char **argv)
             return bad;
         }
     }
-    int got = rows           ? bwh_decode_rows(p, len, rows, &h, &rowd, &s, ints_only ? NULL : &v)
+    /* bands of a payload with band access: only those from the first
+     * marked to the last decode */
+    uint8_t *bmarks = NULL;
+    uint32_t b_lo = 0, b_hi = 0;
+    if ((bandsp || wlp) && !parts && !maskp) {
+        bw_header_t f;
+        if (bw_header_parse_fields(p, len, &f) == BW_OK && f.band_access) {
+            bwh_meta_t bm;
+            bwh_meta_init(&bm);
+            int bad = !(bmarks = malloc(f.dims.bands)) ? cli_fail("out of memory")
+                      : wlp && bwh_meta_of_payload(p, len, &f, &bm) != 0
+                          ? cli_fail("%s: %s", inp, bwh_last_error())
+                          : band_marks(inp, bandsp, wl, f.dims.bands, &bm, bmarks);
+            bwh_meta_free(&bm);
+            if (bad) {
+                free(bmarks);
+                free(p);
+                cli_progress_end();
+                return bad;
+            }
+            for (b_lo = 0; !bmarks[b_lo]; b_lo++)
+                ;
+            for (b_hi = f.dims.bands - 1u; !bmarks[b_hi]; b_hi--)
+                ;
+        }
+    }
+    int got = bmarks ? bwh_decode_bands(p, len, b_lo, b_hi + 1u, &h, &rowd, &s,
+                                        ints_only ? NULL : &v)
+              : rows         ? bwh_decode_rows(p, len, rows, &h, &rowd, &s, ints_only ? NULL : &v)
               : has_incoming ? bwh_decode_incoming(p, len, incoming, &h, &rowd, &s,
                                                    ints_only ? NULL : &v)
               : has_lod    ? bwh_decode_levels(p, len, has_lodout ? (int)lod : -1,
@@ -301,6 +349,7 @@ int bw_cmd_decode(int argc, char **argv)
         (has_incoming && bwh_meta_row(&meta, &h.dims, incoming) != 0) ||
         (rows && bwh_meta_rows(&meta, &h.dims, rows) != 0)) {
         free(rows);
+        free(bmarks);
         free(p);
         free(s);
         free(v);
@@ -318,8 +367,15 @@ int bw_cmd_decode(int argc, char **argv)
         meta.n_missing = 0;
         meta.present &= ~BWH_M_MISSING;
     }
-    int kb = bandsp || wlp ? keep_bands(inp, bandsp, wlp ? wl : NULL, &h.dims, &meta, s, v, mask)
-                           : 0;
+    int kb = 0;
+    if (bmarks) {
+        bw_dims_t full = h.dims;
+        h.dims = rowd;
+        kb = keep_marked(inp, bmarks, &full, b_lo, &h.dims, &meta, s, v, mask);
+        free(bmarks);
+    } else if (bandsp || wlp) {
+        kb = keep_bands(inp, bandsp, wlp ? wl : NULL, &h.dims, &meta, s, v, mask);
+    }
     if (kb) {
         free(s);
         free(v);

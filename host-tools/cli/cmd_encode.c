@@ -24,6 +24,7 @@ static const char encode_help[] =
     "                       [--basis haar|53|97|pred|auto] [--effort best|fast]\n"
     "                       [--scale S] [--relative]\n"
     "                       [--coder range|ms|tab|rice|auto] [--segments N] [--progressive]\n"
+    "                       [--band-access]\n"
     "                       [-q]\n"
     "                       [--symmetry auto|mirror|reciprocal|both|none]\n"
     "                       [--metadata FILE.json] [--field KEY=VALUE ...] [--no-metadata]\n"
@@ -98,6 +99,10 @@ static const char encode_help[] =
     "                    approximation (decode of a cut payload); with --bytes or\n"
     "                    --ratio the exact coding cut at the budget, no search;\n"
     "                    transform bases; format 7\n"
+    "  --band-access     a set of spectra (--lossless or --max-error) coded so that\n"
+    "                    any band or band range decodes alone (decode --bands),\n"
+    "                    at a cost that follows the bands asked for: prediction\n"
+    "                    along the bands, coarse to fine, coded by columns; format 7\n"
     "  --coder C         entropy coder: range (the default on the host: the smallest\n"
     "                    payload); ms (multi-symbol range coder, format 7: about a\n"
     "                    third fewer instructions per sample on the device, about\n"
@@ -313,7 +318,7 @@ int bw_cmd_encode(int argc, char **argv)
     uint32_t bytes = 0, drop = 0;
     int has_drop = 0, quiet = 0, has_effort = 0, effort = 0;
     uint32_t segments = 0;
-    int progressive = 0;
+    int progressive = 0, band_access = 0;
     unsigned basis = BW_BASIS_AUTO, symmetry = 0, coder = CODER_UNSET;
     const char *firmware = NULL;
     const cli_opt_t opts[] = {
@@ -349,6 +354,7 @@ int bw_cmd_encode(int argc, char **argv)
         {"stream", 0, CLI_FLAG, .dest = &stream},
         {"segments", 0, CLI_U32, .dest = &segments, .lo = 1, .hi = 1u << 28},
         {"progressive", 0, CLI_FLAG, .dest = &progressive},
+        {"band-access", 0, CLI_FLAG, .dest = &band_access},
         {"relative", 0, CLI_FLAG, .dest = &relative},
         {"coder", 0, CLI_CALL, .dest = &coder, .parse = parse_coder,
          .what = "--coder must be range, ms, tab, rice or auto"},
@@ -397,6 +403,7 @@ int bw_cmd_encode(int argc, char **argv)
     coder = coder == CODER_AUTO ? 0u : coder;
     o.segments = segments;
     o.progressive = (uint32_t)progressive;
+    o.band_access = (uint32_t)band_access;
     o.flags = symmetry | coder | (stream ? BW_FLAG_STREAM_ORDER : 0u) |
               (relative ? BW_FLAG_LOG_VALUE : 0u);
     uint64_t device_instructions = 0;
@@ -410,6 +417,13 @@ int bw_cmd_encode(int argc, char **argv)
     if (progressive && (stream || o.basis == BW_BASIS_PRED))
         return cli_usage("--progressive codes transform coefficients coarse to fine: not with "
                          "--stream or --basis pred");
+    if (band_access && (sh.has_level || o.mode > BW_MODE_MAX_ERROR || stream || progressive ||
+                        segments || coder || o.coder != BW_CODER_BY_FLAGS ||
+                        device != DEV_HOST ||
+                        (o.basis != BW_BASIS_PRED && o.basis != BW_BASIS_AUTO)))
+        return cli_usage("--band-access codes a set of spectra (no --level) on the host with "
+                         "--lossless or --max-error: not with --stream, --segments, "
+                         "--progressive, --coder, --device or a transform basis");
     if (in.n > 1 && fmt >= BWH_IN_F32 && fmt <= BWH_IN_I32)
         return cli_usage("several inputs make a set of spectra: not for raw input");
     if ((fmt == BWH_IN_F32 || fmt == BWH_IN_U16 || fmt == BWH_IN_I32) && !sh.has_bands)

@@ -132,13 +132,15 @@ int bw_cmd_info(int argc, char **argv)
     cli_kv_uint(&kv, "outgoing", h.dims.n_out);
     cli_kv_uint(&kv, "bands", h.dims.bands);
     cli_kv_uint(&kv, "samples", n);
-    cli_kv_str(&kv, "basis", bwh_basis_name(h.basis));
+    cli_kv_str(&kv, "basis", h.band_access ? "pred (coarse to fine along the bands)"
+                                           : bwh_basis_name(h.basis));
     cli_kv_uint(&kv, "spectral_levels", h.spectral_levels);
     cli_kv_str(&kv, "mode", bwh_mode_name(h.mode));
     cli_kv_str(&kv, "order", h.flags & BW_FLAG_STREAM_ORDER ? "streamed"
                              : h.embedded                  ? "embedded (bit planes)"
                                                            : "coarse-to-fine");
-    cli_kv_str(&kv, "coder", bwh_coder_name(h.flags));
+    cli_kv_str(&kv, "coder", h.band_access ? "columns (band access: record 0x06)"
+                                           : bwh_coder_name(h.flags));
     if (h.segment_vectors) {
         cli_kv_uint(&kv, "segments", h.segments);
         cli_kv_uint(&kv, "segment_vectors", h.segment_vectors);

@@ -295,7 +295,7 @@ static int header_partial(const uint8_t *p, size_t len, bw_header_t *h, int32_t 
     if (values)
         *values = NULL;
     bw_header_t f;
-    if (bw_header_parse_fields(p, len, &f) == BW_OK && f.segment_vectors) {
+    if (bw_header_parse_fields(p, len, &f) == BW_OK && (f.segment_vectors || f.band_access)) {
         *h = f;
         if (bw_dims_samples(&f.dims) > BWH_MAX_SAMPLES_DEFAULT)
             return bwh_fail("the payload decodes to %zu samples, more than the limit of %zu",
@@ -308,7 +308,8 @@ static int header_partial(const uint8_t *p, size_t len, bw_header_t *h, int32_t 
     if (h->flags & BW_FLAG_RECIPROCAL)
         return bwh_fail("a full BRDF coded with the reciprocity step: every incoming direction "
                         "depends on all the others; decode it whole");
-    if (bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl) == 1)
+    const uint8_t *tail;
+    if (bwh_ext_find(p, h, BW_EXT_FLOAT_EXACT, &xd, &xl) == 1 && bwh_ext_tail(p, h, &tail))
         return bwh_fail("float values kept bit for bit in the payload's tail: decode it whole");
     return 0;
 }
@@ -449,6 +450,53 @@ int bwh_decode_rows(const uint8_t *p, size_t len, const uint8_t *rows, bw_header
         bw_dims_make(sub, BW_SHAPE_SPECTRA, 0, 0, k, d->bands);
     else
         bw_dims_make(sub, BW_SHAPE_BRDF_ISO, d->level_out, 0, k, d->bands);
+    return partial_values(p, h, sub, r, samples, values);
+}
+
+int bwh_decode_bands(const uint8_t *p, size_t len, uint32_t b0, uint32_t b1, bw_header_t *h,
+                     bw_dims_t *sub, int32_t **samples, float **values)
+{
+    if (header_partial(p, len, h, samples, values) != 0)
+        return -1;
+    const bw_dims_t *d = &h->dims;
+    if (b0 >= b1 || b1 > d->bands)
+        return bwh_fail("bands %u to %u: the payload has bands 0 to %u", b0, b1 - 1u,
+                        d->bands - 1u);
+    size_t nr = (size_t)d->n_in * d->n_out * (b1 - b0);
+    int32_t *r = malloc((nr ? nr : 1) * sizeof *r);
+    if (!r)
+        return bwh_fail("out of memory");
+    if (h->band_access) {
+        /* the columns those bands depend on */
+        size_t wb = bw_band_range_work(d->n_in, b1 - b0);
+        int32_t *w = malloc(wb * sizeof *w);
+        bw_status_t st = w ? bw_decode_band_range(p, len, b0, b1, r, nr, w, wb, NULL) : BW_ERR_ARG;
+        free(w);
+        if (st != BW_OK) {
+            free(r);
+            return bwh_fail("%s", w ? bw_strerror(st) : "out of memory");
+        }
+    } else {
+        /* every other body: the whole decode, then the bands */
+        size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
+        int32_t *w = malloc(wb * sizeof *w), *x = malloc(n * sizeof *x);
+        bw_ctx_t *ctx = malloc(sizeof *ctx);
+        bw_status_t st = w && x && ctx ? bw_decode_ctx(ctx, p, len, x, n, w, wb, NULL)
+                                       : BW_ERR_ARG;
+        bool oom = !w || !x || !ctx;
+        free(w);
+        free(ctx);
+        if (st != BW_OK) {
+            free(x);
+            free(r);
+            return bwh_fail("%s", oom ? "out of memory" : bw_strerror(st));
+        }
+        for (size_t v = 0, nv = (size_t)d->n_in * d->n_out; v < nv; v++)
+            memcpy(r + v * (b1 - b0), x + v * d->bands + b0, (b1 - b0) * sizeof *r);
+        free(x);
+    }
+    *sub = *d;
+    sub->bands = b1 - b0;
     return partial_values(p, h, sub, r, samples, values);
 }
 

@@ -98,6 +98,16 @@ int bwh_decode_level(const uint8_t *p, size_t len, unsigned level, bw_header_t *
 int bwh_decode_levels(const uint8_t *p, size_t len, int level_out, int level_in, bw_header_t *h,
                       bw_dims_t *lod, int32_t **samples, float **values);
 
+/* Bands b0 .. b1 - 1 of every spectrum or direction: *samples and *values
+ * as bwh_decode_limit's, n_in * n_out * (b1 - b0) of them, *sub their
+ * dimensions. A payload coded with band access (`encode --band-access`)
+ * decodes only the columns those bands depend on (bw_decode_band_range:
+ * its tables' and those columns' CRCs checked); any other decodes whole,
+ * then keeps the bands. Not a float payload that keeps bits in a tail.
+ * 0, or -1. */
+int bwh_decode_bands(const uint8_t *p, size_t len, uint32_t b0, uint32_t b1, bw_header_t *h,
+                     bw_dims_t *sub, int32_t **samples, float **values);
+
 /* Keeps the bands marked non-zero in bands[d->bands] of decoded samples,
  * in order, in place: each of s, v and mask (any may be NULL; a sample's
  * int32, float value, mask byte) in the layout [incoming][outgoing][band]

@@ -78,6 +78,7 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     p.effort = (uint8_t)o->effort;
     p.coder = (uint8_t)o->coder;
     p.progressive = o->progressive != 0u;
+    p.band_access = o->band_access != 0u;
     if (o->segments > 1u) {
         uint32_t nv = dims->n_in * dims->n_out;
         p.segment_vectors = (nv - 1u) / o->segments + 1u;
@@ -115,6 +116,8 @@ int bwh_encode_i32(const bw_dims_t *dims, const int32_t *x, const bwh_encode_opt
     size_t wb = bw_work_bound(n, dims->bands), cap = bw_payload_bound(n);
     if (o->ext_len)
         cap += o->ext_len + BW_EXT_OVERHEAD;
+    if (p.band_access)
+        cap += BW_BANDS_OVERHEAD;
     if (p.segment_vectors)
         cap += BW_SEGMENT_OVERHEAD((dims->n_in * dims->n_out - 1u) / p.segment_vectors + 1u);
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);

@@ -58,6 +58,8 @@ typedef struct {
      * to an approximation; with a byte budget the exact coding is cut at
      * the budget */
     uint32_t progressive;
+    /* nonzero: a set of spectra coded for band access (bw_params_t.band_access) */
+    uint32_t band_access;
 } bwh_encode_opts_t;
 
 /* Encodes float samples. *out is allocated. The mapping to integers is

@@ -103,6 +103,16 @@ int bwh_ext_add(uint8_t **pp, size_t *plen, const uint8_t *recs, size_t rlen, co
         for (unsigned b = 0; b < 4; b++)
             o[t + b] = (uint8_t)(tc >> (8 * b));
     }
+    if (h.band_access) { /* so does the band tables' */
+        size_t tb = bw_bands_tables(&h, p);
+        if (!tb) {
+            free(o);
+            return bwh_fail("the band access tables do not fit the body");
+        }
+        uint32_t tc = bw_crc32(o, k + tb);
+        for (unsigned b = 0; b < 4; b++)
+            o[k + tb + b] = (uint8_t)(tc >> (8 * b));
+    }
     k += h.body_len + rest;
     if (tlen)
         memcpy(o + k, tail, tlen);

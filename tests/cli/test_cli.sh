@@ -832,5 +832,22 @@ cmp -s "$T/embd.bwv" "$T/embh.bwv" && ok || bad "--progressive on the device: no
 expect_status "--progressive streamed" 2 "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --max-error 0.001 --progressive --stream --basis 53 -o "$T/x.bwv"
 expect_error "--progressive with prediction" "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --basis pred --progressive -o "$T/x.bwv"
 
+# band access: a set of spectra whose bands decode alone, to the whole
+# decode's values; info says so; what it is not for is refused
+expect_ok "encode --band-access" "$BW" encode -q --input-format sed -i $DATA/*.sed --lossless --band-access -o "$T/ba.bwv"
+"$BW" info "$T/ba.bwv" | grep -q "^coder: columns (band access: record 0x06)$" && ok || bad "info of a band access payload: $("$BW" info "$T/ba.bwv" | grep coder)"
+"$BW" decode -i "$T/ba.bwv" --output-format f32 -o "$T/baall.f32" && "$BW" decode -i "$T/ba.bwv" --bands 3,700-702,1023 --output-format f32 -o "$T/bak.f32" && $PY - "$T/baall.f32" "$T/bak.f32" <<'PY' && ok || bad "decode --bands of a band access payload: not the whole decode's bands"
+import sys
+import numpy as np
+a, k = (np.fromfile(f, '<f4') for f in sys.argv[1:3])
+a = a.reshape(-1, 1024)
+sys.exit(0 if np.array_equal(k.reshape(a.shape[0], 5), a[:, [3, 700, 701, 702, 1023]]) else 1)
+PY
+"$BW" encode -q --input-format sed -i $DATA/*.sed --lossless -o "$T/nba.bwv"
+"$BW" decode -i "$T/nba.bwv" --output-format f32 -o "$T/nbaall.f32" && cmp -s "$T/baall.f32" "$T/nbaall.f32" && ok || bad "a band access payload decodes to other values than the host's"
+expect_status "--band-access with --level" 2 "$BW" encode -i "$T/seg.f32" --bands 1 --level 4 --incoming 8 --lossless --band-access -o "$T/x.bwv"
+expect_status "--band-access with --segments" 2 "$BW" encode --input-format sed -i $DATA/*.sed --lossless --band-access --segments 4 -o "$T/x.bwv"
+expect_status "--band-access with a byte budget" 2 "$BW" encode --input-format sed -i $DATA/*.sed --bytes 4000 --band-access -o "$T/x.bwv"
+
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -180,6 +180,27 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             require(st == BW_OK || (st == BW_ERR_ARG && (hf.flags & BW_FLAG_RECIPROCAL)),
                     "bw_decode_level refuses a whole payload", st);
     }
+    /* a band range of a payload with band access: a known status; on a
+     * whole payload, those bands of the whole decode */
+    if (BW_CFG_BANDS && hf.band_access && hf.dims.bands) {
+        uint32_t B = hf.dims.bands, b0 = (uint32_t)(size * 2654435761u) % B;
+        uint32_t b1 = b0 + 1u + (uint32_t)(size / 5u) % (B - b0), R = b1 - b0;
+        size_t rw = bw_band_range_work(hf.dims.n_in, R);
+        int32_t *o = malloc((size_t)hf.dims.n_in * R * sizeof *o), *w = malloc(rw * sizeof *w);
+        if (!o || !w)
+            abort();
+        int st = bw_decode_band_range(data, size, b0, b1, o, (size_t)hf.dims.n_in * R, w, rw,
+                                      NULL);
+        require(known(st), "bw_decode_band_range: unknown status", st);
+        if (st1 == BW_OK) {
+            require(st == BW_OK, "bw_decode_band_range refuses a whole payload", st);
+            for (uint32_t s = 0; s < hf.dims.n_in; s++)
+                require(memcmp(o + (size_t)s * R, s1 + (size_t)s * B + b0, R * sizeof *o) == 0,
+                        "bw_decode_band_range differs from the whole decode's bands", st);
+        }
+        free(o);
+        free(w);
+    }
     /* undersized buffers are refused */
     if (st1 == BW_OK) {
         int st = bw_decode(data, size, s1, n - 1, w1, wb, NULL);

@@ -47,6 +47,7 @@
 #include <string.h>
 
 #include "bw_codec.h"
+#include "bw_config.h"
 
 #define FUZZ_MAX_SAMPLES ((size_t)1 << 12)
 #define SMAX ((int32_t)BW_SAMPLE_MAX)
@@ -181,6 +182,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pa.segment_vectors = seg_sel == 1u ? 1u : seg_sel == 2u ? 3u
                          : seg_sel == 3u ? (uint32_t)(nvec / 4u + 1u) : 0u;
     pa.progressive = (uint32_t)embed;
+    /* band access (bit 7 of the level byte) where prediction is asked for:
+     * one body, the flags naming no coder */
+    int bands_acc = BW_CFG_BANDS && basis == BW_BASIS_PRED && (data[1] & 0x80u);
+    if (bands_acc) {
+        pa.band_access = 1u;
+        pa.segment_vectors = 0;
+        pa.flags &= (uint8_t)~(BW_FLAG_RICE | BW_FLAG_MS);
+        pa.coder = BW_CODER_BY_FLAGS;
+    }
     if (mode == BW_MODE_MAX_ERROR)
         pa.max_error = p < 0xF000u ? 1u + p % 1000u
                                    : 1u + (uint32_t)(((uint64_t)p * 2654435761u) % (uint32_t)SMAX);
@@ -218,7 +228,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
 
-    size_t wb = bw_work_bound(n, d.bands), cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD(nvec);
+    size_t wb = bw_work_bound(n, d.bands),
+           cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD(nvec) + BW_BANDS_OVERHEAD;
     int32_t *work = malloc(wb * sizeof *work), *ver = malloc(wb * sizeof *ver);
     uint8_t *out = malloc(cap), *out2 = malloc(cap);
     int32_t *y = malloc(n * sizeof *y);
@@ -285,6 +296,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 require(err == 0, "decoded sample differs", st);
             else if (mode == BW_MODE_MAX_ERROR)
                 require(err <= (int64_t)pa.max_error, "decoded sample beyond the max error", st);
+        }
+        require((h.band_access != 0u) == (bands_acc != 0), "header band access differs", st);
+        if (h.band_access) { /* a band range: those bands of the whole decode */
+            uint32_t B = d.bands, b0 = (uint32_t)(size * 2654435761u) % B, R = B - b0;
+            size_t rw = bw_band_range_work(d.n_in, R);
+            int32_t *o = malloc((size_t)d.n_in * R * sizeof *o), *rwk = malloc(rw * sizeof *rwk);
+            if (!o || !rwk)
+                abort();
+            st = bw_decode_band_range(pl, pl_len, b0, B, o, (size_t)d.n_in * R, rwk, rw, NULL);
+            require(st == BW_OK, "own payload's band range does not decode", st);
+            for (uint32_t s = 0; s < d.n_in; s++)
+                require(memcmp(o + (size_t)s * R, y + (size_t)s * B + b0, R * sizeof *o) == 0,
+                        "a band range differs from the whole decode", st);
+            free(o);
+            free(rwk);
         }
         st = bw_decode_unchecked(pl, pl_len, work, wb, work, wb);
         require(st == BW_OK && memcmp(work, y, n * sizeof *y) == 0,

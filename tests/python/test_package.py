@@ -393,6 +393,33 @@ def a_progressive_payload_decodes_from_any_prefix():
 
 
 @case
+def a_band_access_payload_decodes_the_bands_asked_for():
+    rng = np.random.default_rng(6)
+    x = (0.5 + np.cumsum(rng.normal(0, 1e-3, (9, 300)), axis=1)).astype(np.float32)
+    wl = np.linspace(400.0, 1000.0, 300)
+    p = brdfwave.encode(x, wavelengths=wl, band_access=True)
+    m = brdfwave.decode_bytes(p)
+    assert m.header["band_access"] and np.array_equal(np.asarray(m), x), m.header
+    k = brdfwave.decode_bytes(p, bands=[0, 150, 299])
+    assert np.array_equal(np.asarray(k), x[:, [0, 150, 299]]) and list(k.bands) == [0, 150, 299]
+    assert np.array_equal(k.wavelengths, wl[[0, 150, 299]]), k.wavelengths
+    r = brdfwave.decode_bytes(p, wavelength_range=(500, 520))
+    sel = (wl >= 500) & (wl <= 520)
+    assert np.array_equal(np.asarray(r), x[:, sel]) and np.array_equal(r.wavelengths, wl[sel])
+    # the same bands and metadata as the host's payload gives
+    q = brdfwave.decode_bytes(brdfwave.encode(x, wavelengths=wl), wavelength_range=(500, 520))
+    assert q.metadata == r.metadata, (q.metadata, r.metadata)
+    e = brdfwave.encode(x, max_error=1e-4, band_access=True)
+    assert np.max(np.abs(np.asarray(brdfwave.decode_bytes(e)) - x)) <= 1e-4
+    try:
+        brdfwave.encode(x, nbytes=2000, band_access=True)
+    except brdfwave.BrdfwaveError:
+        pass
+    else:
+        raise AssertionError("a byte budget accepted with band access")
+
+
+@case
 def float_lossless_keeps_every_bit_and_says_so():
     rng = np.random.default_rng(32)
     x = (rng.standard_normal((7, 33)) * 10.0 ** rng.integers(-30, 30, (7, 33))).astype(np.float32)

@@ -293,7 +293,7 @@ static void what_does_not_embed_is_refused(void **state)
     q[2] = 6; /* a form this decoder does not know */
     assert_int_equal(bw_header_parse_fields(p, len, &h), BW_ERR_HEADER);
     q[2] = 5;
-    q[0] = 0x06; /* an unknown critical record */
+    q[0] = 0x07; /* an unknown critical record */
     assert_int_equal(bw_header_parse_fields(p, len, &h), BW_ERR_EXTENSION);
     q[0] = BW_EXT_SEGMENTS; /* a second segments record */
     assert_int_equal(bw_header_parse_fields(p, len, &h), BW_ERR_HEADER);

@@ -146,7 +146,7 @@ static void malformed_records_are_refused_by_the_encoder(void **state)
     p.ext = bad;
     p.ext_len = 4;
     encode(&p, BW_ERR_ARG);
-    uint8_t crit[3] = {0x06, 1, 0}; /* a critical type no decoder knows */
+    uint8_t crit[3] = {0x07, 1, 0}; /* a critical type no decoder knows */
     p.ext = crit;
     p.ext_len = 3;
     encode(&p, BW_ERR_ARG);
@@ -175,7 +175,7 @@ static void decoders_refuse_unknown_critical_records_and_inconsistent_versions(v
     static uint8_t edit[sizeof out];
 
     memcpy(edit, out, len);
-    edit[at] = 0x06; /* the record becomes critical and unknown */
+    edit[at] = 0x07; /* the record becomes critical and unknown */
     recrc(edit, len);
     assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
     assert_int_equal(bw_decode(edit, len, ver, N, work, sizeof work / sizeof *work, NULL),
@@ -260,9 +260,9 @@ static void the_float_records_are_known_and_their_tail_is_left_to_the_host(void 
     const uint8_t empty[] = {BW_EXT_FLOAT_EXACT, 0};
     len = with_records(edit, src, plain, empty, sizeof empty, NULL, 0);
     assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_HEADER);
-    /* 0x06 is critical and unknown */
-    const uint8_t six[] = {0x06, 1, 0};
-    len = with_records(edit, src, plain, six, sizeof six, NULL, 0);
+    /* 0x07 is critical and unknown */
+    const uint8_t seven[] = {0x07, 1, 0};
+    len = with_records(edit, src, plain, seven, sizeof seven, NULL, 0);
     assert_int_equal(bw_header_read(edit, len, &h), BW_ERR_EXTENSION);
     /* 0x04 (embedded) follows a segments record and holds no data */
     const uint8_t four[] = {BW_EXT_EMBEDDED, 0};

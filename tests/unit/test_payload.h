@@ -36,7 +36,8 @@ static inline bw_status_t test_encode(const bw_dims_t *d, const bw_params_t *pa,
                                       payload_t *out)
 {
     size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
-    size_t cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD((size_t)d->n_in * d->n_out) + 64u;
+    size_t cap = bw_payload_bound(n) + BW_SEGMENT_OVERHEAD((size_t)d->n_in * d->n_out) +
+                 (pa->band_access ? BW_BANDS_OVERHEAD : 0u) + 64u;
     int32_t *w = xmalloc(wb * 4), *v = xmalloc(wb * 4);
     out->p = xmalloc(cap);
     out->len = 0;

@@ -19,8 +19,8 @@ class Dims(ctypes.Structure):
 
 
 class Header(ctypes.Structure):
-    _fields_ = [("version", ctypes.c_uint8), ("dims", Dims), ("basis", ctypes.c_uint8),
-                ("spectral_levels", ctypes.c_uint8), ("mode", ctypes.c_uint8),
+    _fields_ = [("version", ctypes.c_uint8), ("band_access", ctypes.c_uint8), ("dims", Dims),
+                ("basis", ctypes.c_uint8), ("spectral_levels", ctypes.c_uint8), ("mode", ctypes.c_uint8),
                 ("flags", ctypes.c_uint8), ("prequant", ctypes.c_uint32),
                 ("step_q8", ctypes.c_uint32), ("max_error", ctypes.c_uint32),
                 ("scale_bits", ctypes.c_uint32), ("offset_bits", ctypes.c_uint32),
@@ -53,7 +53,8 @@ class EncodeOpts(ctypes.Structure):
                 ("max_rel_error", ctypes.c_double), ("rel_floor", ctypes.c_double),
                 ("ext", ctypes.c_void_p), ("ext_len", ctypes.c_size_t),
                 ("effort", ctypes.c_uint), ("coder", ctypes.c_uint),
-                ("segments", ctypes.c_uint32), ("progressive", ctypes.c_uint32)]
+                ("segments", ctypes.c_uint32), ("progressive", ctypes.c_uint32),
+                ("band_access", ctypes.c_uint32)]
 
 
 class Salvage(ctypes.Structure):
@@ -165,6 +166,12 @@ def lib():
     L.bwh_region_rows.restype = ctypes.c_int
     L.bwh_region_rows.argtypes = [P(Header), ctypes.c_void_p, ctypes.c_double, ctypes.c_double,
                                   ctypes.c_double, ctypes.c_void_p]
+    L.bwh_decode_bands.restype = ctypes.c_int
+    L.bwh_decode_bands.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_uint32,
+                                   ctypes.c_uint32, P(Header), P(Dims), P(P(ctypes.c_int32)),
+                                   P(P(ctypes.c_float))]
+    L.bw_header_parse_fields.restype = ctypes.c_int
+    L.bw_header_parse_fields.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
     L.bwh_header_salvage.restype = ctypes.c_int
     L.bwh_header_salvage.argtypes = [ctypes.c_char_p, ctypes.c_size_t, P(Header)]
     L.bwh_meta_rows_json.restype = ctypes.c_int
@@ -299,6 +306,8 @@ def _header_dict(h, payload=None):
             "segments": h.segments, "segment_vectors": h.segment_vectors,
             # embedded segments (encode(..., progressive=True))
             "embedded": bool(h.embedded),
+            # band access (encode(..., band_access=True))
+            "band_access": bool(h.band_access),
             # a step per chunk of that many vectors (record 0x05: a byte
             # budget met in one encode): each chunk's step is step_q8
             # 2^(d / 32) for its d in chunk_steps; 0 and [] without it

@@ -257,6 +257,14 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     try:
         if bands is not None and wavelength_range is not None:
             raise BrdfwaveError("give bands= or wavelength_range=, not both")
+        h = Header()
+        if ((bands is not None or wavelength_range is not None) and incoming is None and
+                level is None and level_in is None and rows is None and region is None and
+                not salvage and lib().bw_header_parse_fields(payload, len(payload),
+                                                             ctypes.byref(h)) == 0 and
+                h.band_access):
+            return _decode_band_range(payload, h.dims.bands, bands, wavelength_range,
+                                      wavelengths, integers)
         if bands is not None or wavelength_range is not None:
             return _keep_bands(decode(payload, wavelengths=wavelengths, integers=integers,
                                       max_samples=max_samples, salvage=salvage,
@@ -285,7 +293,50 @@ def _keep_bands(m, bands, wavelength_range):
     wavelength_range=, with their metadata as the library cuts it
     (bwh_meta_json_bands: the missing samples' runs moved to the values
     kept)."""
-    nb = m.shape[-1]
+    sel = _band_selection(m.shape[-1], m.wavelengths, m.wavelength_unit, bands, wavelength_range)
+    return _cut_bands(m, sel)
+
+
+def _decode_band_range(payload, nb, bands, wavelength_range, wavelengths, integers):
+    """decode(bands=, wavelength_range=) of a payload with band access: only
+    the bands from the first chosen to the last are decoded
+    (bwh_decode_bands), then those chosen kept."""
+    meta = _meta_of(payload)
+    wl = _wavelengths_for(wavelengths, nb)
+    if wl is None and meta.get("wavelengths") is not None:
+        wl = np.asarray(meta["wavelengths"], dtype=np.float64)
+    sel = _band_selection(nb, wl, meta.get("wavelength_unit", ""), bands, wavelength_range)
+    idx = np.flatnonzero(sel)
+    lo, hi = int(idx[0]), int(idx[-1]) + 1
+    L = lib()
+    vals, h, d = _decode_part(lambda p, n, a, *rest: L.bwh_decode_bands(p, n, a[0], a[1], *rest),
+                              payload, (lo, hi), integers)
+    marks = np.zeros(nb, dtype=np.uint8)
+    marks[lo:hi] = 1
+    meta = _meta_bands(meta, nb, marks)
+    m = _measurement(vals, meta, d, h, payload, None if wavelengths is None else wl[lo:hi])
+    _put_missing(m, meta)
+    out = _cut_bands(m, sel[lo:hi])
+    out.bands = idx
+    return out
+
+
+def _meta_bands(meta, nb, marks):
+    """The metadata dict of the nb bands marked in marks (uint8), as the
+    library cuts it (bwh_meta_json_bands)."""
+    j = ctypes.c_char_p()
+    if lib().bwh_meta_json_bands(json.dumps(meta).encode("utf-8"), nb, marks.ctypes.data,
+                                 ctypes.byref(j)) != 0:
+        raise _error()
+    try:
+        return json.loads(j.value.decode("utf-8"))
+    finally:
+        free(j)
+
+
+def _band_selection(nb, wl, unit, bands, wavelength_range):
+    """The bands (a boolean per band of nb) that decode()'s bands= or
+    wavelength_range= (over the wavelengths wl, or None) choose."""
     if wavelength_range is not None:
         try:
             lo, hi = (float(x) for x in wavelength_range)
@@ -293,14 +344,12 @@ def _keep_bands(m, bands, wavelength_range):
             raise BrdfwaveError("wavelength_range must be two numbers, (lo, hi)") from None
         if not lo <= hi:
             raise BrdfwaveError("wavelength_range: lo must not exceed hi")
-        wl = m.wavelengths
         if wl is None or wl.shape != (nb,):
             raise BrdfwaveError("the payload has no wavelength per band: choose bands by "
                                 "number (bands=)")
         sel = (wl >= lo) & (wl <= hi)
         if not sel.any():
-            raise BrdfwaveError("no band's wavelength lies in [%g, %g] %s"
-                                % (lo, hi, m.wavelength_unit))
+            raise BrdfwaveError("no band's wavelength lies in [%g, %g] %s" % (lo, hi, unit))
     else:
         b = np.asarray(bands)
         if b.dtype == bool:
@@ -316,22 +365,19 @@ def _keep_bands(m, bands, wavelength_range):
             sel[b] = True
         if not sel.any():
             raise BrdfwaveError("no band chosen")
+    return sel
+
+
+def _cut_bands(m, sel):
+    """Measurement m's bands marked in sel, with their metadata."""
+    nb = m.shape[-1]
     idx = np.flatnonzero(sel)
     out = Measurement(np.ascontiguousarray(np.asarray(m)[..., idx]), m.metadata, m.layout,
                       m.level, m.level_in, m.header)
     for a in Measurement._ATTRS:
         if a not in ("metadata", "mask"):
             setattr(out, a, getattr(m, a))
-    marks = np.ascontiguousarray(sel, dtype=np.uint8)
-    j = ctypes.c_char_p()
-    if lib().bwh_meta_json_bands(json.dumps(m.metadata).encode("utf-8"), nb, marks.ctypes.data,
-                                 ctypes.byref(j)) != 0:
-        raise _error()
-    try:
-        meta = json.loads(j.value.decode("utf-8"))
-    finally:
-        free(j)
-    out.metadata = meta
+    out.metadata = _meta_bands(m.metadata, nb, np.ascontiguousarray(sel, dtype=np.uint8))
     out.mask = None if m.mask is None else np.ascontiguousarray(m.mask[..., idx])
     out.bands = idx
     return out
@@ -604,7 +650,7 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
            nbytes=None, ratio=None, relative=False, basis="auto", scale=None, coder=None,
            stream=False, symmetry="auto", path=None, device=None, firmware=None,
            max_rel_error=None, rel_floor=None, effort=None, segments=None,
-           progressive=False):
+           progressive=False, band_access=False):
     """Encodes a numpy array to a payload (bytes; also written to `path` if
     given), as `brdfwave encode` does, with its metadata.
 
@@ -641,7 +687,10 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
     planes, the most significant first): any prefix of the payload decodes
     to an approximation (decode(..., salvage=True)), and with nbytes or
     ratio the payload is the exact coding cut at the budget (transform
-    bases); stream=True: streamed order; symmetry: "auto",
+    bases); band_access=True: a set of spectra (lossless or max_error) coded
+    so that decode(..., bands=) decodes only the bands asked for, at a cost
+    that follows them (prediction along the bands, coded by columns);
+    stream=True: streamed order; symmetry: "auto",
     "mirror", "reciprocal", "both" or "none". device: None (this host),
     "linux" or "qemu" (the device application encodes, as `brdfwave encode
     --device`; firmware: its image, else found beside the library or named by
@@ -750,6 +799,8 @@ def encode(values, *, wavelengths=None, wavelength_unit=None, incidence=None,
         o.segments = int(segments)
     if progressive:
         o.progressive = 1
+    if band_access:
+        o.band_access = 1
     sym = L.bwh_symmetry_from_name(symmetry.encode()) if isinstance(symmetry, str) else -1
     if sym < 0:
         raise BrdfwaveError("symmetry must be auto, mirror, reciprocal, both or none")
