@@ -74,7 +74,7 @@ for v in vectors:
 need = {"shape": {"spectra", "reflectance", "brdf-iso", "brdf-full"},
         "mode": {"lossless", "max-error", "bytes"},
         "basis": {"haar", "53", "97", "pred"},
-        "coder": {"range", "rice", "ms", "tab"},
+        "coder": {"range", "rice", "ms", "tab", "columns (band access: record 0x06)"},
         "order": {"coarse-to-fine", "streamed"},
         "symmetry": {"none", "mirror", "reciprocal", "both"},
         "values": {"offset + scale * sample", "exp(offset + scale * sample)"}}
@@ -85,6 +85,21 @@ for k, want in need.items():
 # and the extension area (version 7)
 for bit in (0, 1, 2, 3, 4, 5, 6, 8, 9):
     check(flags & (1 << bit), "no vector with flag bit %d" % bit)
+
+# a band range of a vector with band access (record 0x06) decodes alone to
+# those bands of the stored samples
+for v in vectors:
+    stem = v[:-4]
+    want = json.load(open(stem + ".json"))
+    if not want["coder"].startswith("columns"):
+        continue
+    out = os.path.join(TMP, "bands.i32")
+    r = run("decode", "-i", v, "-o", out, "--output-format", "i32", "--bands", "3,17-20,36")
+    s = np.fromfile(stem + ".i32", "<i4").reshape(-1, want["bands"])
+    check(r.returncode == 0 and np.array_equal(np.fromfile(out, "<i4"),
+                                                s[:, [3, 17, 18, 19, 20, 36]].ravel()),
+          "%s: --bands differ from the stored samples %s" % (os.path.basename(stem),
+                                                            r.stderr.decode()))
 
 # a damaged vector (one body bit, the length) is refused, nothing written
 data = bytearray(open(vectors[0], "rb").read())

@@ -80,6 +80,8 @@ spectra_lossless_97_tab      -i $T/spectra.u16 --input-format u16 --bands 37 -- 
 spectra_maxerr_haar_stream_tab -i $T/spectra.f32 --bands 37 -- --max-error 0.001 --basis haar --stream --coder tab
 refl_maxerr_53_mirror_tab    -i $T/refl.f32 --bands 3 --level 2 -- --max-error 0.002 --basis 53 --symmetry mirror --coder tab
 full_maxerr_both_segments_tab -i $T/full.f32 --bands 1 --level 1 --level-in 1 -- --max-error 0.005 --symmetry both --segments 5 --coder tab
+spectra_lossless_bands       -i $T/spectra.u16 --input-format u16 --bands 37 -- --lossless --band-access
+spectra_maxerr_bands         -i $T/spectra.f32 --bands 37 -- --max-error 0.001 --band-access
 EOF2
 # version 7: the first vector with an ancillary extension record (type 0xC3,
 # unassigned: a decoder skips it) in front of the same body

@@ -252,7 +252,9 @@ def decode(source, *, wavelengths=None, integers=False, max_samples=0, salvage=F
     wavelength lies in [lo, hi], in the payload's wavelength unit), with any
     of the above: only those bands, in order, with their wavelengths,
     bandwidths and names (`bands` names the source bands kept); the payload
-    is decoded as without them."""
+    is decoded as without them, but for one coded with band_access=True
+    without any of the above, whose bands from the first chosen to the last
+    alone are decoded."""
     payload, path = _read_bytes(source)
     try:
         if bands is not None and wavelength_range is not None:
