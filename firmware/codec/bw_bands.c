@@ -728,6 +728,9 @@ bw_status_t bw_bands_encode(const bw_plan_t *pl, const bw_params_t *pa, const in
     uint32_t B = d->bands, q = pa->mode == BW_MODE_MAX_ERROR ? 2u * pa->max_error + 1u : 1u;
     size_t n = (size_t)B * g.n;
     int32_t *e = work, *rec = work + n;
+    for (size_t i = 0; i < n; i++) /* (every error then within +-VMAX) */
+        if (x[i] > BW_SAMPLE_MAX || x[i] < -BW_SAMPLE_MAX)
+            return BW_ERR_RANGE;
     /* the errors, each sample predicted from the rebuilt ones */
     for (uint32_t s = 0; s < g.n; s++) {
         const int32_t *xs = x + (size_t)s * B;

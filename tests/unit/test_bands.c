@@ -304,6 +304,12 @@ static void test_refused(void **state)
         assert_int_equal(test_encode(c ? &d : &dr, &pa, x, &p), BW_ERR_ARG);
         free(p.p);
     }
+    /* a sample out of range */
+    params(&pa, BW_MODE_LOSSLESS, 0);
+    x[5] = BW_SAMPLE_MAX + 1;
+    assert_int_equal(test_encode(&d, &pa, x, &p), BW_ERR_RANGE);
+    free(p.p);
+    x[5] = 0;
     /* a band range of a payload without band access */
     params(&pa, BW_MODE_LOSSLESS, 0);
     pa.band_access = 0;
