@@ -134,55 +134,55 @@ typedef struct {
     uint32_t q; /* the quantiser of the errors: 2E + 1, 1 lossless */
 } layout_t;
 
-static bw_status_t layout_of(const bw_header_t *h, const uint8_t *p, layout_t *L)
+/* Where the tables of payload p (header h) lie in L (its geometry made):
+ * their bytes after the header before their CRC-32, or 0 when they do not
+ * fit the body with that CRC or a width is above 32; *data: the groups'
+ * bytes they give. */
+static size_t tables_of(const bw_header_t *h, const uint8_t *p, layout_t *L, uint64_t *data)
 {
     const bw_dims_t *d = &h->dims;
     geo_make(&L->g, d->bands, d->n_in);
-    L->q = h->mode == BW_MODE_MAX_ERROR ? 2u * h->max_error + 1u : 1u;
     L->ngroups = (d->bands - 1u) / GROUP + 1u;
-    const uint8_t *b = p + h->header_len;
-    size_t bl = h->body_len, lt = (size_t)(L->g.J + 1u) * LEVEL_BYTES,
-           gt = (size_t)L->ngroups * GROUP_BYTES;
-    if (bl < lt + gt)
-        return BW_ERR_CORRUPT;
-    L->levels = b;
-    L->groups = b + lt;
+    size_t lt = (size_t)(L->g.J + 1u) * LEVEL_BYTES, gt = (size_t)L->ngroups * GROUP_BYTES;
+    if (h->body_len < lt + gt)
+        return 0;
+    L->levels = p + h->header_len;
+    L->groups = L->levels + lt;
     L->lens = L->groups + gt;
-    uint64_t lbits = 0, dbytes = 0;
+    uint64_t lbits = 0;
+    *data = 0;
     for (uint32_t gi = 0; gi < L->ngroups; gi++) {
         const uint8_t *e = L->groups + (size_t)gi * GROUP_BYTES;
         uint32_t cols = gi + 1u < L->ngroups ? GROUP : d->bands - gi * GROUP;
         if (e[8] > 32u)
-            return BW_ERR_CORRUPT;
+            return 0;
         lbits += (uint64_t)cols * e[8];
-        dbytes += bw_get_u32(e);
+        *data += bw_get_u32(e);
     }
-    size_t tables = lt + gt + (size_t)((lbits + 7u) >> 3);
-    if (tables + 4u > bl || dbytes != bl - tables - 4u)
+    size_t t = lt + gt + (size_t)((lbits + 7u) >> 3);
+    return t + 4u <= h->body_len ? t : 0u;
+}
+
+static bw_status_t layout_of(const bw_header_t *h, const uint8_t *p, layout_t *L)
+{
+    uint64_t dbytes;
+    size_t tables = tables_of(h, p, L, &dbytes), bl = h->body_len;
+    if (!tables || dbytes != bl - tables - 4u)
         return BW_ERR_CORRUPT;
     /* the tables' CRC covers the header too */
-    if (bw_get_u32(b + tables) != bw_crc32(p, h->header_len + tables))
+    if (bw_get_u32(L->levels + tables) != bw_crc32(p, h->header_len + tables))
         return BW_ERR_CRC;
-    L->data = b + tables + 4u;
-    L->end = b + bl;
+    L->q = h->mode == BW_MODE_MAX_ERROR ? 2u * h->max_error + 1u : 1u;
+    L->data = L->levels + tables + 4u;
+    L->end = L->levels + bl;
     return BW_OK;
 }
 
 size_t bw_bands_tables(const bw_header_t *h, const uint8_t *p)
 {
     layout_t L;
-    geo_make(&L.g, h->dims.bands, h->dims.n_in);
-    uint32_t ng = (h->dims.bands - 1u) / GROUP + 1u;
-    size_t lt = (size_t)(L.g.J + 1u) * LEVEL_BYTES, gt = (size_t)ng * GROUP_BYTES;
-    if (h->body_len < lt + gt)
-        return 0;
-    const uint8_t *grp = p + h->header_len + lt;
-    uint64_t lbits = 0;
-    for (uint32_t gi = 0; gi < ng; gi++)
-        lbits += (uint64_t)(gi + 1u < ng ? GROUP : h->dims.bands - gi * GROUP) *
-                 grp[(size_t)gi * GROUP_BYTES + 8u];
-    size_t t = lt + gt + (size_t)((lbits + 7u) >> 3);
-    return t + 4u <= h->body_len ? t : 0u;
+    uint64_t dbytes;
+    return tables_of(h, p, &L, &dbytes);
 }
 
 /* ---- bits --------------------------------------------------------------- */
@@ -443,24 +443,22 @@ bw_status_t bw_decode_band_range(const uint8_t *payload, size_t len, uint32_t b0
      * each level the errors of its odd indices */
     int32_t *cols = work;
     size_t nc = 0;
-    uint32_t first[LEVELS_MAX + 1u], count[LEVELS_MAX + 1u];
     cursor_t cu;
     cursor_init(&cu, &L);
     for (unsigned l = 0; l <= g->J; l++) {
+        /* coarse: lo[J]..hi[J]; a level's errors: its odd indices a..e,
+         * error (i - 1) / 2 of the level for index i */
         unsigned j = g->J - l;
         uint32_t a = l ? (lo[j] | 1u) : lo[j], e = l ? ((hi[j] - 1u) | 1u) : hi[j];
-        first[l] = l ? (a - 1u) / 2u : a; /* index within the coding level */
-        count[l] = (l ? (a <= hi[j] ? (e - a) / 2u + 1u : 0u) : e - a + 1u);
-        if (l && hi[j] == 0u)
-            count[l] = 0;
-        if (!count[l])
+        if (a > hi[j])
             continue;
+        uint32_t first = l ? (a - 1u) / 2u : a, count = l ? (e - a) / 2u + 1u : e - a + 1u;
         code_t c;
         if (code_read(L.levels + (size_t)l * LEVEL_BYTES, &c) != 0)
             return BW_ERR_CORRUPT;
-        for (uint32_t m = 0; m < count[l]; m++, nc++) {
+        for (uint32_t m = 0; m < count; m++, nc++) {
             reader_t r;
-            st = cursor_column(&cu, g->off[l] + first[l] + m, &r);
+            st = cursor_column(&cu, g->off[l] + first + m, &r);
             if (st == BW_OK)
                 st = get_column(&r, &c, N, cols + nc * N, 1u);
             if (st != BW_OK)
@@ -644,7 +642,9 @@ static uint64_t level_stats(const int32_t *e, const geo_t *g, unsigned l, bool d
     memset(f, 0, NSYM * sizeof *f);
     for (uint32_t c = g->off[l]; c < g->off[l + 1u]; c++) {
         uint32_t pos = col_pos(g, l, c);
-        for (uint32_t i = 0; i < g->n && !zero_column(e, g, pos); i += 3u) {
+        if (zero_column(e, g, pos))
+            continue;
+        for (uint32_t i = 0; i < g->n; i += 3u) {
             f[tuple_sym(e, g, pos, i, diff, k)]++;
             for (unsigned t = 0; t < 3u && i + t < g->n; t++)
                 extra += extra_bits(zig(e, g, pos, i + t, diff), k);

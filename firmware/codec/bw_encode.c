@@ -308,10 +308,9 @@ bw_status_t bw_encode_code(const bw_plan_t *pl, const bw_params_t *pa, unsigned 
 
 /* Decodes the payload into verify and checks the mode's guarantee; *sse
  * (may be NULL): the squared error. */
-static bw_status_t verify_payload(bw_ctx_t *ctx, const bw_plan_t *pl,
-                                                   const bw_params_t *pa, uint32_t mode,
-                                                   const int32_t *samples, const uint8_t *out,
-                                                   size_t len, int32_t *verify, uint64_t *sse)
+static bw_status_t verify_payload(bw_ctx_t *ctx, const bw_plan_t *pl, const bw_params_t *pa,
+                                  uint32_t mode, const int32_t *samples, const uint8_t *out,
+                                  size_t len, int32_t *verify, uint64_t *sse)
 {
     size_t wb = bw_work_bound(pl->n, pl->dims.bands);
     bw_status_t st = bw_decode_ctx(ctx, out, len, verify, wb, verify, wb, NULL);
@@ -569,7 +568,9 @@ static BW_NOINLINE bw_status_t encode_bands(bw_ctx_t *ctx, const bw_dims_t *dims
     st = bw_bands_encode(&pl, pa, samples, work, out, out_cap, out_len);
     if (st != BW_OK || !verify)
         return st;
-    /* the self-check: every sample back, exactly or within E */
+    /* the self-check: every sample back, exactly or within E (not through
+     * verify_payload: a second caller takes it out of line, which costs
+     * bw_encode_ctx's stack, or, inlined twice, the device core's bytes) */
     size_t wb = bw_work_bound(pl.n, dims->bands);
     if (bw_decode_ctx(ctx, out, *out_len, verify, wb, verify, wb, NULL) != BW_OK)
         return BW_ERR_VERIFY;

@@ -478,18 +478,10 @@ int bwh_decode_bands(const uint8_t *p, size_t len, uint32_t b0, uint32_t b1, bw_
         }
     } else {
         /* every other body: the whole decode, then the bands */
-        size_t n = bw_dims_samples(d), wb = bw_work_bound(n, d->bands);
-        int32_t *w = malloc(wb * sizeof *w), *x = malloc(n * sizeof *x);
-        bw_ctx_t *ctx = malloc(sizeof *ctx);
-        bw_status_t st = w && x && ctx ? bw_decode_ctx(ctx, p, len, x, n, w, wb, NULL)
-                                       : BW_ERR_ARG;
-        bool oom = !w || !x || !ctx;
-        free(w);
-        free(ctx);
-        if (st != BW_OK) {
-            free(x);
+        int32_t *x;
+        if (decode_ints(p, len, 0, h, &x, NULL, NULL, NULL) != 0) {
             free(r);
-            return bwh_fail("%s", oom ? "out of memory" : bw_strerror(st));
+            return -1;
         }
         for (size_t v = 0, nv = (size_t)d->n_in * d->n_out; v < nv; v++)
             memcpy(r + v * (b1 - b0), x + v * d->bands + b0, (b1 - b0) * sizeof *r);

@@ -191,7 +191,7 @@ static void test_round_trip(void **state)
     one_case(71, 2151, 0, BW_MODE_LOSSLESS, 0);
 }
 
-/* A spectrum of 2151 bands: a band's decode is smaller than the whole's
+/* 9 spectra of 600 bands: a band's decode is smaller than the whole's
  * and reads few groups; the columns it does not read may be damaged. */
 static void test_damage(void **state)
 {
